@@ -1,0 +1,36 @@
+// accel.h — closest-hit and any-hit queries over a scene's primitives (brute force or a BVH).
+#ifndef GLINT_ACCEL_H
+#define GLINT_ACCEL_H
+
+#include "glint.h"
+#include "core/vec.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+struct glint_scene;
+
+/// The result of a closest-hit query: distance along the ray and which primitive.
+typedef struct hit {
+    float t;
+    uint32_t prim; ///< sphere index
+} hit;
+
+typedef struct accel_stats {
+    uint64_t nodes, leaves, depth;
+    double build_seconds;
+} accel_stats;
+
+typedef struct accel accel;
+
+/// Builds the structure chosen in the scene's settings over its primitives. NULL on out-of-memory.
+accel *accel_build(const struct glint_scene *s, glint_error *err);
+void accel_free(accel *a);
+void accel_get_stats(const accel *a, accel_stats *out);
+
+/// Nearest hit with r->tmin < t < r->tmax; false when the ray escapes.
+bool accel_intersect(const accel *a, const ray *r, hit *h);
+/// Whether anything lies on the ray with r->tmin < t < r->tmax (for shadow rays).
+bool accel_occluded(const accel *a, const ray *r);
+
+#endif

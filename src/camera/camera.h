@@ -1,0 +1,38 @@
+// camera.h — the paper's viewport camera and the book's look-at thin-lens camera.
+#ifndef GLINT_CAMERA_H
+#define GLINT_CAMERA_H
+
+#include "core/rng.h"
+#include "core/vec.h"
+
+typedef enum camera_kind { CAMERA_VIEWPORT, CAMERA_LOOKAT } camera_kind;
+
+typedef struct camera {
+    camera_kind kind;
+    // viewport (the paper): eye at `position` looking along +z at a viewport_width x viewport_height
+    // window at distance `distance`; kept in double so the paper's image is reproduced exactly.
+    double position[3];
+    double viewport_width, viewport_height, distance;
+    // look-at (the book)
+    vec3 lookfrom, lookat, vup;
+    float vfov_degrees, defocus_angle_degrees, focus_distance;
+    // derived by camera_prepare for the image size
+    int image_width, image_height;
+    vec3 pixel00, pixel_du, pixel_dv; ///< world position of film point (0,0) and per-pixel steps
+    vec3 origin, defocus_u, defocus_v;
+} camera;
+
+/// Defaults: the look-at camera of the book (lookfrom (0,0,0) towards -z, vfov 90, no defocus).
+camera camera_default(void);
+/// Derives the per-image quantities; call once the image size is known.
+void camera_prepare(camera *c, int width, int height);
+
+/// Primary ray through film point (fx, fy) (pixel (x, y) covers [x, x+1) x [y, y+1), y down), with
+/// lens samples drawn from r when the camera has defocus blur. The direction is unit length.
+ray camera_ray(const camera *c, float fx, float fy, rng *r);
+
+/// The paper's viewport point for film point (fx, fy), in double: V = (gx * Vw / W, gy * Vh / H, d)
+/// relative to the eye, with gx = fx - W/2 and gy = H/2 - fy.
+void camera_viewport_point(const camera *c, double fx, double fy, double out[3]);
+
+#endif

@@ -1,0 +1,46 @@
+// integrator.h — the light-transport algorithms: the paper's and the colour Whitted ray tracer, and the
+// path tracer. Each computes the radiance of one pixel sample from a const scene.
+#ifndef GLINT_INTEGRATOR_H
+#define GLINT_INTEGRATOR_H
+
+#include "core/rng.h"
+#include "core/vec.h"
+#include "scene/scene.h"
+
+#include <stdint.h>
+
+/// Per-thread counters, one cache line each so that threads never share a line.
+typedef struct thread_stats {
+    _Alignas(64) uint64_t rays;  ///< closest-hit queries (camera and scattered/reflected rays)
+    uint64_t shadow_rays;        ///< any-hit queries
+    uint64_t discarded_samples;  ///< samples dropped because they were NaN or infinite
+    uint64_t samples;
+} thread_stats;
+
+/// Where a ray met a surface, with what shading needs.
+typedef struct surface {
+    vec3 p;        ///< hit point
+    vec3 n;        ///< unit normal facing against the incoming ray
+    bool front;    ///< the ray arrived on the side the outward normal points to
+    uint32_t material;
+    float u, v;    ///< texture coordinates
+} surface;
+
+/// Linear RGB radiance of sample `sample` of pixel (x, y); r is seeded for exactly this sample.
+vec3 integrator_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
+
+vec3 whitted_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
+vec3 path_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
+
+/// Film point of a sample: the pixel centre for a single sample, else uniformly jittered in the pixel.
+static inline void integrator_film_point(const glint_scene *s, int x, int y, rng *r, float *fx, float *fy) {
+    if (s->settings.spp == 1 && s->settings.integrator == INTEGRATOR_WHITTED) {
+        *fx = (float)x + 0.5f;
+        *fy = (float)y + 0.5f;
+        return;
+    }
+    *fx = (float)x + rng_float(r);
+    *fy = (float)y + rng_float(r);
+}
+
+#endif

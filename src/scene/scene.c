@@ -1,0 +1,149 @@
+// scene.c — building, overriding, preparing and freeing a scene.
+#include "scene/scene.h"
+#include "accel/accel.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static char *dup_string(const char *s) {
+    size_t n = strlen(s) + 1;
+    char *d = malloc(n);
+    if (d) memcpy(d, s, n);
+    return d;
+}
+
+glint_scene *scene_new(const char *path) {
+    glint_scene *s = calloc(1, sizeof *s);
+    if (!s) return NULL;
+    s->path = dup_string(path ? path : "<scene>");
+    if (!s->path) { free(s); return NULL; }
+    render_settings *rs = &s->settings;
+    rs->width = 400;
+    rs->height = 225;
+    rs->spp = 1;
+    rs->max_depth = 3;
+    rs->seed = 0;
+    rs->integrator = INTEGRATOR_WHITTED;
+    rs->whitted_mode = WHITTED_COLOR;
+    rs->background = BACKGROUND_CONSTANT;
+    rs->background_color = v3s(0.0f);
+    rs->sky_horizon = v3(1.0f, 1.0f, 1.0f);
+    rs->sky_zenith = v3(0.5f, 0.7f, 1.0f);
+    rs->transform = TRANSFORM_LINEAR;
+    rs->accel = ACCEL_BVH;
+    s->camera = camera_default();
+    return s;
+}
+
+// Grows *arr (of *count elements of `size` bytes) by one; amortised doubling keyed on powers of two.
+static void *grow(void *arr, size_t count, size_t size) {
+    if (count & (count - 1)) return arr; // not a power of two: capacity is already larger
+    size_t cap = count ? count * 2 : 4;
+    if (cap > SIZE_MAX / size) return NULL;
+    return realloc(arr, cap * size);
+}
+
+long scene_add_material(glint_scene *s, const material *m, const char *name) {
+    material *mats = grow(s->materials, s->material_count, sizeof *mats);
+    if (!mats) return -1;
+    s->materials = mats;
+    char **names = grow(s->material_names, s->material_count, sizeof *names);
+    if (!names) return -1;
+    s->material_names = names;
+    char *copy = NULL;
+    if (name && !(copy = dup_string(name))) return -1;
+    s->materials[s->material_count] = *m;
+    s->material_names[s->material_count] = copy;
+    return (long)s->material_count++;
+}
+
+long scene_find_material(const glint_scene *s, const char *name) {
+    for (size_t i = 0; i < s->material_count; i++)
+        if (s->material_names[i] && strcmp(s->material_names[i], name) == 0) return (long)i;
+    return -1;
+}
+
+bool scene_add_sphere(glint_scene *s, sphere sp) {
+    sphere *arr = grow(s->spheres, s->sphere_count, sizeof *arr);
+    if (!arr) return false;
+    s->spheres = arr;
+    s->spheres[s->sphere_count++] = sp;
+    return true;
+}
+
+bool scene_add_light(glint_scene *s, light l) {
+    light *arr = grow(s->lights, s->light_count, sizeof *arr);
+    if (!arr) return false;
+    s->lights = arr;
+    s->lights[s->light_count++] = l;
+    return true;
+}
+
+glint_status scene_prepare(glint_scene *s, glint_error *err) {
+    camera_prepare(&s->camera, s->settings.width, s->settings.height);
+    if (s->accel) return GLINT_OK;
+    s->accel = accel_build(s, err);
+    return s->accel ? GLINT_OK : GLINT_ERR_RENDER;
+}
+
+void glint_overrides_init(glint_overrides *o) {
+    o->width = o->height = o->spp = o->max_depth = -1;
+    o->seed = -1;
+    o->accel = NULL;
+}
+
+// Checks one integer override against [lo, hi]; writes a message naming the flag otherwise.
+static bool override_in_range(const char *flag, long v, long lo, long hi, glint_error *err) {
+    if (v >= lo && v <= hi) return true;
+    snprintf(err->message, sizeof err->message, "%s: %ld is out of range, expected an integer in [%ld, %ld]", flag,
+             v, lo, hi);
+    return false;
+}
+
+glint_status glint_scene_override(glint_scene *s, const glint_overrides *o, glint_error *err) {
+    render_settings *rs = &s->settings;
+    if (o->width >= 0 && !override_in_range("--width", o->width, 1, SCENE_MAX_DIMENSION, err)) return GLINT_ERR_INPUT;
+    if (o->height >= 0 && !override_in_range("--height", o->height, 1, SCENE_MAX_DIMENSION, err))
+        return GLINT_ERR_INPUT;
+    if (o->spp >= 0 && !override_in_range("--spp", o->spp, 1, SCENE_MAX_SPP, err)) return GLINT_ERR_INPUT;
+    if (o->max_depth >= 0 && !override_in_range("--depth", o->max_depth, 0, SCENE_MAX_DEPTH, err))
+        return GLINT_ERR_INPUT;
+    accel_kind kind = rs->accel;
+    if (o->accel) {
+        if (strcmp(o->accel, "bvh") == 0) kind = ACCEL_BVH;
+        else if (strcmp(o->accel, "bvh2") == 0) kind = ACCEL_BVH2;
+        else if (strcmp(o->accel, "none") == 0) kind = ACCEL_NONE;
+        else {
+            snprintf(err->message, sizeof err->message, "--accel: unknown structure '%s', expected bvh, bvh2 or none",
+                     o->accel);
+            return GLINT_ERR_INPUT;
+        }
+    }
+    if (o->width >= 0) rs->width = (int)o->width;
+    if (o->height >= 0) rs->height = (int)o->height;
+    if (o->spp >= 0) rs->spp = (int)o->spp;
+    if (o->max_depth >= 0) rs->max_depth = (int)o->max_depth;
+    if (o->seed >= 0) rs->seed = (uint64_t)o->seed;
+    rs->accel = kind;
+    return GLINT_OK;
+}
+
+void glint_scene_size(const glint_scene *s, int *width, int *height) {
+    *width = s->settings.width;
+    *height = s->settings.height;
+}
+
+void glint_scene_free(glint_scene *s) {
+    if (!s) return;
+    if (s->accel) accel_free(s->accel);
+    for (size_t i = 0; i < s->material_count; i++) free(s->material_names[i]);
+    free(s->material_names);
+    free(s->materials);
+    free(s->spheres);
+    free(s->lights);
+    free(s->path);
+    free(s);
+}
+
+const char *glint_version(void) { return GLINT_VERSION; }

@@ -1,0 +1,83 @@
+// scene.h — the scene: plain data read from the scene file, then prepared (accel built) and never mutated.
+#ifndef GLINT_SCENE_H
+#define GLINT_SCENE_H
+
+#include "glint.h"
+#include "core/vec.h"
+#include "camera/camera.h"
+#include "material/material.h"
+#include "light/light.h"
+#include "geometry/sphere.h"
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef enum integrator_kind { INTEGRATOR_WHITTED, INTEGRATOR_PATH } integrator_kind;
+typedef enum whitted_mode { WHITTED_PAPER, WHITTED_COLOR } whitted_mode;
+typedef enum background_kind { BACKGROUND_CONSTANT, BACKGROUND_SKY } background_kind;
+/// How linear radiance becomes an 8-bit value: none (clamp only), gamma 2 (square root), or sRGB.
+typedef enum output_transform { TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SRGB } output_transform;
+typedef enum accel_kind { ACCEL_BVH, ACCEL_BVH2, ACCEL_NONE } accel_kind;
+
+/// The "render" object of a scene file.
+typedef struct render_settings {
+    int width, height, spp, max_depth;
+    uint64_t seed;
+    integrator_kind integrator;
+    whitted_mode whitted_mode;
+    background_kind background;
+    vec3 background_color;        ///< constant background radiance
+    vec3 sky_horizon, sky_zenith; ///< sky: lerp(horizon, zenith, 0.5 * (dir.y + 1))
+    output_transform transform;
+    accel_kind accel;
+} render_settings;
+
+/// Hard limits on sizes, so that a scene file cannot ask for absurd amounts of memory or time.
+enum {
+    SCENE_MAX_DIMENSION = 16384,
+    SCENE_MAX_SPP = 1000000,
+    SCENE_MAX_DEPTH = 10000,
+    SCENE_MAX_NAME = 128,
+};
+
+struct accel; // defined in accel/accel.h
+
+struct glint_scene {
+    char *path;            ///< scene file name, as given, for messages
+    render_settings settings;
+    camera camera;
+
+    material *materials;   ///< materials[i]; objects refer to them by index
+    char **material_names; ///< NULL entry for anonymous (inline) materials
+    size_t material_count;
+
+    sphere *spheres;
+    size_t sphere_count;
+
+    light *lights;
+    size_t light_count;
+
+    struct accel *accel;   ///< built by scene_prepare
+};
+
+/// Builds what rendering needs (the acceleration structure); idempotent.
+glint_status scene_prepare(glint_scene *s, glint_error *err);
+
+/// Appends a material and returns its index, or -1 when out of memory.
+long scene_add_material(glint_scene *s, const material *m, const char *name);
+/// Index of the named material, or -1.
+long scene_find_material(const glint_scene *s, const char *name);
+/// Appends a sphere; false when out of memory.
+bool scene_add_sphere(glint_scene *s, sphere sp);
+/// Appends a light; false when out of memory.
+bool scene_add_light(glint_scene *s, light l);
+/// An empty scene with every render setting at its documented default.
+glint_scene *scene_new(const char *path);
+
+/// The background radiance seen along unit direction d.
+static inline vec3 scene_background(const render_settings *rs, vec3 d) {
+    if (rs->background == BACKGROUND_SKY) return v3_lerp(rs->sky_horizon, rs->sky_zenith, 0.5f * (d.y + 1.0f));
+    return rs->background_color;
+}
+
+#endif
