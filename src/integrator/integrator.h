@@ -3,6 +3,7 @@
 #ifndef GLINT_INTEGRATOR_H
 #define GLINT_INTEGRATOR_H
 
+#include "accel/accel.h"
 #include "core/rng.h"
 #include "core/vec.h"
 #include "scene/scene.h"
@@ -25,6 +26,19 @@ typedef struct surface {
     uint32_t material;
     float u, v;    ///< texture coordinates
 } surface;
+
+/// Shading data of a closest hit found by accel_intersect for ray r.
+static inline surface surface_at(const glint_scene *s, const ray *r, const hit *h) {
+    surface out;
+    const sphere *sp = &s->spheres[h->prim];
+    out.p = ray_at(r, h->t);
+    vec3 outward = sphere_normal(sp, out.p); // inward for a negative radius
+    out.front = v3_dot(r->d, outward) < 0.0f;
+    out.n = out.front ? outward : v3_neg(outward);
+    out.material = sp->material;
+    sphere_uv(sp->radius < 0.0f ? v3_neg(outward) : outward, &out.u, &out.v);
+    return out;
+}
 
 /// Linear RGB radiance of sample `sample` of pixel (x, y); r is seeded for exactly this sample.
 vec3 integrator_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
