@@ -77,6 +77,9 @@ typedef enum glint_format { GLINT_FORMAT_AUTO, GLINT_FORMAT_PNG, GLINT_FORMAT_PP
 
 /// Writes the image; "-" writes PPM to standard output. Writes a temporary file and renames it.
 glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err);
+/// Checks before a render that the image can be written there: GLINT_ERR_INPUT for an unknown extension,
+/// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory.
+glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err);
 /// Width, height and linear RGB pixels (row 0 at the top, 3 floats a pixel).
 void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb);
 /// The 8-bit, display-encoded pixel (x, y) channel c, exactly as PNG/PPM output stores it.

@@ -1,20 +1,163 @@
-// main.c — the glint command: parse flags, load the scene, render, write the image.
+// main.c — the glint command: parse flags, load the scene, render with a progress bar, write the image;
+// SIGINT/SIGTERM stop the render and keep the samples completed so far.
+#include "cli.h"
 #include "glint.h"
 
+#include <signal.h>
+#include <stdatomic.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+_Static_assert(ATOMIC_INT_LOCK_FREE == 2, "the signal handler needs a lock-free atomic int");
+
+static atomic_int first_signal; // the signal that asked the render to stop, 0 while none has
+
+// First SIGINT/SIGTERM: ask the render to stop (it then writes what it has). Second: die at once, by the
+// signal's default action, so the shell sees the usual status. No temporary file can be left behind then:
+// none exists while rendering, and signals are blocked while the image is written.
+static void on_signal(int sig) {
+    int expected = 0;
+    if (atomic_compare_exchange_strong(&first_signal, &expected, sig)) {
+        glint_request_stop();
+        return;
+    }
+    static const char msg[] = "\nglint: interrupted again, aborting\n";
+    ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+    (void)ignored;
+    struct sigaction dfl;
+    memset(&dfl, 0, sizeof dfl);
+    dfl.sa_handler = SIG_DFL;
+    sigemptyset(&dfl.sa_mask);
+    sigaction(sig, &dfl, NULL);
+    raise(sig); // delivered as soon as this handler returns
+}
+
+// Installed even when the signal was inherited as ignored (as `glint ... &` in a script does to SIGINT),
+// so that a harness can always interrupt a render and get its partial image.
+static void install_signal_handlers(void) {
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESTART;
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGTERM, &sa, NULL);
+}
+
+// Holds SIGINT/SIGTERM back while a file is being written, so that a rename never races an abort.
+static void block_stop_signals(void) {
+    sigset_t set;
+    sigemptyset(&set);
+    sigaddset(&set, SIGINT);
+    sigaddset(&set, SIGTERM);
+    pthread_sigmask(SIG_BLOCK, &set, NULL);
+}
+
+// The conventional status of a program stopped by a signal: 128 + its number (130 for SIGINT).
+static int interrupted_status(void) {
+    int sig = atomic_load(&first_signal);
+    return 128 + (sig ? sig : SIGINT);
+}
+
+static int exit_code(glint_status st) { return st == GLINT_ERR_INPUT ? 2 : 1; }
+
+// Reads all of standard input; NULL (with errno) on failure.
+static char *read_stdin(size_t *length) {
+    size_t cap = 1 << 16, n = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        n += fread(buf + n, 1, cap - n, stdin);
+        if (n < cap) break;
+        char *bigger = realloc(buf, cap * 2);
+        if (!bigger) { free(buf); return NULL; }
+        buf = bigger;
+        cap *= 2;
+    }
+    if (buf && ferror(stdin)) { free(buf); return NULL; }
+    *length = n;
+    return buf;
+}
+
+static glint_status load_scene(const char *path, glint_scene **scene, glint_error *err) {
+    if (strcmp(path, "-") != 0) return glint_scene_load(path, scene, err);
+    size_t length = 0;
+    char *text = read_stdin(&length);
+    if (!text) {
+        snprintf(err->message, sizeof err->message, "standard input: cannot read the scene");
+        return GLINT_ERR_INPUT;
+    }
+    glint_status st = glint_scene_parse("<stdin>", text, length, scene, err);
+    free(text);
+    return st;
+}
 
 int main(int argc, char **argv) {
-    if (argc < 2) { fprintf(stderr, "usage: glint [options] SCENE\n"); return 2; }
+    cli_options opt;
+    cli_action action = cli_parse(argc, argv, &opt);
+    if (action != CLI_RUN) return (int)action;
+
     glint_error err;
-    glint_scene *scene;
-    if (glint_scene_load(argv[1], &scene, &err) != GLINT_OK) { fprintf(stderr, "glint: %s\n", err.message); return 2; }
-    glint_render_options opt = {0};
-    glint_image *img;
-    glint_render_stats st;
-    glint_status s = glint_render(scene, &opt, NULL, NULL, &img, &st, &err);
+    glint_format format = opt.ascii_ppm ? GLINT_FORMAT_PPM_ASCII : GLINT_FORMAT_AUTO;
+    // Before the render, not after it: a typo in -o must not cost a long render.
+    glint_status st = glint_image_check_path(opt.output, format, &err);
+    if (st != GLINT_OK) {
+        fprintf(stderr, "glint: %s\n", err.message);
+        return exit_code(st);
+    }
+
+    install_signal_handlers();
+    glint_scene *scene = NULL;
+    st = load_scene(opt.scene_path, &scene, &err);
+    if (st == GLINT_OK) st = glint_scene_override(scene, &opt.overrides, &err);
+    if (st != GLINT_OK) {
+        fprintf(stderr, "glint: %s\n", err.message);
+        glint_scene_free(scene);
+        return exit_code(st);
+    }
+    if (atomic_load(&first_signal)) { // stopped before the render began: there is nothing to write
+        glint_scene_free(scene);
+        return interrupted_status();
+    }
+
+    cli_progress bar = {.start = cli_now(), .drawn = false};
+    bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
+    glint_render_options ropt = {.threads = opt.threads};
+    glint_image *img = NULL;
+    glint_render_stats stats;
+    memset(&stats, 0, sizeof stats);
+    st = glint_render(scene, &ropt, show_progress ? cli_progress_draw : NULL, &bar, &img, &stats, &err);
     glint_scene_free(scene);
-    if (s != GLINT_OK) { fprintf(stderr, "glint: %s\n", err.message); glint_image_free(img); return 1; }
-    s = glint_image_write(img, "out.png", GLINT_FORMAT_AUTO, &err);
+    cli_progress_clear(&bar);
+    if (st != GLINT_OK && st != GLINT_ERR_INTERRUPTED) {
+        fprintf(stderr, "glint: %s\n", err.message);
+        glint_image_free(img);
+        return exit_code(st);
+    }
+    if (!opt.quiet) cli_print_stats(&stats);
+
+    bool interrupted = st == GLINT_ERR_INTERRUPTED;
+    if (interrupted && stats.samples == 0) {
+        if (!opt.quiet) fprintf(stderr, "glint: interrupted before any sample was rendered, no image written\n");
+        glint_image_free(img);
+        return interrupted_status();
+    }
+    if (interrupted && !opt.quiet) {
+        int w, h;
+        const float *rgb;
+        glint_image_info(img, &w, &h, &rgb);
+        double total = (double)w * (double)h;
+        fprintf(stderr, "glint: interrupted; writing the %.1f samples per pixel completed so far to %s\n",
+                (double)stats.samples / total, opt.output);
+    }
+
+    if (strcmp(opt.output, "-") != 0) block_stop_signals();
+    st = glint_image_write(img, opt.output, format, &err);
     glint_image_free(img);
-    return s == GLINT_OK ? 0 : 1;
+    if (st != GLINT_OK) {
+        fprintf(stderr, "glint: %s\n", err.message);
+        return exit_code(st);
+    }
+    return interrupted ? interrupted_status() : 0;
 }

@@ -22,4 +22,16 @@ static inline vec3 sample_unit_vector(rng *r) {
     }
 }
 
+/// Direction in the hemisphere around unit normal n with density cos(theta)/pi (Malley's method: a
+/// uniform disk point lifted onto the hemisphere), drawn from exactly two random numbers.
+static inline vec3 sample_cosine_hemisphere(rng *r, vec3 n) {
+    const float two_pi = 6.28318530717959f;
+    float u1 = rng_float(r), u2 = rng_float(r);
+    float rad = sqrtf(u1), phi = two_pi * u2;
+    float z = sqrtf(fmaxf(0.0f, 1.0f - u1));
+    vec3 t, b;
+    v3_basis(n, &t, &b);
+    return v3_add(v3_add(v3_scale(t, rad * cosf(phi)), v3_scale(b, rad * sinf(phi))), v3_scale(n, z));
+}
+
 #endif

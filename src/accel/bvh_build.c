@@ -1,0 +1,351 @@
+// bvh_build.c — binned-SAH construction of the binary BVH, and its collapse into the wide BVH with
+// structure-of-arrays leaf packets.
+#include "accel/bvh.h"
+
+#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { SAH_BINS = 32 };
+
+_Static_assert(sizeof(bvh_sphere_packet) % sizeof(bvh_slot) == 0, "a packet is a whole number of slots");
+_Static_assert(offsetof(bvh_sphere_packet, cx) % (BVH_PACKET * sizeof(float)) == 0, "lanes aligned for SIMD loads");
+
+// SAH constants: the cost of visiting a node relative to testing one leaf packet (or one primitive).
+#ifndef SAH_T
+#define SAH_T 1.0f
+#endif
+#ifndef SAH_I
+#define SAH_I 1.0f
+#endif
+#ifndef MAXLEAF
+#define MAXLEAF BVH_PACKET
+#endif
+static const float SAH_TRAVERSAL_COST = SAH_T;
+static const float SAH_INTERSECT_COST = SAH_I;
+
+/// Axis-aligned box.
+typedef struct box3 {
+    float lo[3], hi[3];
+} box3;
+
+static box3 box_empty(void) {
+    box3 b = {{INFINITY, INFINITY, INFINITY}, {-INFINITY, -INFINITY, -INFINITY}};
+    return b;
+}
+
+static void box_grow(box3 *b, const box3 *o) {
+    for (int a = 0; a < 3; a++) {
+        b->lo[a] = fminf(b->lo[a], o->lo[a]);
+        b->hi[a] = fmaxf(b->hi[a], o->hi[a]);
+    }
+}
+
+static float box_half_area(const box3 *b) {
+    float dx = b->hi[0] - b->lo[0], dy = b->hi[1] - b->lo[1], dz = b->hi[2] - b->lo[2];
+    if (!(dx >= 0.0f && dy >= 0.0f && dz >= 0.0f)) return 0.0f;
+    return dx * dy + dy * dz + dz * dx;
+}
+
+/// Per-primitive build input: padded bounds and centroid.
+typedef struct build_prim {
+    box3 box;
+    float c[3];
+    prim_ref ref;
+} build_prim;
+
+typedef struct builder {
+    build_prim *prims;  ///< permuted in place into leaf order
+    bvh2_node *nodes;
+    size_t node_count;
+    int block;          ///< primitives tested together in a leaf (SAH counts leaf cost in blocks)
+    int max_leaf;       ///< largest leaf the SAH may choose (deeper than BVH_MAX_DEPTH forces a leaf)
+    uint64_t depth, leaves;
+} builder;
+
+// Padding that keeps a box conservative after float rounding of the centre, radius and the slab test.
+static box3 sphere_box(const sphere *s) {
+    float r = fabsf(s->radius);
+    float m = fmaxf(fabsf(s->center.x), fmaxf(fabsf(s->center.y), fabsf(s->center.z)));
+    float pad = (m + r) * 0x1p-19f + 0x1p-100f;
+    box3 b;
+    b.lo[0] = s->center.x - r - pad;
+    b.lo[1] = s->center.y - r - pad;
+    b.lo[2] = s->center.z - r - pad;
+    b.hi[0] = s->center.x + r + pad;
+    b.hi[1] = s->center.y + r + pad;
+    b.hi[2] = s->center.z + r + pad;
+    return b;
+}
+
+static float leaf_blocks(builder *bd, size_t n) { return (float)((n + (size_t)bd->block - 1) / (size_t)bd->block); }
+
+static uint32_t new_node(builder *bd) { return (uint32_t)bd->node_count++; }
+
+// Recursively builds the subtree over prims[begin, end) and returns its node index (depth-first order).
+static uint32_t build_range(builder *bd, size_t begin, size_t end, uint64_t depth) {
+    uint32_t id = new_node(bd);
+    if (depth + 1 > bd->depth) bd->depth = depth + 1;
+    box3 bounds = box_empty(), cbounds = box_empty();
+    for (size_t i = begin; i < end; i++) {
+        box_grow(&bounds, &bd->prims[i].box);
+        box3 c = {{bd->prims[i].c[0], bd->prims[i].c[1], bd->prims[i].c[2]},
+                  {bd->prims[i].c[0], bd->prims[i].c[1], bd->prims[i].c[2]}};
+        box_grow(&cbounds, &c);
+    }
+    bvh2_node *node = &bd->nodes[id];
+    memcpy(node->box, bounds.lo, sizeof bounds.lo);
+    memcpy(node->box + 3, bounds.hi, sizeof bounds.hi);
+    size_t n = end - begin;
+
+    // Best binned SAH split over the three axes.
+    float leaf_cost = leaf_blocks(bd, n) * SAH_INTERSECT_COST;
+    float best_cost = INFINITY;
+    int best_axis = -1, best_bin = 0;
+    float parent_area = box_half_area(&bounds);
+    if (n > 1 && depth + 1 < BVH_MAX_DEPTH) {
+        for (int a = 0; a < 3; a++) {
+            float extent = cbounds.hi[a] - cbounds.lo[a];
+            if (!(extent > 0.0f)) continue;
+            float scale = (float)SAH_BINS * (1.0f - 0x1p-20f) / extent;
+            box3 bin_box[SAH_BINS];
+            size_t bin_count[SAH_BINS] = {0};
+            for (int k = 0; k < SAH_BINS; k++) bin_box[k] = box_empty();
+            for (size_t i = begin; i < end; i++) {
+                int k = (int)((bd->prims[i].c[a] - cbounds.lo[a]) * scale);
+                k = k < 0 ? 0 : (k >= SAH_BINS ? SAH_BINS - 1 : k);
+                bin_count[k]++;
+                box_grow(&bin_box[k], &bd->prims[i].box);
+            }
+            // Sweep from the right for the areas and counts of every right side.
+            float right_area[SAH_BINS];
+            size_t right_count[SAH_BINS];
+            box3 acc = box_empty();
+            size_t cnt = 0;
+            for (int k = SAH_BINS - 1; k > 0; k--) {
+                box_grow(&acc, &bin_box[k]);
+                cnt += bin_count[k];
+                right_area[k] = box_half_area(&acc);
+                right_count[k] = cnt;
+            }
+            acc = box_empty();
+            cnt = 0;
+            for (int k = 0; k < SAH_BINS - 1; k++) {
+                box_grow(&acc, &bin_box[k]);
+                cnt += bin_count[k];
+                if (cnt == 0 || right_count[k + 1] == 0) continue;
+                float cost = SAH_TRAVERSAL_COST + SAH_INTERSECT_COST *
+                                                      (box_half_area(&acc) * leaf_blocks(bd, cnt) +
+                                                       right_area[k + 1] * leaf_blocks(bd, right_count[k + 1])) /
+                                                      (parent_area > 0.0f ? parent_area : 1.0f);
+                if (cost < best_cost) {
+                    best_cost = cost;
+                    best_axis = a;
+                    best_bin = k;
+                }
+            }
+        }
+    }
+
+    bool must_split = n > (size_t)bd->max_leaf && depth + 1 < BVH_MAX_DEPTH;
+    if (n <= 1 || depth + 1 >= BVH_MAX_DEPTH || (!must_split && leaf_cost <= best_cost)) {
+        node->offset = (uint32_t)begin;
+        node->count = (uint32_t)n;
+        bd->leaves++;
+        return id;
+    }
+
+    size_t mid;
+    if (best_axis >= 0) {
+        // Partition by the chosen bin, recomputed with exactly the arithmetic of the binning.
+        int a = best_axis;
+        float scale = (float)SAH_BINS * (1.0f - 0x1p-20f) / (cbounds.hi[a] - cbounds.lo[a]);
+        size_t i = begin, j = end;
+        while (i < j) {
+            int k = (int)((bd->prims[i].c[a] - cbounds.lo[a]) * scale);
+            k = k < 0 ? 0 : (k >= SAH_BINS ? SAH_BINS - 1 : k);
+            if (k <= best_bin) {
+                i++;
+            } else {
+                build_prim tmp = bd->prims[i];
+                bd->prims[i] = bd->prims[--j];
+                bd->prims[j] = tmp;
+            }
+        }
+        mid = i;
+    } else {
+        // Every centroid coincides: no split separates them, so halve the range.
+        mid = begin + n / 2;
+    }
+    build_range(bd, begin, mid, depth + 1);
+    uint32_t right = build_range(bd, mid, end, depth + 1);
+    bd->nodes[id].offset = right;
+    bd->nodes[id].count = 0;
+    return id;
+}
+
+/// State of the collapse into the wide BVH (arrays sized beforehand from the binary tree).
+typedef struct collapser {
+    bvh *b;
+    uint64_t depth, leaves;
+} collapser;
+
+static float node2_half_area(const bvh2_node *n) {
+    box3 b;
+    memcpy(b.lo, n->box, sizeof b.lo);
+    memcpy(b.hi, n->box + 3, sizeof b.hi);
+    return box_half_area(&b);
+}
+
+// Writes the packets of a binary leaf into the arena; returns the leaf reference.
+static uint32_t emit_leaf(collapser *cl, const bvh2_node *leaf) {
+    bvh *b = cl->b;
+    const size_t packet_slots = sizeof(bvh_sphere_packet) / sizeof(bvh_slot);
+    size_t n = leaf->count, packets = (n + BVH_PACKET - 1) / BVH_PACKET;
+    uint32_t first = (uint32_t)b->slot_count;
+    b->slot_count += packets * packet_slots;
+    cl->leaves++;
+    for (size_t p = 0; p < packets; p++) {
+        bvh_sphere_packet *pk = (bvh_sphere_packet *)(void *)&b->slots[first + p * packet_slots];
+        memset(pk, 0, sizeof *pk);
+        pk->h.kind = PRIM_SPHERE;
+        pk->h.slots = (uint32_t)packet_slots;
+        pk->h.last = p + 1 == packets;
+        for (int k = 0; k < BVH_PACKET; k++) {
+            size_t i = p * BVH_PACKET + (size_t)k;
+            if (i < n) {
+                const prim_ref *ref = &b->refs[leaf->offset + i];
+                const sphere *s = &b->spheres[ref->index];
+                pk->cx[k] = s->center.x;
+                pk->cy[k] = s->center.y;
+                pk->cz[k] = s->center.z;
+                pk->radius[k] = s->radius;
+                pk->prim[k] = ref->index;
+                pk->h.count++;
+            } else {
+                // A NaN centre makes the discriminant NaN, which fails the ordered test: never a hit.
+                pk->cx[k] = pk->cy[k] = pk->cz[k] = NAN;
+                pk->radius[k] = 0.0f;
+                pk->prim[k] = UINT32_MAX;
+            }
+        }
+    }
+    return BVH_LEAF | first;
+}
+
+// Collapses the binary subtree at `id` into wide nodes; returns its reference (node index or leaf).
+static uint32_t collapse(collapser *cl, uint32_t id, uint64_t depth) {
+    bvh *b = cl->b;
+    const bvh2_node *n2 = &b->nodes2[id];
+    if (n2->count > 0) return emit_leaf(cl, n2);
+    if (depth + 1 > cl->depth) cl->depth = depth + 1;
+    // Open the largest inner child until the node has BVH_WIDTH children or only leaves remain.
+    uint32_t kids[BVH_WIDTH];
+    int nk = 2;
+    kids[0] = id + 1;
+    kids[1] = n2->offset;
+    while (nk < BVH_WIDTH) {
+        int best = -1;
+        float best_area = -1.0f;
+        for (int k = 0; k < nk; k++) {
+            const bvh2_node *c = &b->nodes2[kids[k]];
+            if (c->count == 0 && node2_half_area(c) > best_area) {
+                best_area = node2_half_area(c);
+                best = k;
+            }
+        }
+        if (best < 0) break;
+        uint32_t open = kids[best];
+        kids[best] = open + 1;
+        kids[nk++] = b->nodes2[open].offset;
+    }
+    uint32_t wid = (uint32_t)b->wnode_count++;
+    bvh_wnode *w = &b->wnodes[wid];
+    for (int k = 0; k < BVH_WIDTH; k++) {
+        if (k >= nk) {
+            for (int a = 0; a < 3; a++) {
+                w->box[a][k] = INFINITY;
+                w->box[3 + a][k] = -INFINITY;
+            }
+            w->child[k] = BVH_EMPTY;
+            continue;
+        }
+        const bvh2_node *c = &b->nodes2[kids[k]];
+        for (int a = 0; a < 3; a++) {
+            w->box[a][k] = c->box[a];
+            w->box[3 + a][k] = c->box[3 + a];
+        }
+        w->child[k] = c->count > 0 ? emit_leaf(cl, c) : collapse(cl, kids[k], depth + 1);
+    }
+    return wid;
+}
+
+bool bvh_build(bvh *b, const sphere *spheres, size_t sphere_count, bool wide) {
+    memset(b, 0, sizeof *b);
+    b->spheres = spheres;
+    b->sphere_count = sphere_count;
+    b->root = BVH_EMPTY;
+    size_t n = sphere_count;
+    if (n == 0) return true;
+    if (n >= BVH_LEAF / 2) return false;
+
+    build_prim *prims = malloc(n * sizeof *prims);
+    b->nodes2 = malloc((2 * n - 1) * sizeof *b->nodes2);
+    b->refs = malloc(n * sizeof *b->refs);
+    if (!prims || !b->nodes2 || !b->refs) {
+        free(prims);
+        bvh_release(b);
+        return false;
+    }
+    for (size_t i = 0; i < n; i++) {
+        prims[i].box = sphere_box(&spheres[i]);
+        prims[i].c[0] = spheres[i].center.x;
+        prims[i].c[1] = spheres[i].center.y;
+        prims[i].c[2] = spheres[i].center.z;
+        prims[i].ref = (prim_ref){PRIM_SPHERE, (uint32_t)i};
+    }
+    builder bd = {.prims = prims, .nodes = b->nodes2, .block = wide ? BVH_PACKET : 1, .max_leaf = wide ? MAXLEAF : 4};
+    build_range(&bd, 0, n, 0);
+    b->node2_count = bd.node_count;
+    b->ref_count = n;
+    for (size_t i = 0; i < n; i++) b->refs[i] = prims[i].ref;
+    free(prims);
+    b->stats.nodes = bd.node_count - bd.leaves;
+    b->stats.leaves = bd.leaves;
+    b->stats.depth = bd.depth;
+    if (!wide) return true;
+
+    // Size the wide arrays from the binary tree: at most one wide node per binary inner node.
+    size_t inner = bd.node_count - bd.leaves, slots = 0;
+    const size_t packet_slots = sizeof(bvh_sphere_packet) / sizeof(bvh_slot);
+    for (size_t i = 0; i < bd.node_count; i++)
+        slots += (b->nodes2[i].count + BVH_PACKET - 1) / BVH_PACKET * packet_slots;
+    b->wnodes = inner ? aligned_alloc(_Alignof(bvh_wnode), inner * sizeof *b->wnodes) : NULL;
+    b->slots = aligned_alloc(_Alignof(bvh_slot), slots * sizeof *b->slots);
+    if ((inner && !b->wnodes) || !b->slots || slots >= BVH_LEAF) {
+        bvh_release(b);
+        return false;
+    }
+    collapser cl = {.b = b};
+    b->root = collapse(&cl, 0, 0);
+    b->stats.nodes = b->wnode_count;
+    b->stats.leaves = cl.leaves;
+    b->stats.depth = cl.depth + 1; // the leaf level counts, as in the binary tree
+    // The binary tree is only scaffolding for the wide one.
+    free(b->nodes2);
+    b->nodes2 = NULL;
+    b->node2_count = 0;
+    return true;
+}
+
+void bvh_release(bvh *b) {
+    free(b->nodes2);
+    free(b->refs);
+    free(b->wnodes);
+    free(b->slots);
+    b->nodes2 = NULL;
+    b->refs = NULL;
+    b->wnodes = NULL;
+    b->slots = NULL;
+}

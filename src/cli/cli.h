@@ -1,0 +1,40 @@
+// cli.h — the command-line program's parts: argument parsing, the progress bar and the statistics line.
+#ifndef GLINT_CLI_H
+#define GLINT_CLI_H
+
+#include "glint.h"
+
+#include <stdbool.h>
+
+/// Everything the command line asked for.
+typedef struct cli_options {
+    const char *scene_path; ///< "-" reads the scene from standard input
+    const char *output;     ///< NULL until cli_parse fills in the default
+    char default_output[4096];
+    glint_overrides overrides;
+    int threads;            ///< 0 = all online CPUs
+    bool quiet, ascii_ppm;
+} cli_options;
+
+/// What main does after parsing: render, or exit at once with this code.
+typedef enum cli_action { CLI_RUN = -1, CLI_EXIT_OK = 0, CLI_EXIT_USAGE = 2 } cli_action;
+
+/// Parses argv into *o; prints --help/--version to stdout and errors (prefixed "glint: ") to stderr.
+cli_action cli_parse(int argc, char **argv, cli_options *o);
+
+/// The state of the progress bar drawn on stderr.
+typedef struct cli_progress {
+    double start;   ///< monotonic seconds when the render began
+    bool drawn;     ///< a bar is on the screen and must be erased
+} cli_progress;
+
+/// Monotonic clock in seconds.
+double cli_now(void);
+/// glint_progress_fn drawing "[####----]  42%  1.2 s elapsed, ETA 1.7 s" over itself on stderr.
+void cli_progress_draw(double fraction, void *user);
+/// Erases the bar, if one was drawn.
+void cli_progress_clear(cli_progress *p);
+/// Prints the one-line statistics summary of a render on stderr.
+void cli_print_stats(const glint_render_stats *st);
+
+#endif

@@ -1,0 +1,106 @@
+// mesh.c — bounds, shading data, smooth vertex normals and baked transforms of triangle meshes.
+#include "geometry/mesh.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void mesh_free(mesh *m) {
+    free(m->positions);
+    free(m->normals);
+    free(m->uvs);
+    free(m->triangles);
+    memset(m, 0, sizeof *m);
+    m->bounds = bounds3_empty();
+}
+
+bounds3 mesh_compute_bounds(mesh *m) {
+    bounds3 b = bounds3_empty();
+    for (size_t i = 0; i < m->triangle_count; i++) b = bounds3_union(b, mesh_triangle_bounds(m, i));
+    m->bounds = b;
+    return b;
+}
+
+// n / |n|, or `fallback` when n is zero or not finite.
+static vec3 unit_or(vec3 n, vec3 fallback) {
+    float len = v3_len(n);
+    if (!(len > 0.0f) || !isfinite(len)) return fallback;
+    vec3 u = v3_scale(n, 1.0f / len);
+    return v3_is_finite(u) ? u : fallback;
+}
+
+mesh_shading mesh_shade(const mesh *m, size_t tri, const tri_hit *h) {
+    const mesh_triangle *t = &m->triangles[tri];
+    mesh_shading s;
+    vec3 p0, p1, p2;
+    mesh_triangle_positions(m, tri, &p0, &p1, &p2);
+    s.ng = unit_or(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)), v3(0, 0, 1));
+    s.ns = s.ng;
+    if (t->n[0] >= 0 && t->n[1] >= 0 && t->n[2] >= 0) {
+        vec3 n = v3_scale(m->normals[t->n[0]], h->b0);
+        n = v3_fma(n, m->normals[t->n[1]], h->b1);
+        n = v3_fma(n, m->normals[t->n[2]], h->b2);
+        s.ns = unit_or(n, s.ng);
+        // As pbrt: the file's normals say which side is outside, whatever the winding.
+        if (v3_dot(s.ng, s.ns) < 0.0f) s.ng = v3_neg(s.ng);
+    }
+    if (t->t[0] >= 0 && t->t[1] >= 0 && t->t[2] >= 0) {
+        uv2 a = m->uvs[t->t[0]], b = m->uvs[t->t[1]], c = m->uvs[t->t[2]];
+        s.u = h->b0 * a.u + h->b1 * b.u + h->b2 * c.u;
+        s.v = h->b0 * a.v + h->b1 * b.v + h->b2 * c.v;
+    } else {
+        s.u = h->b1;
+        s.v = h->b2;
+    }
+    return s;
+}
+
+bool mesh_compute_normals(mesh *m) {
+    size_t np = m->position_count;
+    if (np == 0) return true;
+    if (np > (size_t)INT32_MAX - m->normal_count) return false;
+    vec3 *normals = realloc(m->normals, (m->normal_count + np) * sizeof *normals);
+    if (!normals) return false;
+    m->normals = normals;
+    vec3 *acc = normals + m->normal_count;
+    for (size_t i = 0; i < np; i++) acc[i] = v3s(0.0f);
+    // The unnormalised cross product is twice the area times the unit normal: area weighting for free.
+    for (size_t i = 0; i < m->triangle_count; i++) {
+        const mesh_triangle *t = &m->triangles[i];
+        vec3 p0, p1, p2;
+        mesh_triangle_positions(m, i, &p0, &p1, &p2);
+        vec3 n = v3_cross(v3_sub(p1, p0), v3_sub(p2, p0));
+        if (!v3_is_finite(n)) continue;
+        for (int k = 0; k < 3; k++) acc[t->v[k]] = v3_add(acc[t->v[k]], n);
+    }
+    for (size_t i = 0; i < np; i++) acc[i] = unit_or(acc[i], v3s(0.0f));
+    int32_t base = (int32_t)m->normal_count;
+    for (size_t i = 0; i < m->triangle_count; i++) {
+        mesh_triangle *t = &m->triangles[i];
+        if (t->n[0] >= 0 && t->n[1] >= 0 && t->n[2] >= 0) continue;
+        for (int k = 0; k < 3; k++) t->n[k] = base + t->v[k];
+    }
+    m->normal_count += np;
+    return true;
+}
+
+void mesh_apply_transform(mesh *m, const transform *t) {
+    for (size_t i = 0; i < m->position_count; i++) m->positions[i] = mat4_apply_point(&t->m, m->positions[i]);
+    for (size_t i = 0; i < m->normal_count; i++)
+        m->normals[i] = unit_or(mat4_apply_normal(&t->inv, m->normals[i]), m->normals[i]);
+    const float (*a)[4] = t->m.m;
+    double det = (double)a[0][0] * ((double)a[1][1] * a[2][2] - (double)a[1][2] * a[2][1]) -
+                 (double)a[0][1] * ((double)a[1][0] * a[2][2] - (double)a[1][2] * a[2][0]) +
+                 (double)a[0][2] * ((double)a[1][0] * a[2][1] - (double)a[1][1] * a[2][0]);
+    if (det < 0.0) {
+        // A mirror turns counter-clockwise into clockwise: swap two corners to keep the geometric normal outwards.
+        for (size_t i = 0; i < m->triangle_count; i++) {
+            mesh_triangle *tri = &m->triangles[i];
+            int32_t tmp;
+            tmp = tri->v[1]; tri->v[1] = tri->v[2]; tri->v[2] = tmp;
+            tmp = tri->n[1]; tri->n[1] = tri->n[2]; tri->n[2] = tmp;
+            tmp = tri->t[1]; tri->t[1] = tri->t[2]; tri->t[2] = tmp;
+        }
+    }
+    mesh_compute_bounds(m);
+}

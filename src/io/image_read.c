@@ -1,0 +1,219 @@
+// image_read.c — PNG (libpng's simplified API) and JPEG (libjpeg, any scan mode) to linear RGB floats.
+#include "io/image_read.h"
+
+#include <errno.h>
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include <jpeglib.h>
+#include <png.h>
+
+#if defined(__GNUC__)
+__attribute__((format(printf, 2, 3)))
+#endif
+static void set_error(glint_error *err, const char *fmt, ...) {
+    if (!err) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(err->message, sizeof err->message, fmt, ap);
+    va_end(ap);
+}
+
+float image_srgb_to_linear(unsigned char c) {
+    double x = c / 255.0;
+    return (float)(x <= 0.04045 ? x / 12.92 : pow((x + 0.055) / 1.055, 2.4));
+}
+
+void image_rgb_free(image_rgb *img) {
+    free(img->pixels);
+    img->pixels = NULL;
+    img->width = img->height = 0;
+}
+
+// Checks the size and allocates the float pixels; NULL (with a message) when too large or out of memory.
+static float *alloc_pixels(const char *name, size_t w, size_t h, glint_error *err) {
+    if (w == 0 || h == 0 || w > IMAGE_READ_MAX_PIXELS || h > IMAGE_READ_MAX_PIXELS / w) {
+        set_error(err, "%s: image size %zux%zu is not supported, expected at most %zu pixels", name, w, h,
+                  (size_t)IMAGE_READ_MAX_PIXELS);
+        return NULL;
+    }
+    float *p = malloc(w * h * 3 * sizeof *p);
+    if (!p) set_error(err, "%s: out of memory for a %zux%zu image", name, w, h);
+    return p;
+}
+
+static glint_status decode_png(const char *name, const unsigned char *data, size_t size, image_rgb *out,
+                               glint_error *err) {
+    png_image img;
+    memset(&img, 0, sizeof img);
+    img.version = PNG_IMAGE_VERSION;
+    if (!png_image_begin_read_from_memory(&img, data, size)) {
+        set_error(err, "%s: cannot decode PNG: %s", name, img.message);
+        png_image_free(&img);
+        return GLINT_ERR_INPUT;
+    }
+    // 8-bit sRGB RGBA whatever the file holds (palette, grey, 16 bit); alpha is not used by textures.
+    img.format = PNG_FORMAT_RGBA;
+    float *pixels = alloc_pixels(name, img.width, img.height, err);
+    if (!pixels) { png_image_free(&img); return GLINT_ERR_INPUT; }
+    size_t n = (size_t)img.width * img.height;
+    unsigned char *buf = malloc(n * 4);
+    if (!buf) {
+        set_error(err, "%s: out of memory", name);
+        free(pixels);
+        png_image_free(&img);
+        return GLINT_ERR_INPUT;
+    }
+    if (!png_image_finish_read(&img, NULL, buf, 0, NULL)) {
+        set_error(err, "%s: cannot decode PNG: %s", name, img.message);
+        free(buf);
+        free(pixels);
+        png_image_free(&img);
+        return GLINT_ERR_INPUT;
+    }
+    float table[256];
+    for (int i = 0; i < 256; i++) table[i] = image_srgb_to_linear((unsigned char)i);
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) pixels[i * 3 + c] = table[buf[i * 4 + c]];
+    free(buf);
+    out->width = (int)img.width;
+    out->height = (int)img.height;
+    out->pixels = pixels;
+    png_image_free(&img);
+    return GLINT_OK;
+}
+
+// libjpeg reports fatal errors through error_exit, which must not return: jump back to the decoder.
+typedef struct jpeg_state {
+    struct jpeg_decompress_struct cinfo;
+    struct jpeg_error_mgr mgr;
+    jmp_buf jump;
+    char message[JMSG_LENGTH_MAX];
+    unsigned char *row;
+    float *pixels;
+} jpeg_state;
+
+static void jpeg_fail(j_common_ptr cinfo) {
+    jpeg_state *st = (jpeg_state *)cinfo->client_data;
+    (*cinfo->err->format_message)(cinfo, st->message);
+    longjmp(st->jump, 1);
+}
+
+// Corrupt-data warnings would go to stderr; a texture decodes as well as it can, silently.
+static void jpeg_quiet(j_common_ptr cinfo) { (void)cinfo; }
+
+static glint_status decode_jpeg(const char *name, const unsigned char *data, size_t size, image_rgb *out,
+                                glint_error *err) {
+    jpeg_state *st = calloc(1, sizeof *st);
+    if (!st) { set_error(err, "%s: out of memory", name); return GLINT_ERR_INPUT; }
+    st->cinfo.err = jpeg_std_error(&st->mgr);
+    st->mgr.error_exit = jpeg_fail;
+    st->mgr.output_message = jpeg_quiet;
+    if (setjmp(st->jump)) {
+        set_error(err, "%s: cannot decode JPEG: %s", name, st->message);
+        jpeg_destroy_decompress(&st->cinfo);
+        free(st->row);
+        free(st->pixels);
+        free(st);
+        return GLINT_ERR_INPUT;
+    }
+    jpeg_create_decompress(&st->cinfo);
+    st->cinfo.client_data = st;
+    jpeg_mem_src(&st->cinfo, data, (unsigned long)size);
+    jpeg_read_header(&st->cinfo, TRUE);
+    st->cinfo.out_color_space = JCS_RGB; // grey and YCbCr alike come out as RGB
+    jpeg_start_decompress(&st->cinfo);
+    size_t w = st->cinfo.output_width, h = st->cinfo.output_height;
+    glint_status status = GLINT_OK;
+    if (st->cinfo.output_components != 3) {
+        set_error(err, "%s: cannot decode JPEG: %d colour components, expected 3", name, st->cinfo.output_components);
+        status = GLINT_ERR_INPUT;
+    } else if (!(st->pixels = alloc_pixels(name, w, h, err))) {
+        status = GLINT_ERR_INPUT;
+    } else if (!(st->row = malloc(w * 3))) {
+        set_error(err, "%s: out of memory", name);
+        status = GLINT_ERR_INPUT;
+    }
+    if (status != GLINT_OK) {
+        jpeg_destroy_decompress(&st->cinfo);
+        free(st->row);
+        free(st->pixels);
+        free(st);
+        return status;
+    }
+    float table[256];
+    for (int i = 0; i < 256; i++) table[i] = image_srgb_to_linear((unsigned char)i);
+    // Progressive files need nothing special here: libjpeg buffers all scans and hands out final rows.
+    while (st->cinfo.output_scanline < h) {
+        size_t y = st->cinfo.output_scanline;
+        JSAMPROW rows[1] = {st->row};
+        if (jpeg_read_scanlines(&st->cinfo, rows, 1) != 1) break;
+        float *dst = st->pixels + y * w * 3;
+        for (size_t i = 0; i < w * 3; i++) dst[i] = table[st->row[i]];
+    }
+    jpeg_finish_decompress(&st->cinfo);
+    jpeg_destroy_decompress(&st->cinfo);
+    out->width = (int)w;
+    out->height = (int)h;
+    out->pixels = st->pixels;
+    free(st->row);
+    free(st);
+    return GLINT_OK;
+}
+
+glint_status image_read_memory(const char *name, const unsigned char *data, size_t size, image_rgb *out,
+                               glint_error *err) {
+    out->width = out->height = 0;
+    out->pixels = NULL;
+    static const unsigned char png_magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    if (size >= 8 && memcmp(data, png_magic, 8) == 0) return decode_png(name, data, size, out, err);
+    if (size >= 3 && data[0] == 0xff && data[1] == 0xd8 && data[2] == 0xff) return decode_jpeg(name, data, size, out, err);
+    set_error(err, "%s: not a PNG or JPEG image, expected a file starting with a PNG or JPEG signature", name);
+    return GLINT_ERR_INPUT;
+}
+
+glint_status image_read(const char *path, image_rgb *out, glint_error *err) {
+    out->width = out->height = 0;
+    out->pixels = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        set_error(err, "%s: cannot open: %s", path, strerror(errno));
+        return GLINT_ERR_INPUT;
+    }
+    // Directories, devices and pipes are not images (and /dev/zero would never end).
+    struct stat st;
+    if (fstat(fileno(f), &st) != 0 || !S_ISREG(st.st_mode)) {
+        set_error(err, "%s: cannot open: not a regular file", path);
+        fclose(f);
+        return GLINT_ERR_INPUT;
+    }
+    size_t cap = 1 << 16, len = 0;
+    unsigned char *buf = malloc(cap);
+    while (buf) {
+        len += fread(buf + len, 1, cap - len, f);
+        if (len < cap) break;
+        unsigned char *bigger = cap <= SIZE_MAX / 2 ? realloc(buf, cap * 2) : NULL;
+        if (!bigger) { free(buf); buf = NULL; break; }
+        buf = bigger;
+        cap *= 2;
+    }
+    bool failed = buf && ferror(f);
+    fclose(f);
+    if (!buf) {
+        set_error(err, "%s: out of memory while reading", path);
+        return GLINT_ERR_INPUT;
+    }
+    if (failed) {
+        set_error(err, "%s: read error", path);
+        free(buf);
+        return GLINT_ERR_INPUT;
+    }
+    glint_status status = image_read_memory(path, buf, len, out, err);
+    free(buf);
+    return status;
+}

@@ -1,0 +1,66 @@
+// scatter.h — how a material turns an incoming ray into an outgoing one in the path tracer: the book's
+// Lambertian, metal and dielectric, and the paper's Phong material as a diffuse/mirror mixture.
+#ifndef GLINT_SCATTER_H
+#define GLINT_SCATTER_H
+
+#include "core/rng.h"
+#include "core/vec.h"
+#include "material/material.h"
+
+#include <stdbool.h>
+
+/// One scattering event: where the path goes next and how much of its throughput survives.
+typedef struct scatter_event {
+    vec3 dir;     ///< unit direction of the new ray
+    vec3 weight;  ///< throughput factor f cos / pdf of the sampled direction
+    bool diffuse; ///< the ideal diffuse lobe (BRDF weight / pi) was chosen, so next-event estimation applies
+} scatter_event;
+
+/// The book's Lambertian direction from unit normal n and a uniform unit vector u: unit(n + u), whose
+/// density is cos/pi; n itself when n + u is (nearly) zero or, by rounding, not above the surface.
+static inline vec3 mat_lambertian_dir(vec3 n, vec3 u) {
+    vec3 s = v3_add(n, u);
+    // |n + u| < 1e-6 has probability ~2.5e-13; there the sum's direction is rounding noise.
+    if (v3_len2(s) < 1e-12f || !(v3_dot(s, n) > 0.0f)) return n;
+    return v3_unit(s);
+}
+
+/// The book's fuzzy mirror: unit(reflect(d, n)) + fuzz u, normalised, for unit d and n and a uniform unit
+/// vector u; false (the path is absorbed) when it does not point above the surface.
+static inline bool mat_metal_dir(vec3 d, vec3 n, float fuzz, vec3 u, vec3 *out) {
+    vec3 s = v3_fma(v3_reflect(d, n), u, fuzz); // the mirror image of a unit d is unit already
+    if (!(v3_dot(s, n) > 0.0f) || v3_len2(s) < 1e-12f) return false;
+    *out = v3_unit(s);
+    return true;
+}
+
+/// Probability that a dielectric reflects a ray arriving at cos_i to the normal, with eta = n_incident /
+/// n_transmitted: 1 under total internal reflection, else Schlick's r0 + (1 - r0)(1 - cos_i)^5 (as the book).
+static inline float mat_dielectric_reflectance(float cos_i, float eta) {
+    float sin2 = 1.0f - cos_i * cos_i;
+    float sin_i = sqrtf(sin2 > 0.0f ? sin2 : 0.0f);
+    if (eta * sin_i > 1.0f) return 1.0f;
+    return schlick_reflectance(cos_i, eta);
+}
+
+/// The book's dielectric for unit d and unit n facing against d: the mirror direction with probability
+/// mat_dielectric_reflectance (xi uniform in [0, 1)), else the Snell refraction; *reflected says which.
+static inline vec3 mat_dielectric_dir(vec3 d, vec3 n, float eta, float xi, bool *reflected) {
+    float cos_i = -v3_dot(d, n);
+    cos_i = cos_i < 1.0f ? cos_i : 1.0f;
+    *reflected = xi < mat_dielectric_reflectance(cos_i, eta);
+    if (*reflected) return v3_reflect(d, n);
+    return v3_unit(v3_refract(d, n, eta));
+}
+
+/// Radiance a material emits towards a ray that met it on its front (outward-normal) side or its back.
+static inline vec3 mat_emitted(const material *m, bool front) {
+    if (m->kind != MAT_DIFFUSE_LIGHT || !(front || m->two_sided)) return v3s(0.0f);
+    return m->emission;
+}
+
+/// Samples how m scatters a ray of unit direction d at a surface with unit normal n facing against d
+/// (front: d arrived on the outward side); false when the path ends there (absorbed, or an emitter).
+bool mat_scatter(const material *m, vec3 d, vec3 n, bool front, rng *r, scatter_event *ev);
+
+#endif

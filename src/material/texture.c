@@ -1,0 +1,165 @@
+// texture.c — evaluating solid, checker, Perlin noise and image textures.
+#include "material/texture.h"
+#include "core/rng.h"
+#include "core/sampling.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+texture texture_solid(vec3 color) {
+    texture t;
+    memset(&t, 0, sizeof t);
+    t.kind = TEX_SOLID;
+    t.color = color;
+    return t;
+}
+
+texture texture_checker(float scale, vec3 even, vec3 odd) {
+    texture t = texture_solid(v3s(0.0f));
+    t.kind = TEX_CHECKER;
+    t.scale = scale;
+    t.even = even;
+    t.odd = odd;
+    return t;
+}
+
+void perlin_init(perlin *pn, uint64_t seed) {
+    // The generator of a fixed (seed, "perlin") pair: the same tables on every run and every thread.
+    rng r = rng_for_sample(seed, 0x7065726c696eULL, 0);
+    for (int i = 0; i < 256; i++) pn->gradient[i] = sample_unit_vector(&r);
+    uint8_t *perms[3] = {pn->perm_x, pn->perm_y, pn->perm_z};
+    for (int k = 0; k < 3; k++) {
+        uint8_t *p = perms[k];
+        for (int i = 0; i < 256; i++) p[i] = (uint8_t)i;
+        // Fisher-Yates shuffle, as the book's permute().
+        for (int i = 255; i > 0; i--) {
+            int j = (int)(rng_u32(&r) % (uint32_t)(i + 1));
+            uint8_t tmp = p[i];
+            p[i] = p[j];
+            p[j] = tmp;
+        }
+    }
+}
+
+// The lattice cell of x modulo 256 and the position inside it, without overflowing an int for huge x.
+static int lattice(float x, float *frac) {
+    float f = floorf(x);
+    *frac = x - f;
+    return (int)fmodf(f, 256.0f) & 255;
+}
+
+float perlin_noise(const perlin *pn, vec3 p) {
+    if (!v3_is_finite(p)) return 0.0f;
+    float u, v, w;
+    int i = lattice(p.x, &u), j = lattice(p.y, &v), k = lattice(p.z, &w);
+    // Hermite smoothing of the interpolation weights removes the grid's visible seams.
+    float uu = u * u * (3.0f - 2.0f * u), vv = v * v * (3.0f - 2.0f * v), ww = w * w * (3.0f - 2.0f * w);
+    float accum = 0.0f;
+    for (int di = 0; di < 2; di++)
+        for (int dj = 0; dj < 2; dj++)
+            for (int dk = 0; dk < 2; dk++) {
+                vec3 g = pn->gradient[pn->perm_x[(i + di) & 255] ^ pn->perm_y[(j + dj) & 255] ^
+                                      pn->perm_z[(k + dk) & 255]];
+                vec3 weight = v3(u - (float)di, v - (float)dj, w - (float)dk);
+                accum += (di ? uu : 1.0f - uu) * (dj ? vv : 1.0f - vv) * (dk ? ww : 1.0f - ww) * v3_dot(g, weight);
+            }
+    return accum;
+}
+
+float perlin_turbulence(const perlin *pn, vec3 p, int depth) {
+    float accum = 0.0f, weight = 1.0f;
+    for (int i = 0; i < depth; i++) {
+        accum += weight * perlin_noise(pn, p);
+        weight *= 0.5f;
+        p = v3_scale(p, 2.0f);
+    }
+    return fabsf(accum);
+}
+
+bool texture_noise(noise_kind kind, float scale, int depth, vec3 color, uint64_t seed, texture *out) {
+    texture t = texture_solid(color);
+    t.kind = TEX_NOISE;
+    t.noise = kind;
+    t.scale = scale;
+    t.depth = depth;
+    t.perlin = malloc(sizeof *t.perlin);
+    if (!t.perlin) return false;
+    perlin_init(t.perlin, seed);
+    *out = t;
+    return true;
+}
+
+texture texture_image(image_rgb img) {
+    texture t = texture_solid(v3s(0.0f));
+    t.kind = TEX_IMAGE;
+    t.image = img;
+    return t;
+}
+
+glint_status texture_image_load(const char *path, texture *out, glint_error *err) {
+    image_rgb img;
+    glint_status st = image_read(path, &img, err);
+    if (st != GLINT_OK) return st;
+    *out = texture_image(img);
+    return GLINT_OK;
+}
+
+void texture_free(texture *t) {
+    free(t->perlin);
+    image_rgb_free(&t->image);
+    *t = texture_solid(v3s(0.0f));
+}
+
+// Parity of the integer floor(x): 0 or 1, for any float (0 when not finite).
+static int floor_parity(float x) {
+    if (!isfinite(x)) return 0;
+    return (int)fabsf(fmodf(floorf(x), 2.0f));
+}
+
+static vec3 texel(const image_rgb *img, int x, int y) {
+    const float *p = img->pixels + ((size_t)y * (size_t)img->width + (size_t)x) * 3;
+    return v3(p[0], p[1], p[2]);
+}
+
+static int wrap(int i, int n) {
+    i %= n;
+    return i < 0 ? i + n : i;
+}
+
+static vec3 image_value(const image_rgb *img, float u, float v) {
+    if (!img->pixels || img->width <= 0 || img->height <= 0) return v3(0.0f, 1.0f, 1.0f); // the book's cyan
+    if (!isfinite(u)) u = 0.0f;
+    if (!isfinite(v)) v = 0.0f;
+    u -= floorf(u);
+    v = 1.0f - (v - floorf(v)); // image rows run top to bottom, v bottom to top
+    // Texel centres sit at (i + 0.5) / width: there the filter returns exactly that texel.
+    float x = u * (float)img->width - 0.5f, y = v * (float)img->height - 0.5f;
+    float x0f = floorf(x), y0f = floorf(y);
+    float fx = x - x0f, fy = y - y0f;
+    int x0 = wrap((int)x0f, img->width), y0 = wrap((int)y0f, img->height);
+    int x1 = wrap(x0 + 1, img->width), y1 = wrap(y0 + 1, img->height);
+    vec3 top = v3_lerp(texel(img, x0, y0), texel(img, x1, y0), fx);
+    vec3 bottom = v3_lerp(texel(img, x0, y1), texel(img, x1, y1), fx);
+    return v3_lerp(top, bottom, fy);
+}
+
+vec3 texture_value(const texture *t, float u, float v, vec3 p) {
+    switch (t->kind) {
+    case TEX_SOLID: return t->color;
+    case TEX_CHECKER: {
+        float inv = 1.0f / t->scale;
+        int parity = floor_parity(inv * p.x) + floor_parity(inv * p.y) + floor_parity(inv * p.z);
+        return (parity & 1) ? t->odd : t->even;
+    }
+    case TEX_NOISE: {
+        float n;
+        if (t->noise == NOISE_PLAIN) n = 0.5f * (1.0f + perlin_noise(t->perlin, v3_scale(p, t->scale)));
+        else if (t->noise == NOISE_TURBULENCE) n = perlin_turbulence(t->perlin, v3_scale(p, t->scale), t->depth);
+        else n = 0.5f * (1.0f + sinf(t->scale * p.z + 10.0f * perlin_turbulence(t->perlin, p, t->depth)));
+        return v3_scale(t->color, isfinite(n) ? n : 0.0f);
+    }
+    case TEX_IMAGE: return image_value(&t->image, u, v);
+    }
+    return v3s(0.0f);
+}

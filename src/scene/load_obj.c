@@ -1,0 +1,1221 @@
+// load_obj.c — the OBJ/MTL reader: one pass over the text, no allocation per line, faces triangulated as read.
+#include "scene/load_obj.h"
+
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#if defined(__GNUC__)
+#define PRINTF_LIKE(f, a) __attribute__((format(printf, f, a)))
+#else
+#define PRINTF_LIKE(f, a)
+#endif
+
+enum { MAX_ELEMENTS = INT32_MAX, QUOTE_MAX = 40, MAX_IGNORED_KEYWORDS = 16 };
+
+// ---------------------------------------------------------------------------------------------------------
+// Messages
+
+/// Where messages go and what they are prefixed with; one per file being read.
+typedef struct reporter {
+    const char *name;
+    long line;
+    const obj_options *opt;
+    glint_error *err;
+    size_t *warnings;
+    char ignored[MAX_IGNORED_KEYWORDS][QUOTE_MAX + 4];
+    int ignored_count;
+} reporter;
+
+typedef struct quoted {
+    char s[QUOTE_MAX + 4];
+} quoted;
+
+// A token fit for a message: at most QUOTE_MAX characters, anything unprintable shown as '?'.
+static quoted quote(const char *s, size_t n) {
+    quoted q;
+    size_t k = 0;
+    for (size_t i = 0; i < n && k < QUOTE_MAX; i++) {
+        unsigned char c = (unsigned char)s[i];
+        q.s[k++] = (c >= 32 && c < 127) ? (char)c : '?';
+    }
+    if (n > QUOTE_MAX) {
+        memcpy(q.s + k, "...", 3);
+        k += 3;
+    }
+    q.s[k] = '\0';
+    return q;
+}
+
+PRINTF_LIKE(2, 3)
+static bool fail(reporter *r, const char *fmt, ...) {
+    if (!r->err) return false;
+    int k = snprintf(r->err->message, sizeof r->err->message, "%s:%ld: ", r->name, r->line);
+    if (k < 0 || (size_t)k >= sizeof r->err->message) return false;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(r->err->message + k, sizeof r->err->message - (size_t)k, fmt, ap);
+    va_end(ap);
+    return false;
+}
+
+PRINTF_LIKE(3, 4)
+static void warn_at(reporter *r, long line, const char *fmt, ...) {
+    (*r->warnings)++;
+    if (!r->opt || !r->opt->warn) return;
+    char buf[1200];
+    int k = line > 0 ? snprintf(buf, sizeof buf, "%s:%ld: warning: ", r->name, line)
+                     : snprintf(buf, sizeof buf, "%s: warning: ", r->name);
+    if (k < 0 || (size_t)k >= sizeof buf) return;
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(buf + k, sizeof buf - (size_t)k, fmt, ap);
+    va_end(ap);
+    r->opt->warn(buf, r->opt->user);
+}
+
+// Unsupported statements are reported once per keyword and file, so a file full of `l` lines warns once.
+static void warn_unsupported(reporter *r, const char *kw, size_t n) {
+    quoted q = quote(kw, n);
+    for (int i = 0; i < r->ignored_count; i++)
+        if (strcmp(r->ignored[i], q.s) == 0) return;
+    if (r->ignored_count == MAX_IGNORED_KEYWORDS) return;
+    memcpy(r->ignored[r->ignored_count++], q.s, sizeof q.s);
+    warn_at(r, r->line, "'%s' statements are not supported; ignored (reported once)", q.s);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Tokens and numbers
+
+typedef struct cursor {
+    const char *p, *end;
+} cursor;
+
+static inline bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
+static inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// The next whitespace-separated token; a token starting with '#' is a comment that ends the line.
+static inline bool next_token(cursor *c, const char **tok, size_t *len) {
+    const char *p = c->p;
+    while (p < c->end && is_space(*p)) p++;
+    if (p == c->end || *p == '#') {
+        c->p = c->end;
+        return false;
+    }
+    const char *s = p;
+    while (p < c->end && !is_space(*p)) p++;
+    *tok = s;
+    *len = (size_t)(p - s);
+    c->p = p;
+    return true;
+}
+
+// The rest of the line without surrounding blanks and without a comment that starts after a blank.
+static void rest_of_line(cursor *c, const char **s, size_t *n) {
+    const char *p = c->p;
+    while (p < c->end && is_space(*p)) p++;
+    const char *start = p, *stop = c->end;
+    if (p < c->end && *p == '#') stop = p;
+    for (const char *q = p + 1; q < c->end && stop == c->end; q++)
+        if (*q == '#' && is_space(q[-1])) stop = q;
+    while (stop > start && is_space(stop[-1])) stop--;
+    *s = start;
+    *n = (size_t)(stop - start);
+    c->p = c->end;
+}
+
+static bool token_is(const char *tok, size_t n, const char *word) {
+    size_t k = strlen(word);
+    return n == k && memcmp(tok, word, k) == 0;
+}
+
+typedef enum num_status { NUM_OK, NUM_MALFORMED, NUM_NOT_FINITE, NUM_RANGE } num_status;
+
+static const double pow10_table[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
+                                       1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+
+// Whether rounding the double d to float could differ from rounding the exact decimal: only when d lies
+// exactly halfway between two floats (or in the subnormal range, where the halfway bits differ).
+static bool float_rounding_unsafe(double d) {
+    double a = fabs(d);
+    if (a < 0x1p-126) return true;
+    uint64_t bits;
+    memcpy(&bits, &a, sizeof bits);
+    return (bits & ((UINT64_C(1) << 29) - 1)) == (UINT64_C(1) << 28);
+}
+
+// strtof on a NUL-terminated copy of the token: the rare numbers the exact fast path cannot take.
+static float slow_float(const char *s, size_t n) {
+    char small[128];
+    char *buf = n < sizeof small ? small : malloc(n + 1);
+    if (!buf) return NAN;
+    memcpy(buf, s, n);
+    buf[n] = '\0';
+    float f = strtof(buf, NULL);
+    if (buf != small) free(buf);
+    return f;
+}
+
+// Whether s starts with the lower-case word w, ignoring case.
+static bool starts_with_word(const char *s, size_t n, const char *w) {
+    size_t k = strlen(w);
+    if (n < k) return false;
+    for (size_t i = 0; i < k; i++)
+        if ((s[i] | 0x20) != w[i]) return false;
+    return true;
+}
+
+// The C library's spellings of NaN and infinity: nan, nan(...), inf, infinity, in any case.
+static bool is_nan_or_inf(const char *s, size_t n) {
+    if (starts_with_word(s, n, "nan")) return n == 3 || s[3] == '(';
+    return (n == 3 && starts_with_word(s, n, "inf")) || (n == 8 && starts_with_word(s, n, "infinity"));
+}
+
+// A decimal number [+-](digits[.digits] | .digits)[(e|E)[+-]digits] and nothing else, correctly rounded:
+// exact in double when it has at most 17 significant digits and a power of ten up to 22 (Clinger's fast
+// path), otherwise by strtof. No locale, no hexadecimal, no "nan" or "inf".
+static num_status parse_float(const char *s, size_t n, float *out) {
+    size_t i = 0;
+    bool neg = false;
+    if (i < n && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
+    if (is_nan_or_inf(s + i, n - i)) return NUM_NOT_FINITE;
+    uint64_t m = 0;
+    int exp10 = 0;
+    bool digits = false, exact = true;
+    for (; i < n && is_digit(s[i]); i++) {
+        digits = true;
+        if (m < UINT64_C(100000000000000000)) m = m * 10 + (uint64_t)(s[i] - '0');
+        else {
+            if (exp10 < 100000) exp10++;
+            if (s[i] != '0') exact = false;
+        }
+    }
+    if (i < n && s[i] == '.') {
+        for (i++; i < n && is_digit(s[i]); i++) {
+            digits = true;
+            if (m < UINT64_C(100000000000000000)) {
+                m = m * 10 + (uint64_t)(s[i] - '0');
+                exp10--;
+            } else if (s[i] != '0') exact = false;
+        }
+    }
+    if (digits && i < n && (s[i] == 'e' || s[i] == 'E')) {
+        i++;
+        bool eneg = false;
+        if (i < n && (s[i] == '+' || s[i] == '-')) eneg = s[i++] == '-';
+        if (i == n || !is_digit(s[i])) return NUM_MALFORMED;
+        int e = 0;
+        for (; i < n && is_digit(s[i]); i++)
+            if (e < 100000) e = e * 10 + (s[i] - '0');
+        exp10 += eneg ? -e : e;
+    }
+    if (!digits || i != n) {
+        // Microsoft's C library prints NaN and infinity as 1.#IND, 1.#QNAN, 1.#INF.
+        return memchr(s, '#', n) ? NUM_NOT_FINITE : NUM_MALFORMED;
+    }
+    float f;
+    if (m == 0) f = 0.0f;
+    else if (exact && m <= (UINT64_C(1) << 53) && exp10 >= -22 && exp10 <= 22) {
+        double d = exp10 < 0 ? (double)m / pow10_table[-exp10] : (double)m * pow10_table[exp10];
+        f = float_rounding_unsafe(d) ? fabsf(slow_float(s, n)) : (float)d;
+    } else f = fabsf(slow_float(s, n));
+    if (!isfinite(f)) return NUM_RANGE;
+    *out = neg ? -f : f;
+    return NUM_OK;
+}
+
+static bool number_error(reporter *r, num_status st, const char *tok, size_t n) {
+    quoted q = quote(tok, n);
+    if (st == NUM_NOT_FINITE) return fail(r, "'%s' is not a finite number, expected a decimal number", q.s);
+    if (st == NUM_RANGE) return fail(r, "number '%s' is out of the range of a float, expected a magnitude below 3.4e38", q.s);
+    return fail(r, "malformed number '%s', expected a decimal number such as -1.25e3", q.s);
+}
+
+// Up to `max` numbers from the rest of the line into v (all of them validated); *count gets how many there were.
+static bool parse_numbers(reporter *r, cursor *c, float *v, int max, int *count) {
+    const char *tok;
+    size_t n;
+    int k = 0;
+    while (next_token(c, &tok, &n)) {
+        float f;
+        num_status st = parse_float(tok, n, &f);
+        if (st != NUM_OK) return number_error(r, st, tok, n);
+        if (k < max) v[k] = f;
+        if (k < INT32_MAX) k++;
+    }
+    *count = k;
+    return true;
+}
+
+// An integer index: [+-]digits, saturating far beyond the int32 range so that huge values are "out of range".
+static bool parse_index(const char *s, size_t n, int64_t *out) {
+    size_t i = 0;
+    bool neg = false;
+    if (n > 0 && (s[0] == '-' || s[0] == '+')) {
+        neg = s[0] == '-';
+        i = 1;
+    }
+    if (i == n) return false;
+    int64_t v = 0;
+    for (; i < n; i++) {
+        if (!is_digit(s[i])) return false;
+        v = v < INT64_C(1000000000000000) ? v * 10 + (s[i] - '0') : INT64_C(1000000000000000);
+    }
+    *out = neg ? -v : v;
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Small containers
+
+// Grows *arr so that it holds at least `need` elements of `size` bytes (doubling); false when out of memory.
+static bool reserve(void **arr, size_t *cap, size_t need, size_t size) {
+    if (need <= *cap) return true;
+    size_t c = *cap ? *cap : 16;
+    while (c < need) {
+        if (c > SIZE_MAX / 2 / size) return false;
+        c *= 2;
+    }
+    void *p = realloc(*arr, c * size);
+    if (!p) return false;
+    *arr = p;
+    *cap = c;
+    return true;
+}
+
+static char *dup_n(const char *s, size_t n) {
+    char *d = malloc(n + 1);
+    if (!d) return NULL;
+    memcpy(d, s, n);
+    d[n] = '\0';
+    return d;
+}
+
+/// A name -> index hash table (open addressing); keys point to strings owned elsewhere.
+typedef struct name_entry {
+    const char *key;
+    size_t len;
+    int32_t value;
+} name_entry;
+
+typedef struct name_map {
+    name_entry *e;
+    size_t cap, count;
+} name_map;
+
+static uint64_t hash_name(const char *s, size_t n) {
+    uint64_t h = UINT64_C(14695981039346656037); // FNV-1a
+    for (size_t i = 0; i < n; i++) h = (h ^ (unsigned char)s[i]) * UINT64_C(1099511628211);
+    return h;
+}
+
+static int32_t map_get(const name_map *m, const char *s, size_t n) {
+    if (!m->cap) return -1;
+    for (size_t i = hash_name(s, n) & (m->cap - 1);; i = (i + 1) & (m->cap - 1)) {
+        const name_entry *e = &m->e[i];
+        if (!e->key) return -1;
+        if (e->len == n && memcmp(e->key, s, n) == 0) return e->value;
+    }
+}
+
+static bool map_put(name_map *m, const char *key, size_t len, int32_t value) {
+    if ((m->count + 1) * 2 > m->cap) {
+        // Rehash into twice the room: the table stays at most half full, so probes stay short.
+        size_t cap = m->cap ? m->cap * 2 : 16;
+        name_entry *e = calloc(cap, sizeof *e);
+        if (!e) return false;
+        for (size_t i = 0; i < m->cap; i++) {
+            if (!m->e[i].key) continue;
+            size_t j = hash_name(m->e[i].key, m->e[i].len) & (cap - 1);
+            while (e[j].key) j = (j + 1) & (cap - 1);
+            e[j] = m->e[i];
+        }
+        free(m->e);
+        m->e = e;
+        m->cap = cap;
+    }
+    size_t j = hash_name(key, len) & (m->cap - 1);
+    while (m->e[j].key) j = (j + 1) & (m->cap - 1);
+    m->e[j] = (name_entry){key, len, value};
+    m->count++;
+    return true;
+}
+
+static void map_free(name_map *m) {
+    free(m->e);
+    memset(m, 0, sizeof *m);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Files and paths
+
+// The directory part of a path including its final '/', or "" (a new string).
+static char *dir_of(const char *path) {
+    const char *slash = strrchr(path, '/');
+    return dup_n(path, slash ? (size_t)(slash - path + 1) : 0);
+}
+
+// dir + name, with the name's Windows separators turned into '/'; absolute names are kept as they are.
+static char *join_path(const char *dir, const char *name, size_t n) {
+    bool absolute = n > 0 && (name[0] == '/' || name[0] == '\\');
+    while (!absolute && n > 2 && name[0] == '.' && (name[1] == '/' || name[1] == '\\')) {
+        name += 2; // "./x" is "x"
+        n -= 2;
+    }
+    size_t d = absolute ? 0 : strlen(dir);
+    char *p = malloc(d + n + 1);
+    if (!p) return NULL;
+    memcpy(p, dir, d);
+    for (size_t i = 0; i < n; i++) p[d + i] = name[i] == '\\' ? '/' : name[i];
+    p[d + n] = '\0';
+    return p;
+}
+
+// 0 when path names a regular file, else an errno value saying why not.
+static int check_file(const char *path) {
+    struct stat st;
+    if (stat(path, &st) != 0) return errno ? errno : ENOENT;
+    return S_ISREG(st.st_mode) ? 0 : EISDIR;
+}
+
+// The whole of a regular file, NUL-terminated; NULL with *errnum set on failure.
+static char *read_file(const char *path, size_t *len, int *errnum) {
+    *errnum = check_file(path);
+    if (*errnum) return NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        *errnum = errno ? errno : EIO;
+        return NULL;
+    }
+    size_t cap = 0, n = 0;
+    char *buf = NULL;
+    for (;;) {
+        if (!reserve((void **)&buf, &cap, n + 65536 + 1, 1)) {
+            *errnum = ENOMEM;
+            break;
+        }
+        size_t got = fread(buf + n, 1, cap - n - 1, f);
+        n += got;
+        if (got == 0) {
+            if (ferror(f)) *errnum = EIO;
+            break;
+        }
+    }
+    fclose(f);
+    if (*errnum) {
+        free(buf);
+        return NULL;
+    }
+    buf[n] = '\0';
+    *len = n;
+    return buf;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// MTL
+
+/// What one `newmtl` block said, before it is mapped to a glint material.
+typedef struct mtl_block {
+    char *name;
+    size_t name_len;
+    long line;
+    bool has_kd, has_ks, has_ke, has_ns, has_ni, has_d, has_tr, has_tf;
+    vec3 kd, ks, ke, tf;
+    float ns, ni, d, tr;
+    int illum;
+    char *map_kd;
+    bool duplicate; // the name was defined before: the block is read (and checked) but dropped
+} mtl_block;
+
+static float max3(vec3 v) { return fmaxf(v.x, fmaxf(v.y, v.z)); }
+static float clamp01(float x) { return fminf(1.0f, fmaxf(0.0f, x)); }
+static vec3 clamp01v(vec3 v) { return v3(clamp01(v.x), clamp01(v.y), clamp01(v.z)); }
+
+// The documented MTL -> glint mapping (see load_obj.h).
+static material mtl_to_material(const mtl_block *b) {
+    if (b->has_ke && max3(b->ke) > 0.0f) {
+        material m = material_default(MAT_DIFFUSE_LIGHT);
+        m.emission = b->ke;
+        return m;
+    }
+    bool transparent = b->has_d ? b->d < 1.0f : (b->has_tr && b->tr > 0.0f);
+    if (b->illum == 4 || b->illum == 6 || b->illum == 7 || b->illum == 9) transparent = true;
+    if (transparent) {
+        material m = material_default(MAT_DIELECTRIC);
+        if (b->has_ni && b->ni > 0.0f) m.ior = b->ni;
+        if (b->has_tf) m.albedo = clamp01v(b->tf);
+        return m;
+    }
+    vec3 kd = b->has_kd ? b->kd : v3s(0.5f);
+    if ((b->illum == 3 || b->illum == 5 || b->illum == 8) && b->has_ks && max3(b->ks) >= 0.25f &&
+        max3(b->ks) >= max3(kd)) {
+        material m = material_default(MAT_METAL);
+        m.albedo = clamp01v(b->ks);
+        // A Phong exponent n corresponds to a Beckmann roughness of about sqrt(2 / (n + 2)).
+        m.fuzz = b->has_ns ? clamp01(sqrtf(2.0f / (b->ns + 2.0f))) : 0.0f;
+        return m;
+    }
+    material m = material_default(MAT_LAMBERTIAN);
+    m.albedo = kd;
+    return m;
+}
+
+typedef struct mtl_parser {
+    reporter rep;
+    const char *dir;
+    obj_material *out;
+    size_t count, cap;
+    name_map names;
+    mtl_block cur;
+    bool in_block;
+} mtl_parser;
+
+// Ends the current newmtl block: maps it and appends it (a repeated name keeps the first definition).
+static bool mtl_finish_block(mtl_parser *ps) {
+    if (!ps->in_block) return true;
+    ps->in_block = false;
+    mtl_block *b = &ps->cur;
+    if (b->duplicate) {
+        free(b->name);
+        free(b->map_kd);
+        return true;
+    }
+    if (ps->count >= MAX_ELEMENTS || !reserve((void **)&ps->out, &ps->cap, ps->count + 1, sizeof *ps->out)) {
+        free(b->name);
+        free(b->map_kd);
+        return fail(&ps->rep, "out of memory");
+    }
+    obj_material *m = &ps->out[ps->count];
+    m->name = b->name;
+    m->defined = true;
+    m->mat = mtl_to_material(b);
+    m->diffuse_map = b->map_kd;
+    m->line = b->line;
+    if (!map_put(&ps->names, m->name, b->name_len, (int32_t)ps->count)) {
+        m->name = NULL;
+        free(b->name);
+        free(b->map_kd);
+        return fail(&ps->rep, "out of memory");
+    }
+    ps->count++;
+    return true;
+}
+
+// `Kd r [g b]` (g = b = r when only r is given); components must be finite and >= 0.
+static bool mtl_color(mtl_parser *ps, cursor *c, const char *kw, vec3 *out, bool *has) {
+    cursor peek = *c;
+    const char *tok;
+    size_t n;
+    if (next_token(&peek, &tok, &n) && (token_is(tok, n, "spectral") || token_is(tok, n, "xyz"))) {
+        char what[32];
+        snprintf(what, sizeof what, "%s %s", kw, token_is(tok, n, "xyz") ? "xyz" : "spectral");
+        warn_unsupported(&ps->rep, what, strlen(what));
+        return true;
+    }
+    float v[3];
+    int count;
+    if (!parse_numbers(&ps->rep, c, v, 3, &count)) return false;
+    if (count != 1 && count != 3) return fail(&ps->rep, "'%s' has %d numbers, expected r g b", kw, count);
+    if (count == 1) v[1] = v[2] = v[0];
+    for (int i = 0; i < 3; i++)
+        if (v[i] < 0.0f) return fail(&ps->rep, "'%s' has a negative component %g, expected values >= 0", kw, (double)v[i]);
+    *out = v3(v[0], v[1], v[2]);
+    *has = true;
+    return true;
+}
+
+// One number in [lo, hi].
+static bool mtl_scalar(mtl_parser *ps, cursor *c, const char *kw, float lo, float hi, float *out, bool *has) {
+    float v[1];
+    int count;
+    if (!parse_numbers(&ps->rep, c, v, 1, &count)) return false;
+    if (count != 1) return fail(&ps->rep, "'%s' has %d numbers, expected 1", kw, count);
+    if (!(v[0] >= lo && v[0] <= hi)) {
+        if (hi == INFINITY) return fail(&ps->rep, "'%s' is %g, expected a value >= %g", kw, (double)v[0], (double)lo);
+        return fail(&ps->rep, "'%s' is %g, expected a value from %g to %g", kw, (double)v[0], (double)lo, (double)hi);
+    }
+    *out = v[0];
+    *has = true;
+    return true;
+}
+
+// `map_Kd [-options] file`: skips the options, resolves the file relative to the MTL's directory.
+static bool mtl_map_kd(mtl_parser *ps, cursor *c) {
+    static const struct { const char *name; int args; } options[] = {
+        {"-blendu", 1}, {"-blendv", 1}, {"-cc", 1}, {"-clamp", 1}, {"-bm", 1}, {"-boost", 1}, {"-texres", 1},
+        {"-imfchan", 1}, {"-type", 1}, {"-mm", 2}, {"-o", -3}, {"-s", -3}, {"-t", -3},
+    };
+    for (;;) {
+        cursor peek = *c;
+        const char *tok;
+        size_t n;
+        if (!next_token(&peek, &tok, &n) || tok[0] != '-') break;
+        int args = 0;
+        for (size_t i = 0; i < sizeof options / sizeof options[0]; i++)
+            if (token_is(tok, n, options[i].name)) args = options[i].args;
+        if (args == 0) break; // not an option: a file name that starts with '-'
+        *c = peek;
+        // -o, -s, -t take one to three numbers: take those that parse.
+        for (int k = 0; k < (args < 0 ? -args : args); k++) {
+            cursor arg = *c;
+            float f;
+            if (!next_token(&arg, &tok, &n)) break;
+            if (args < 0 && k > 0 && parse_float(tok, n, &f) != NUM_OK) break;
+            *c = arg;
+        }
+    }
+    const char *file;
+    size_t n;
+    rest_of_line(c, &file, &n);
+    if (n == 0) return fail(&ps->rep, "'map_Kd' needs a file name");
+    char *path = join_path(ps->dir, file, n);
+    if (!path) return fail(&ps->rep, "out of memory");
+    if (!ps->rep.opt || !ps->rep.opt->skip_files) {
+        int e = check_file(path);
+        if (e) {
+            // Exporters on Windows write absolute paths: try the bare file name next to the MTL file.
+            const char *slash = strrchr(path, '/');
+            char *alt = slash ? join_path(ps->dir, slash + 1, strlen(slash + 1)) : NULL;
+            if (alt && check_file(alt) == 0) {
+                free(path);
+                path = alt;
+            } else {
+                free(alt);
+                warn_at(&ps->rep, ps->rep.line, "texture '%s' not found (%s); material '%s' uses its Kd colour",
+                        quote(file, n).s, strerror(e), quote(ps->cur.name, ps->cur.name_len).s);
+                free(path);
+                return true;
+            }
+        }
+    }
+    free(ps->cur.map_kd);
+    ps->cur.map_kd = path;
+    return true;
+}
+
+static bool mtl_statement(mtl_parser *ps, cursor *c) {
+    const char *kw;
+    size_t kn;
+    if (!next_token(c, &kw, &kn)) return true;
+    if (token_is(kw, kn, "newmtl")) {
+        if (!mtl_finish_block(ps)) return false;
+        const char *name;
+        size_t n;
+        rest_of_line(c, &name, &n);
+        if (n == 0) return fail(&ps->rep, "'newmtl' needs a material name");
+        memset(&ps->cur, 0, sizeof ps->cur);
+        ps->cur.name = dup_n(name, n);
+        if (!ps->cur.name) return fail(&ps->rep, "out of memory");
+        ps->cur.name_len = n;
+        ps->cur.line = ps->rep.line;
+        ps->cur.illum = -1;
+        ps->in_block = true;
+        if (map_get(&ps->names, name, n) >= 0) {
+            ps->cur.duplicate = true;
+            warn_at(&ps->rep, ps->rep.line, "material '%s' is defined again; the first definition is used",
+                    quote(name, n).s);
+        }
+        return true;
+    }
+    static const char *const ignored[] = {
+        "map_Ka", "map_Ks", "map_Ns", "map_d", "map_Tr", "map_bump", "map_Bump", "bump", "disp", "decal", "refl",
+        "map_Ke", "map_Pr", "map_Pm", "map_Ps", "norm", "map_refl", "Pr", "Pm", "Ps", "Pc", "Pcr", "aniso",
+        "anisor", "sharpness", "map_aat",
+    };
+    static const char *const known[] = {"Kd", "Ks", "Ke", "Ka", "Tf", "Ns", "Ni", "d", "Tr", "illum", "map_Kd"};
+    bool is_known = false;
+    for (size_t i = 0; i < sizeof known / sizeof known[0] && !is_known; i++) is_known = token_is(kw, kn, known[i]);
+    for (size_t i = 0; i < sizeof ignored / sizeof ignored[0] && !is_known; i++)
+        if (token_is(kw, kn, ignored[i])) is_known = true;
+    if (!is_known) {
+        warn_unsupported(&ps->rep, kw, kn);
+        return true;
+    }
+    if (!ps->in_block) return fail(&ps->rep, "'%s' before any 'newmtl', expected 'newmtl name' first", quote(kw, kn).s);
+    mtl_block *b = &ps->cur;
+    vec3 unused;
+    bool unused_flag;
+    if (token_is(kw, kn, "Kd")) return mtl_color(ps, c, "Kd", &b->kd, &b->has_kd);
+    if (token_is(kw, kn, "Ks")) return mtl_color(ps, c, "Ks", &b->ks, &b->has_ks);
+    if (token_is(kw, kn, "Ke")) return mtl_color(ps, c, "Ke", &b->ke, &b->has_ke);
+    if (token_is(kw, kn, "Tf")) return mtl_color(ps, c, "Tf", &b->tf, &b->has_tf);
+    if (token_is(kw, kn, "Ka")) return mtl_color(ps, c, "Ka", &unused, &unused_flag);
+    if (token_is(kw, kn, "Ns")) return mtl_scalar(ps, c, "Ns", 0.0f, INFINITY, &b->ns, &b->has_ns);
+    if (token_is(kw, kn, "Ni")) return mtl_scalar(ps, c, "Ni", 0.0f, INFINITY, &b->ni, &b->has_ni);
+    if (token_is(kw, kn, "Tr")) return mtl_scalar(ps, c, "Tr", 0.0f, 1.0f, &b->tr, &b->has_tr);
+    if (token_is(kw, kn, "d")) {
+        cursor peek = *c;
+        const char *tok;
+        size_t n;
+        if (next_token(&peek, &tok, &n) && token_is(tok, n, "-halo")) *c = peek;
+        return mtl_scalar(ps, c, "d", 0.0f, 1.0f, &b->d, &b->has_d);
+    }
+    if (token_is(kw, kn, "illum")) {
+        const char *tok;
+        size_t n;
+        int64_t v;
+        if (!next_token(c, &tok, &n)) return fail(&ps->rep, "'illum' needs an illumination model, expected an integer from 0 to 10");
+        if (!parse_index(tok, n, &v) || v < 0 || v > 10)
+            return fail(&ps->rep, "'illum' is '%s', expected an integer from 0 to 10", quote(tok, n).s);
+        if (next_token(c, &tok, &n)) return fail(&ps->rep, "'illum' has more than one value, expected an integer from 0 to 10");
+        b->illum = (int)v;
+        return true;
+    }
+    if (token_is(kw, kn, "map_Kd")) return mtl_map_kd(ps, c);
+    return true; // accepted and ignored
+}
+
+// Calls fn(state, cursor) for every line of text, keeping rep->line current; stops at the first failure.
+static bool for_each_line(const char *text, size_t length, reporter *rep, bool (*fn)(void *, cursor *), void *state) {
+    const char *s = text, *end = text + length;
+    rep->line = 0;
+    while (s < end) {
+        rep->line++;
+        const char *nl = memchr(s, '\n', (size_t)(end - s));
+        cursor c = {s, nl ? nl : end};
+        if (!fn(state, &c)) return false;
+        s = nl ? nl + 1 : end;
+    }
+    return true;
+}
+
+static bool mtl_line(void *state, cursor *c) { return mtl_statement(state, c); }
+
+void obj_materials_free(obj_material *m, size_t count) {
+    if (!m) return;
+    for (size_t i = 0; i < count; i++) {
+        free(m[i].name);
+        free(m[i].diffuse_map);
+    }
+    free(m);
+}
+
+// Parses an MTL text; warnings are added to *warnings.
+static glint_status mtl_parse_counted(const char *name, const char *text, size_t length, const obj_options *opt,
+                                      obj_material **out, size_t *count, size_t *warnings, glint_error *err) {
+    mtl_parser ps;
+    memset(&ps, 0, sizeof ps);
+    ps.rep.name = name;
+    ps.rep.opt = opt;
+    ps.rep.err = err;
+    ps.rep.warnings = warnings;
+    char *dir = dir_of(name);
+    ps.dir = dir;
+    bool ok = dir ? for_each_line(text, length, &ps.rep, mtl_line, &ps) && mtl_finish_block(&ps)
+                  : fail(&ps.rep, "out of memory");
+    if (ps.in_block) { // a failure inside a block
+        free(ps.cur.name);
+        free(ps.cur.map_kd);
+    }
+    free(dir);
+    map_free(&ps.names);
+    if (!ok) {
+        obj_materials_free(ps.out, ps.count);
+        *out = NULL;
+        *count = 0;
+        return GLINT_ERR_INPUT;
+    }
+    *out = ps.out;
+    *count = ps.count;
+    return GLINT_OK;
+}
+
+glint_status mtl_parse(const char *name, const char *text, size_t length, const obj_options *opt,
+                       obj_material **out, size_t *count, glint_error *err) {
+    size_t warnings = 0;
+    return mtl_parse_counted(name, text, length, opt, out, count, &warnings, err);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// OBJ
+
+typedef struct corner {
+    int32_t v, t, n;
+} corner;
+
+typedef struct obj_parser {
+    reporter rep;
+    obj_model *model;
+    const obj_options *opt;
+    size_t pos_cap, nrm_cap, uv_cap, tri_cap, slot_cap;
+    corner *corners;
+    size_t corner_cap;
+    double *px, *py;  // a face projected on its plane, for triangulation
+    int *next, *prev; // the remaining polygon while ear clipping
+    size_t scratch_cap;
+    int32_t material; // current slot, -1 before any usemtl
+    name_map slots;
+    obj_material *defs; // everything the material libraries define
+    size_t def_count, def_cap;
+    name_map def_names;
+    char **libs; // libraries read so far, so that a repeated mtllib is read once
+    size_t lib_count, lib_cap;
+    char *dir;
+    long first_zero_line;
+    bool warned_fan, warned_bad_polygon;
+} obj_parser;
+
+static bool too_many(reporter *r, const char *what) {
+    return fail(r, "too many %s, expected at most %d", what, MAX_ELEMENTS);
+}
+
+static bool obj_vertex(obj_parser *ps, cursor *c) {
+    float v[7];
+    int count;
+    if (!parse_numbers(&ps->rep, c, v, 7, &count)) return false;
+    if (count < 3 || count > 7) return fail(&ps->rep, "'v' has %d numbers, expected 3 (x y z) to 7", count);
+    mesh *m = &ps->model->mesh;
+    if (m->position_count >= MAX_ELEMENTS) return too_many(&ps->rep, "vertices");
+    if (!reserve((void **)&m->positions, &ps->pos_cap, m->position_count + 1, sizeof *m->positions))
+        return fail(&ps->rep, "out of memory");
+    m->positions[m->position_count++] = v3(v[0], v[1], v[2]);
+    return true;
+}
+
+static bool obj_normal(obj_parser *ps, cursor *c) {
+    float v[3];
+    int count;
+    if (!parse_numbers(&ps->rep, c, v, 3, &count)) return false;
+    if (count != 3) return fail(&ps->rep, "'vn' has %d numbers, expected 3 (x y z)", count);
+    mesh *m = &ps->model->mesh;
+    if (m->normal_count >= MAX_ELEMENTS) return too_many(&ps->rep, "normals");
+    if (!reserve((void **)&m->normals, &ps->nrm_cap, m->normal_count + 1, sizeof *m->normals))
+        return fail(&ps->rep, "out of memory");
+    m->normals[m->normal_count++] = v3(v[0], v[1], v[2]);
+    return true;
+}
+
+static bool obj_texcoord(obj_parser *ps, cursor *c) {
+    float v[3] = {0, 0, 0};
+    int count;
+    if (!parse_numbers(&ps->rep, c, v, 3, &count)) return false;
+    if (count < 1 || count > 3) return fail(&ps->rep, "'vt' has %d numbers, expected 1 to 3 (u [v [w]])", count);
+    mesh *m = &ps->model->mesh;
+    if (m->uv_count >= MAX_ELEMENTS) return too_many(&ps->rep, "texture coordinates");
+    if (!reserve((void **)&m->uvs, &ps->uv_cap, m->uv_count + 1, sizeof *m->uvs)) return fail(&ps->rep, "out of memory");
+    m->uvs[m->uv_count++] = (uv2){v[0], count > 1 ? v[1] : 0.0f};
+    return true;
+}
+
+// A 1-based or negative (relative) index into `count` elements -> 0-based.
+static bool resolve_index(obj_parser *ps, const char *tok, size_t n, int64_t idx, size_t count, const char *what,
+                          const char *plural, int32_t *out) {
+    if (idx > 0 && (uint64_t)idx <= count) {
+        *out = (int32_t)(idx - 1);
+        return true;
+    }
+    if (idx < 0 && (uint64_t)(-idx) <= count) {
+        *out = (int32_t)((int64_t)count + idx);
+        return true;
+    }
+    quoted q = quote(tok, n);
+    if (count == 0) return fail(&ps->rep, "%s index %s out of range, no %s defined before this face", what, q.s, plural);
+    return fail(&ps->rep, "%s index %s out of range, expected 1..%zu or -%zu..-1", what, q.s, count, count);
+}
+
+// One face corner: v, v/vt, v//vn or v/vt/vn.
+static bool parse_corner(obj_parser *ps, const char *tok, size_t n, corner *out) {
+    const mesh *m = &ps->model->mesh;
+    const char *s1 = memchr(tok, '/', n);
+    const char *s2 = s1 ? memchr(s1 + 1, '/', (size_t)(tok + n - s1 - 1)) : NULL;
+    const char *vs = tok, *ts = NULL, *ns = NULL;
+    size_t vl = s1 ? (size_t)(s1 - tok) : n, tl = 0, nl = 0;
+    bool ok = true;
+    if (s1 && !s2) {
+        ts = s1 + 1;
+        tl = (size_t)(tok + n - ts);
+        ok = tl > 0;
+    } else if (s2) {
+        ts = s1 + 1;
+        tl = (size_t)(s2 - ts);
+        ns = s2 + 1;
+        nl = (size_t)(tok + n - ns);
+        ok = nl > 0 && !memchr(ns, '/', nl);
+    }
+    int64_t vi = 0, ti = 0, ni = 0;
+    ok = ok && parse_index(vs, vl, &vi) && (tl == 0 || parse_index(ts, tl, &ti)) && (nl == 0 || parse_index(ns, nl, &ni));
+    if (!ok)
+        return fail(&ps->rep, "malformed face vertex '%s', expected v, v/vt, v//vn or v/vt/vn with integer indices",
+                    quote(tok, n).s);
+    out->t = out->n = -1;
+    if (!resolve_index(ps, vs, vl, vi, m->position_count, "vertex", "vertices", &out->v)) return false;
+    if (tl && !resolve_index(ps, ts, tl, ti, m->uv_count, "texture coordinate", "texture coordinates", &out->t))
+        return false;
+    if (nl && !resolve_index(ps, ns, nl, ni, m->normal_count, "normal", "normals", &out->n)) return false;
+    return true;
+}
+
+// Whether the triangle (a, b, c) has exactly zero area: its edge cross product, in double, is zero.
+static bool zero_area(const mesh *m, const corner *a, const corner *b, const corner *c) {
+    vec3 p = m->positions[a->v], q = m->positions[b->v], r = m->positions[c->v];
+    double ux = (double)q.x - p.x, uy = (double)q.y - p.y, uz = (double)q.z - p.z;
+    double vx = (double)r.x - p.x, vy = (double)r.y - p.y, vz = (double)r.z - p.z;
+    return uy * vz - uz * vy == 0.0 && uz * vx - ux * vz == 0.0 && ux * vy - uy * vx == 0.0;
+}
+
+// Appends triangle (a, b, c) unless it has no area (degenerate pieces of a valid polygon are dropped silently).
+static bool emit(obj_parser *ps, const corner *a, const corner *b, const corner *c) {
+    mesh *m = &ps->model->mesh;
+    if (zero_area(m, a, b, c)) return true;
+    if (m->triangle_count >= MAX_ELEMENTS) return too_many(&ps->rep, "triangles");
+    if (!reserve((void **)&m->triangles, &ps->tri_cap, m->triangle_count + 1, sizeof *m->triangles))
+        return fail(&ps->rep, "out of memory");
+    mesh_triangle *t = &m->triangles[m->triangle_count++];
+    const corner *k[3] = {a, b, c};
+    for (int i = 0; i < 3; i++) {
+        t->v[i] = k[i]->v;
+        t->t[i] = k[i]->t;
+        t->n[i] = k[i]->n;
+    }
+    t->material = ps->material;
+    return true;
+}
+
+static void zero_area_face(obj_parser *ps) {
+    if (ps->model->zero_area_faces++ == 0) {
+        ps->first_zero_line = ps->rep.line;
+        warn_at(&ps->rep, ps->rep.line, "face has zero area; skipped");
+    }
+}
+
+static double cross2(const obj_parser *ps, int a, int b, int c) {
+    return (ps->px[b] - ps->px[a]) * (ps->py[c] - ps->py[a]) - (ps->py[b] - ps->py[a]) * (ps->px[c] - ps->px[a]);
+}
+
+// Ear clipping of the projected polygon of n corners with orientation sign s (> 0: counter-clockwise).
+static bool ear_clip(obj_parser *ps, size_t n, double s) {
+    const corner *k = ps->corners;
+    for (size_t i = 0; i < n; i++) {
+        ps->next[i] = (int)((i + 1) % n);
+        ps->prev[i] = (int)((i + n - 1) % n);
+    }
+    size_t remaining = n;
+    int i = 0;
+    while (remaining > 3) {
+        bool clipped = false;
+        for (size_t tries = 0; tries < remaining && !clipped; tries++, i = ps->next[i]) {
+            int p = ps->prev[i], q = ps->next[i];
+            if (cross2(ps, p, i, q) * s <= 0.0) continue; // reflex or straight: not an ear
+            bool empty = true;
+            for (int r = ps->next[q]; r != p && empty; r = ps->next[r]) {
+                // Corners that coincide with the ear's (the bridge of a keyhole polygon) do not block it.
+                bool same = (ps->px[r] == ps->px[p] && ps->py[r] == ps->py[p]) ||
+                            (ps->px[r] == ps->px[i] && ps->py[r] == ps->py[i]) ||
+                            (ps->px[r] == ps->px[q] && ps->py[r] == ps->py[q]);
+                if (!same && cross2(ps, p, i, r) * s >= 0.0 && cross2(ps, i, q, r) * s >= 0.0 &&
+                    cross2(ps, q, p, r) * s >= 0.0)
+                    empty = false;
+            }
+            if (!empty) continue;
+            if (!emit(ps, &k[p], &k[i], &k[q])) return false;
+            ps->next[p] = q;
+            ps->prev[q] = p;
+            remaining--;
+            clipped = true;
+            i = p; // the loop's step moves on to q, whose ear status changed
+        }
+        if (clipped) continue;
+        // No ear: drop a straight corner (no area lost) if there is one, else clip anyway and say so.
+        int victim = -1;
+        for (size_t t = 0, j = (size_t)i; t < remaining && victim < 0; t++, j = (size_t)ps->next[j])
+            if (cross2(ps, ps->prev[j], (int)j, ps->next[j]) == 0.0) victim = (int)j;
+        if (victim < 0) {
+            victim = i;
+            if (!ps->warned_bad_polygon) {
+                ps->warned_bad_polygon = true;
+                warn_at(&ps->rep, ps->rep.line, "face is self-intersecting; its triangulation may be wrong");
+            }
+            if (!emit(ps, &k[ps->prev[victim]], &k[victim], &k[ps->next[victim]])) return false;
+        }
+        ps->next[ps->prev[victim]] = ps->next[victim];
+        ps->prev[ps->next[victim]] = ps->prev[victim];
+        i = ps->next[victim];
+        remaining--;
+    }
+    return emit(ps, &k[ps->prev[i]], &k[i], &k[ps->next[i]]);
+}
+
+static bool fan(obj_parser *ps, size_t n) {
+    for (size_t i = 1; i + 1 < n; i++)
+        if (!emit(ps, &ps->corners[0], &ps->corners[i], &ps->corners[i + 1])) return false;
+    return true;
+}
+
+// Splits the face's n corners into triangles: fan when convex, ear clipping when concave.
+static bool triangulate(obj_parser *ps, size_t n) {
+    const mesh *m = &ps->model->mesh;
+    const corner *k = ps->corners;
+    if (n == 3) {
+        if (zero_area(m, &k[0], &k[1], &k[2])) {
+            zero_area_face(ps);
+            return true;
+        }
+        return emit(ps, &k[0], &k[1], &k[2]);
+    }
+    // Newell's normal: robust for non-planar faces, zero when the face has no area.
+    double nx = 0, ny = 0, nz = 0;
+    for (size_t i = 0; i < n; i++) {
+        vec3 a = m->positions[k[i].v], b = m->positions[k[(i + 1) % n].v];
+        nx += ((double)a.y - b.y) * ((double)a.z + b.z);
+        ny += ((double)a.z - b.z) * ((double)a.x + b.x);
+        nz += ((double)a.x - b.x) * ((double)a.y + b.y);
+    }
+    double ax = fabs(nx), ay = fabs(ny), az = fabs(nz);
+    if (!(ax > 0 || ay > 0 || az > 0) || !isfinite(ax + ay + az)) {
+        zero_area_face(ps);
+        return true;
+    }
+    if (n > ps->scratch_cap) {
+        // All four scratch arrays share one capacity; each reserve grows its own copy of it.
+        size_t c1 = ps->scratch_cap, c2 = c1, c3 = c1, c4 = c1;
+        if (!reserve((void **)&ps->px, &c1, n, sizeof *ps->px) || !reserve((void **)&ps->py, &c2, n, sizeof *ps->py) ||
+            !reserve((void **)&ps->next, &c3, n, sizeof *ps->next) || !reserve((void **)&ps->prev, &c4, n, sizeof *ps->prev))
+            return fail(&ps->rep, "out of memory");
+        ps->scratch_cap = c1;
+    }
+    // Project on the plane of the largest normal component; the cyclic axis order makes the sign of the
+    // projected area the sign of that component.
+    int axis = ax >= ay ? (ax >= az ? 0 : 2) : (ay >= az ? 1 : 2);
+    double s = (axis == 0 ? nx : axis == 1 ? ny : nz) > 0 ? 1.0 : -1.0;
+    for (size_t i = 0; i < n; i++) {
+        vec3 p = m->positions[k[i].v];
+        ps->px[i] = axis == 0 ? p.y : axis == 1 ? p.z : p.x;
+        ps->py[i] = axis == 0 ? p.z : axis == 1 ? p.x : p.y;
+    }
+    bool convex = true;
+    for (size_t i = 0; i < n && convex; i++)
+        convex = cross2(ps, (int)((i + n - 1) % n), (int)i, (int)((i + 1) % n)) * s >= 0.0;
+    if (convex) return fan(ps, n);
+    if (n > OBJ_MAX_EAR_CLIP) {
+        if (!ps->warned_fan) {
+            ps->warned_fan = true;
+            warn_at(&ps->rep, ps->rep.line, "concave face with %zu vertices triangulated as a fan; it may be wrong", n);
+        }
+        return fan(ps, n);
+    }
+    return ear_clip(ps, n, s);
+}
+
+static bool obj_face(obj_parser *ps, cursor *c) {
+    const char *tok;
+    size_t len, n = 0;
+    while (next_token(c, &tok, &len)) {
+        if (!reserve((void **)&ps->corners, &ps->corner_cap, n + 1, sizeof *ps->corners))
+            return fail(&ps->rep, "out of memory");
+        if (!parse_corner(ps, tok, len, &ps->corners[n])) return false;
+        n++;
+    }
+    if (n < 3) return fail(&ps->rep, "face has %zu vertices, expected at least 3", n);
+    return triangulate(ps, n);
+}
+
+static bool obj_usemtl(obj_parser *ps, cursor *c) {
+    const char *name;
+    size_t n;
+    rest_of_line(c, &name, &n);
+    if (n == 0) return fail(&ps->rep, "'usemtl' needs a material name");
+    int32_t slot = map_get(&ps->slots, name, n);
+    if (slot < 0) {
+        obj_model *mo = ps->model;
+        if (mo->material_count >= MAX_ELEMENTS) return too_many(&ps->rep, "materials");
+        if (!reserve((void **)&mo->materials, &ps->slot_cap, mo->material_count + 1, sizeof *mo->materials))
+            return fail(&ps->rep, "out of memory");
+        obj_material *m = &mo->materials[mo->material_count];
+        memset(m, 0, sizeof *m);
+        m->name = dup_n(name, n);
+        if (!m->name) return fail(&ps->rep, "out of memory");
+        m->mat = material_default(MAT_LAMBERTIAN);
+        m->line = ps->rep.line;
+        slot = (int32_t)mo->material_count++;
+        if (!map_put(&ps->slots, m->name, n, slot)) return fail(&ps->rep, "out of memory");
+    }
+    ps->material = slot;
+    return true;
+}
+
+// Reads one material library (once) and appends its definitions; a missing file is a warning.
+static bool obj_library(obj_parser *ps, const char *path, const char *shown, size_t shown_len) {
+    for (size_t i = 0; i < ps->lib_count; i++)
+        if (strcmp(ps->libs[i], path) == 0) return true;
+    size_t len;
+    int e;
+    char *text = read_file(path, &len, &e);
+    if (!text) {
+        warn_at(&ps->rep, ps->rep.line, "cannot open material library '%s' (%s); its materials are undefined",
+                quote(shown, shown_len).s, strerror(e));
+        return true;
+    }
+    char *copy = dup_n(path, strlen(path));
+    if (!copy || !reserve((void **)&ps->libs, &ps->lib_cap, ps->lib_count + 1, sizeof *ps->libs)) {
+        free(copy);
+        free(text);
+        return fail(&ps->rep, "out of memory");
+    }
+    ps->libs[ps->lib_count++] = copy;
+    obj_material *defs;
+    size_t count;
+    glint_status st = mtl_parse_counted(path, text, len, ps->opt, &defs, &count, &ps->model->warning_count, ps->rep.err);
+    free(text);
+    if (st != GLINT_OK) return false;
+    bool ok = true;
+    for (size_t i = 0; i < count; i++) {
+        obj_material *d = &defs[i];
+        size_t nl = strlen(d->name);
+        // A name that an earlier library defined keeps that first definition.
+        bool keep = ok && map_get(&ps->def_names, d->name, nl) < 0;
+        if (keep && (ps->def_count >= MAX_ELEMENTS ||
+                     !reserve((void **)&ps->defs, &ps->def_cap, ps->def_count + 1, sizeof *ps->defs) ||
+                     !map_put(&ps->def_names, d->name, nl, (int32_t)ps->def_count)))
+            keep = ok = fail(&ps->rep, "out of memory");
+        if (keep) {
+            ps->defs[ps->def_count++] = *d; // the strings now belong to ps->defs
+            continue;
+        }
+        free(d->name);
+        free(d->diffuse_map);
+    }
+    free(defs);
+    return ok;
+}
+
+static bool obj_mtllib(obj_parser *ps, cursor *c) {
+    const char *names;
+    size_t n;
+    rest_of_line(c, &names, &n);
+    if (n == 0) return fail(&ps->rep, "'mtllib' needs a file name");
+    if (ps->opt && ps->opt->skip_files) return true;
+    char *whole = join_path(ps->dir, names, n);
+    if (!whole) return fail(&ps->rep, "out of memory");
+    // The whole argument may be one name with blanks; otherwise it is a list of names.
+    bool single = check_file(whole) == 0 || !memchr(names, ' ', n);
+    if (single) {
+        bool ok = obj_library(ps, whole, names, n);
+        free(whole);
+        return ok;
+    }
+    free(whole);
+    cursor list = {names, names + n};
+    const char *tok;
+    size_t len;
+    while (next_token(&list, &tok, &len)) {
+        char *path = join_path(ps->dir, tok, len);
+        if (!path) return fail(&ps->rep, "out of memory");
+        bool ok = obj_library(ps, path, tok, len);
+        free(path);
+        if (!ok) return false;
+    }
+    return true;
+}
+
+static bool obj_statement(obj_parser *ps, cursor *c) {
+    const char *kw;
+    size_t n;
+    if (!next_token(c, &kw, &n)) return true;
+    if (n == 1) {
+        switch (kw[0]) {
+        case 'v': return obj_vertex(ps, c);
+        case 'f': return obj_face(ps, c);
+        case 'o': case 'g': case 's': return true; // objects, groups and smoothing groups carry nothing we need
+        default: break;
+        }
+    } else if (n == 2 && kw[0] == 'v') {
+        if (kw[1] == 'n') return obj_normal(ps, c);
+        if (kw[1] == 't') return obj_texcoord(ps, c);
+    } else if (token_is(kw, n, "usemtl")) {
+        return obj_usemtl(ps, c);
+    } else if (token_is(kw, n, "mtllib")) {
+        return obj_mtllib(ps, c);
+    }
+    warn_unsupported(&ps->rep, kw, n);
+    return true;
+}
+
+static bool obj_line(void *state, cursor *c) { return obj_statement(state, c); }
+
+void obj_model_free(obj_model *m) {
+    mesh_free(&m->mesh);
+    obj_materials_free(m->materials, m->material_count);
+    memset(m, 0, sizeof *m);
+    m->mesh.bounds = bounds3_empty();
+}
+
+// Gives each usemtl slot its definition from the libraries, or warns and keeps the fallback.
+static bool resolve_materials(obj_parser *ps) {
+    obj_model *mo = ps->model;
+    for (size_t i = 0; i < mo->material_count; i++) {
+        obj_material *slot = &mo->materials[i];
+        int32_t d = map_get(&ps->def_names, slot->name, strlen(slot->name));
+        if (d < 0) {
+            warn_at(&ps->rep, slot->line, "material '%s' is not defined in any material library; using the default material",
+                    quote(slot->name, strlen(slot->name)).s);
+            continue;
+        }
+        const obj_material *def = &ps->defs[d];
+        slot->defined = true;
+        slot->mat = def->mat;
+        if (def->diffuse_map && !(slot->diffuse_map = dup_n(def->diffuse_map, strlen(def->diffuse_map))))
+            return fail(&ps->rep, "out of memory");
+    }
+    return true;
+}
+
+glint_status obj_parse(const char *name, const char *text, size_t length, const obj_options *opt, obj_model *out,
+                       glint_error *err) {
+    memset(out, 0, sizeof *out);
+    out->mesh.bounds = bounds3_empty();
+    obj_parser ps;
+    memset(&ps, 0, sizeof ps);
+    ps.rep.name = name;
+    ps.rep.opt = opt;
+    ps.rep.err = err;
+    ps.rep.warnings = &out->warning_count;
+    ps.model = out;
+    ps.opt = opt;
+    ps.material = -1;
+    ps.dir = dir_of(name);
+    bool ok = ps.dir ? for_each_line(text, length, &ps.rep, obj_line, &ps) : fail(&ps.rep, "out of memory");
+    if (ok) ok = resolve_materials(&ps);
+    if (ok) {
+        if (out->zero_area_faces > 1)
+            warn_at(&ps.rep, 0, "%zu zero-area faces skipped in total (the first on line %ld)", out->zero_area_faces,
+                    ps.first_zero_line);
+        if (out->mesh.triangle_count == 0) warn_at(&ps.rep, 0, "no faces; the mesh is empty");
+        mesh_compute_bounds(&out->mesh);
+    }
+    free(ps.corners);
+    free(ps.px);
+    free(ps.py);
+    free(ps.next);
+    free(ps.prev);
+    map_free(&ps.slots);
+    map_free(&ps.def_names);
+    obj_materials_free(ps.defs, ps.def_count);
+    for (size_t i = 0; i < ps.lib_count; i++) free(ps.libs[i]);
+    free(ps.libs);
+    free(ps.dir);
+    if (!ok) {
+        obj_model_free(out);
+        return GLINT_ERR_INPUT;
+    }
+    return GLINT_OK;
+}
+
+glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, glint_error *err) {
+    memset(out, 0, sizeof *out);
+    out->mesh.bounds = bounds3_empty();
+    size_t len;
+    int e;
+    char *text = read_file(path, &len, &e);
+    if (!text) {
+        if (err) snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, strerror(e));
+        return GLINT_ERR_INPUT;
+    }
+    glint_status st = obj_parse(path, text, len, opt, out, err);
+    free(text);
+    return st;
+}

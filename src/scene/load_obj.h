@@ -1,0 +1,94 @@
+// load_obj.h — a strict, fast Wavefront OBJ/MTL reader producing a glint triangle mesh and its materials.
+//
+// OBJ: `v x y z [w | r g b [a]]` (extra numbers ignored), `vt u [v [w]]`, `vn x y z`, and faces `f` of 3 or
+// more corners in any of the forms v, v/vt, v//vn, v/vt/vn, with positive (1-based) or negative (relative)
+// indices that must refer to elements defined earlier in the file. Faces are triangulated: convex ones
+// (after projection on the plane of their Newell normal) as a fan from their first corner, concave ones by
+// ear clipping (up to OBJ_MAX_EAR_CLIP corners; larger concave faces become a fan with a warning). `o`, `g`,
+// `s` are accepted and ignored, `usemtl` switches the material, `mtllib` reads material libraries relative
+// to the OBJ file's directory (several names on one line allowed). CRLF line endings, tabs and `#` comments
+// (a token starting with `#` ends the line) are accepted; `\` line continuation is not.
+//
+// MTL -> glint material, first rule that applies:
+//   1. Ke with a component > 0                             -> diffuse_light, emission Ke
+//   2. transparent: d < 1, or (without d) Tr > 0, or illum 4, 6, 7 or 9
+//                                                          -> dielectric, ior Ni (1.5 when absent or <= 0),
+//                                                             tint Tf clamped to [0,1] (white when absent)
+//   3. illum 3, 5 or 8 with strong Ks: max(Ks) >= 0.25 and max(Ks) >= max(Kd)
+//                                                          -> metal, albedo Ks clamped to [0,1],
+//                                                             fuzz sqrt(2 / (Ns + 2)) clamped to [0,1] (0 without Ns)
+//   4. otherwise                                           -> lambertian, albedo Kd (0.5 grey when absent)
+//   map_Kd (after its -options; `\` turned into `/`; relative to the MTL file) gives diffuse_map, meant to
+//   replace the albedo. Ka, Tf (except for glass), map_Ka/Ks/Ns/d/bump, PBR keys and similar are accepted
+//   and ignored; unknown statements warn once per keyword.
+//
+// Errors (the load fails; the message is "file:line: what is wrong, expected what"): malformed or
+// non-finite numbers, index 0 or out of range, too few/many numbers, faces with fewer than 3 corners,
+// malformed face corners, statements missing their argument, MTL values out of range, more than 2^31 - 1
+// elements. Warnings (reported through the callback, counted; the load goes on):
+//   - a face of zero area (collinear or repeated corners): skipped;
+//   - a material library that cannot be opened: its materials are undefined;
+//   - `usemtl` of a name no library defines: the slot stays with defined = false and a 0.5 grey
+//     Lambertian, so the scene can substitute the material the scene file gives the mesh;
+//   - a texture file that cannot be found: diffuse_map is NULL, the material keeps its Kd colour
+//     (a Windows-style absolute path is retried as its file name in the MTL file's directory);
+//   - unsupported statements (`l`, `p`, curves, ...): ignored, reported once per keyword;
+//   - a file without faces.
+#ifndef GLINT_LOAD_OBJ_H
+#define GLINT_LOAD_OBJ_H
+
+#include "glint.h"
+#include "geometry/mesh.h"
+#include "material/material.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+
+/// Concave faces with more corners than this are fan-triangulated (ear clipping is quadratic).
+#define OBJ_MAX_EAR_CLIP 256
+
+/// One material slot of a mesh, in the order of first `usemtl`; mesh_triangle.material indexes these.
+typedef struct obj_material {
+    char *name;        ///< the `usemtl` / `newmtl` name
+    bool defined;      ///< false: no material library defines it; `mat` is a 0.5 grey Lambertian fallback
+    material mat;      ///< the glint material mapped from the MTL statements (rules above)
+    char *diffuse_map; ///< map_Kd as a path usable from the current directory; NULL when absent or missing
+    long line;         ///< OBJ line of the first `usemtl` (MTL: line of `newmtl`)
+} obj_material;
+
+/// A loaded OBJ file.
+typedef struct obj_model {
+    mesh mesh;                  ///< triangles; material -1 for faces before any `usemtl`
+    obj_material *materials;    ///< slots used by the faces
+    size_t material_count;
+    size_t warning_count;       ///< warnings reported (including those not passed to a callback)
+    size_t zero_area_faces;     ///< faces skipped for having no area
+} obj_model;
+
+/// Receives each warning, formatted "file:line: warning: what happened; what is done instead".
+typedef void (*obj_warning_fn)(const char *message, void *user);
+
+/// Options of a load; a NULL pointer or a zeroed struct means: no callback, files opened.
+typedef struct obj_options {
+    obj_warning_fn warn; ///< NULL: warnings are only counted
+    void *user;          ///< passed to warn
+    bool skip_files;     ///< do not open material libraries or check textures (fuzzing, in-memory use)
+} obj_options;
+
+/// Loads an OBJ file and its material libraries. On failure returns GLINT_ERR_INPUT and a message in *err,
+/// and *out is empty. On success free *out with obj_model_free().
+glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, glint_error *err);
+/// The same from memory; `name` names the file in messages and gives the directory for `mtllib`.
+glint_status obj_parse(const char *name, const char *text, size_t length, const obj_options *opt, obj_model *out,
+                       glint_error *err);
+/// Frees what a successful load returned and leaves *m empty.
+void obj_model_free(obj_model *m);
+
+/// Parses an MTL library from memory into every material it defines (defined = true), in file order;
+/// texture paths are resolved relative to the directory of `name`. Free with obj_materials_free().
+glint_status mtl_parse(const char *name, const char *text, size_t length, const obj_options *opt,
+                       obj_material **out, size_t *count, glint_error *err);
+/// Frees an array of materials and their strings.
+void obj_materials_free(obj_material *m, size_t count);
+
+#endif

@@ -1,0 +1,69 @@
+# interrupt.sh — SIGINT and SIGTERM stop a long render: exit 130/143, a complete-size image of the samples
+# rendered so far, no temporary file left; a second SIGINT aborts without leaving anything half-written.
+source "$2/tests/cli/common.bash"
+
+# A render far too long to finish (16x16 pixels, a million samples each), stopped after half a second.
+# wait_for PID: its exit status, or 255 (and a kill) if it is still running after 20 s.
+wait_for() {
+    local pid=$1
+    for _ in $(seq 200); do
+        kill -0 "$pid" 2>/dev/null || break
+        sleep 0.1
+    done
+    if kill -0 "$pid" 2>/dev/null; then
+        kill -KILL "$pid"
+        wait "$pid" 2>/dev/null
+        return 255
+    fi
+    wait "$pid"
+}
+
+LONG=(--width 16 --height 16 --spp 1000000 "$DATA/tiny.json")
+
+for sig in INT TERM; do
+    status=$((128 + $(kill -l $sig)))
+    out=$TMP/stopped-$sig.ppm
+    "$GLINT" -o "$out" "${LONG[@]}" 2>"$TMP/err-$sig" &
+    pid=$!
+    sleep 0.5
+    kill -$sig $pid
+    wait_for $pid
+    rc=$?
+    check "SIG$sig: exit $status (got $rc)" test $rc -eq $status
+    check "SIG$sig: image written" test -s "$out"
+    check "SIG$sig: complete-size P6" test "$(header "$out" 13)" == " P 6 \n 1 6 1 6 \n 2 5 5 \n "
+    check "SIG$sig: image size" test "$(size "$out")" -eq $((13 + 16 * 16 * 3))
+    # The background is (0.2, 0.3, 0.5): a partial image is not black.
+    check "SIG$sig: the image holds rendered samples" test "$(tail -c 768 "$out" | tr -d '\0' | wc -c)" -gt 0
+    check "SIG$sig: says it was interrupted" grep -q 'interrupted' "$TMP/err-$sig"
+    check "SIG$sig: statistics line" grep -q 'Mrays/s' "$TMP/err-$sig"
+done
+
+# A PNG too, and --quiet stays quiet.
+"$GLINT" --quiet -o "$TMP/stopped.png" "${LONG[@]}" 2>"$TMP/err-png" &
+pid=$!
+sleep 0.5
+kill -INT $pid
+wait_for $pid
+rc=$?
+check "SIGINT with .png: exit 130 (got $rc)" test $rc -eq 130
+check "SIGINT with .png: PNG signature" test "$(od -An -tx1 -N 8 "$TMP/stopped.png" | tr -d ' \n')" == 89504e470d0a1a0a
+check "SIGINT with .png: size" test "$(be32 "$TMP/stopped.png" 16)x$(be32 "$TMP/stopped.png" 20)" == 16x16
+check "SIGINT with --quiet: nothing printed" test ! -s "$TMP/err-png"
+
+# Two SIGINTs at once: the second may abort at once. Either way nothing half-written is left: no
+# temporary file, and an image, if there is one, is complete.
+"$GLINT" --quiet -o "$TMP/twice.ppm" "${LONG[@]}" 2>/dev/null &
+pid=$!
+sleep 0.5
+kill -INT $pid
+kill -INT $pid
+wait_for $pid
+rc=$?
+check "two SIGINTs: exit 130 (got $rc)" test $rc -eq 130
+if [[ -e $TMP/twice.ppm ]]; then
+    check "two SIGINTs: a complete image" test "$(size "$TMP/twice.ppm")" -eq $((13 + 16 * 16 * 3))
+fi
+
+check "no temporary files left" no_temp_files "$TMP"
+summary

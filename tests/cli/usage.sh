@@ -1,0 +1,87 @@
+# usage.sh — the command line: --help and --version, bad flags and values with their exact messages,
+# missing scene files, unwritable or unknown outputs; exit status 0, 1 or 2 as documented.
+source "$2/tests/cli/common.bash"
+
+HINT="Try 'glint --help' for more information."
+
+run --help
+check "--help exits 0" test "$rc" -eq 0
+check "--help prints to stdout only" test ! -s "$TMP/err"
+for flag in --output --ascii-ppm --width --height --spp --depth --seed --threads --accel --quiet --help --version; do
+    check "--help documents $flag" grep -q -- "$flag" "$TMP/out"
+done
+check "--help names the default output" grep -q 'paper.png' "$TMP/out"
+check "--help documents the exit status on SIGINT" grep -q '130' "$TMP/out"
+run -h
+check "-h exits 0" test "$rc" -eq 0
+run --version
+check "--version exits 0" test "$rc" -eq 0
+check "--version prints 'glint X.Y.Z'" grep -Eqx 'glint [0-9]+\.[0-9]+\.[0-9]+' "$TMP/out"
+
+expect 2 "glint: no scene file given
+$HINT"
+expect 2 "glint: unknown option '--foo'
+$HINT" --foo "$DATA/tiny.json"
+expect 2 "glint: unknown option '-x'
+$HINT" -x "$DATA/tiny.json"
+expect 2 "glint: unknown option '-qh'
+$HINT" -qh "$DATA/tiny.json"
+expect 2 "glint: --width: 'abc' is not an integer, expected an integer in [1, 16384]" --width abc "$DATA/tiny.json"
+expect 2 "glint: --width: '12x' is not an integer, expected an integer in [1, 16384]" --width 12x "$DATA/tiny.json"
+expect 2 "glint: --width: ' 12' is not an integer, expected an integer in [1, 16384]" --width " 12" "$DATA/tiny.json"
+expect 2 "glint: --width: '' is not an integer, expected an integer in [1, 16384]" --width= "$DATA/tiny.json"
+expect 2 "glint: --width: '1.5' is not an integer, expected an integer in [1, 16384]" --width 1.5 "$DATA/tiny.json"
+expect 2 "glint: --width: 0 is out of range, expected an integer in [1, 16384]" --width 0 "$DATA/tiny.json"
+expect 2 "glint: --height: 16385 is out of range, expected an integer in [1, 16384]" --height=16385 "$DATA/tiny.json"
+expect 2 "glint: --width: 99999999999999999999999 is out of range, expected an integer in [1, 16384]" \
+    --width 99999999999999999999999 "$DATA/tiny.json"
+expect 2 "glint: --spp: -1 is out of range, expected an integer in [1, 1000000]" --spp -1 "$DATA/tiny.json"
+expect 2 "glint: --depth: 10001 is out of range, expected an integer in [0, 10000]" --depth 10001 "$DATA/tiny.json"
+expect 2 "glint: --seed: -1 is out of range, expected an integer in [0, 9007199254740992]" --seed -1 "$DATA/tiny.json"
+expect 2 "glint: --threads: 0 is out of range, expected an integer in [1, 256]" --threads 0 "$DATA/tiny.json"
+expect 2 "glint: --accel: unknown structure 'kd', expected bvh, bvh2 or none" --accel kd "$DATA/tiny.json"
+expect 2 "glint: option '--width' needs a value
+$HINT" "$DATA/tiny.json" --width
+expect 2 "glint: option '-o' needs a value
+$HINT" "$DATA/tiny.json" -o
+expect 2 "glint: option '--quiet' takes no value
+$HINT" --quiet=yes "$DATA/tiny.json"
+expect 2 "glint: unexpected argument 'b.json': only one scene file can be given
+$HINT" a.json b.json
+expect 2 "glint: --output: empty file name, expected an image file name or -" -o "" "$DATA/tiny.json"
+expect 2 "glint: --ascii-ppm: the output '$TMP/a.png' is not a .ppm file (or -)" \
+    --ascii-ppm -o "$TMP/a.png" "$DATA/tiny.json"
+
+# Outputs are checked before the scene is even read: no render is wasted on a typo.
+expect 2 "glint: $TMP/x.jpg: unknown image format '.jpg', expected .png, .ppm or .pfm (or - for PPM on standard output)" \
+    -o "$TMP/x.jpg" "$DATA/tiny.json"
+check "unknown extension: no file" test ! -e "$TMP/x.jpg"
+expect 2 "glint: $TMP/noext: no file extension to choose the image format from, expected .png, .ppm or .pfm (or - for PPM on standard output)" \
+    -o "$TMP/noext" "$DATA/tiny.json"
+expect 1 "glint: /nonexistent/dir/x.png: cannot write: No such file or directory" \
+    -o /nonexistent/dir/x.png "$DATA/tiny.json"
+check "unwritable output: no file" test ! -e /nonexistent/dir/x.png
+mkdir "$TMP/dir.png"
+expect 1 "glint: $TMP/dir.png: cannot write: Is a directory" -o "$TMP/dir.png" "$DATA/tiny.json"
+if [[ $EUID -ne 0 ]]; then # root writes anywhere
+    mkdir "$TMP/ro" && chmod 555 "$TMP/ro"
+    expect 1 "glint: $TMP/ro/x.png: cannot write: Permission denied" -o "$TMP/ro/x.png" "$DATA/tiny.json"
+fi
+check "no temporary files left" no_temp_files "$TMP"
+
+# Scene errors: exit 2, the scene file named first, no image written.
+run -o "$TMP/missing.png" "$TMP/missing.json"
+check "missing scene file exits 2" test "$rc" -eq 2
+check "missing scene file is named" grep -q "^glint: $TMP/missing.json" "$TMP/err"
+check "missing scene file: no image" test ! -e "$TMP/missing.png"
+printf '{"render": {"width": 10, "height": 10}, "objects": [' >"$TMP/broken.json"
+run -o "$TMP/broken.png" "$TMP/broken.json"
+check "malformed scene exits 2" test "$rc" -eq 2
+check "malformed scene is named with line and column" grep -Eq "^glint: $TMP/broken.json:[0-9]+:[0-9]+: " "$TMP/err"
+check "malformed scene: no image" test ! -e "$TMP/broken.png"
+"$GLINT" -o "$TMP/stdin-broken.png" - <<<'{"render": 5}' 2>"$TMP/err"
+rc=$?
+check "malformed scene on stdin exits 2" test "$rc" -eq 2
+check "malformed scene on stdin: no image" test ! -e "$TMP/stdin-broken.png"
+
+summary

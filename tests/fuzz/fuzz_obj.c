@@ -1,0 +1,57 @@
+// fuzz_obj.c — libFuzzer target for the OBJ and MTL readers: any bytes must give a mesh or a message, never
+// a crash, a leak, a hang or undefined behaviour. Whatever loads is then used as a renderer would use it.
+// Build with -DGLINT_FUZZ=ON and CC=clang; run: build/tests/fuzz_obj -dict=tests/fuzz/obj.dict NEWDIR tests/fuzz/corpus_obj
+#include "geometry/mesh.h"
+#include "scene/load_obj.h"
+
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
+
+// A failure has a status, a non-empty terminated message and an empty model.
+static void check_failure(const glint_error *err) {
+    if (memchr(err->message, '\0', sizeof err->message) == NULL || err->message[0] == '\0') __builtin_trap();
+}
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
+    // No files: a fuzzed `mtllib /dev/zero` must not be read.
+    obj_options opt = {NULL, NULL, true};
+    obj_model m;
+    glint_error err;
+    if (obj_parse("fuzz.obj", (const char *)data, size, &opt, &m, &err) == GLINT_OK) {
+        const mesh *me = &m.mesh;
+        for (size_t i = 0; i < me->triangle_count; i++) {
+            const mesh_triangle *t = &me->triangles[i];
+            for (int k = 0; k < 3; k++)
+                if (t->v[k] < 0 || (size_t)t->v[k] >= me->position_count || t->n[k] >= (int32_t)me->normal_count ||
+                    t->t[k] >= (int32_t)me->uv_count)
+                    __builtin_trap();
+            if (t->material < -1 || t->material >= (int32_t)m.material_count) __builtin_trap();
+            // Shade the centroid and fire a ray at it, as the renderer would.
+            tri_hit h = {1.0f, 1.0f / 3, 1.0f / 3, 1.0f / 3};
+            mesh_shading s = mesh_shade(me, i, &h);
+            (void)s;
+            vec3 p0, p1, p2;
+            mesh_triangle_positions(me, i, &p0, &p1, &p2);
+            vec3 c = v3_scale(v3_add(p0, v3_add(p1, p2)), 1.0f / 3);
+            ray r = {v3_add(c, v3(0.5f, 0.25f, 1)), v3(-0.5f, -0.25f, -1), 0, INFINITY};
+            tri_ray tr = tri_ray_make(&r);
+            tri_hit hit;
+            (void)mesh_intersect_triangle(me, i, &tr, r.tmin, r.tmax, &hit);
+        }
+        mesh_compute_normals(&m.mesh);
+        obj_model_free(&m);
+    } else {
+        check_failure(&err);
+        if (m.mesh.positions || m.mesh.triangles || m.materials) __builtin_trap();
+    }
+    // The same bytes as a material library.
+    obj_material *mats;
+    size_t count;
+    if (mtl_parse("fuzz.mtl", (const char *)data, size, &opt, &mats, &count, &err) == GLINT_OK)
+        obj_materials_free(mats, count);
+    else check_failure(&err);
+    return 0;
+}

@@ -1,0 +1,237 @@
+// test_bvh.c — the wide and the binary BVH against brute force on random rays over random sphere scenes:
+// same hit, same primitive, bit-identical t; any-hit agrees with closest-hit; SIMD agrees with scalar.
+#include "accel/accel.h"
+#include "accel/bvh.h"
+#include "core/rng.h"
+#include "scene/scene.h"
+
+#include "check.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+enum { RAYS_PER_SCENE = 4000 };
+
+static int mismatches; // reported once per scene rather than once per ray
+
+static float urand(rng *g, float lo, float hi) { return rng_range(g, lo, hi); }
+
+static vec3 random_unit(rng *g) {
+    for (;;) {
+        vec3 p = v3(urand(g, -1, 1), urand(g, -1, 1), urand(g, -1, 1));
+        float l2 = v3_len2(p);
+        if (l2 > 1e-6f && l2 <= 1.0f) return v3_scale(p, 1.0f / sqrtf(l2));
+    }
+}
+
+// A scene of n spheres mixing small, large, huge (the ground of rtiow), nested, coincident and
+// negative-radius spheres.
+static glint_scene *random_scene(rng *g, size_t n, accel_kind kind) {
+    glint_scene *s = scene_new("test");
+    s->settings.accel = kind;
+    for (size_t i = 0; i < n; i++) {
+        sphere sp = {v3(urand(g, -10, 10), urand(g, -10, 10), urand(g, -10, 10)), urand(g, 0.05f, 2.0f), 0};
+        float kindr = rng_float(g);
+        if (kindr < 0.05f) sp = (sphere){v3(0, -1000, 0), 1000.0f, 0};          // huge ground
+        else if (kindr < 0.15f) sp.radius = -sp.radius;                          // hollow shell
+        else if (kindr < 0.25f && i > 0) {                                       // nested in the previous
+            sp.center = s->spheres[i - 1].center;
+            sp.radius = s->spheres[i - 1].radius * urand(g, 0.2f, 1.5f);
+        } else if (kindr < 0.3f && i > 0) sp = s->spheres[i - 1];              // exact duplicate (ties)
+        else if (kindr < 0.35f) sp.radius = urand(g, 1e-3f, 1e-2f);             // tiny
+        else if (kindr < 0.4f) sp.radius = urand(g, 5.0f, 30.0f);               // large, overlapping
+        CHECK(scene_add_sphere(s, sp));
+    }
+    return s;
+}
+
+// Random rays: from outside and inside, towards sphere centres, grazing, unnormalised, with
+// varied intervals.
+static ray random_ray(rng *g, const glint_scene *s) {
+    ray r;
+    r.o = v3(urand(g, -15, 15), urand(g, -15, 15), urand(g, -15, 15));
+    float mode = rng_float(g);
+    if (s->sphere_count > 0 && mode < 0.4f) {
+        const sphere *sp = &s->spheres[rng_u32(g) % s->sphere_count];
+        vec3 target = sp->center;
+        if (mode < 0.15f) target = v3_add(target, v3_scale(random_unit(g), fabsf(sp->radius) * 0.999f)); // near grazing
+        if (mode < 0.05f) r.o = v3_add(sp->center, v3_scale(random_unit(g), fabsf(sp->radius) * 0.5f)); // inside
+        r.d = v3_sub(target, r.o);
+        if (v3_len2(r.d) < 1e-12f) r.d = random_unit(g);
+        else if (rng_float(g) < 0.7f) r.d = v3_unit(r.d);
+    } else {
+        r.d = random_unit(g);
+        if (mode > 0.95f) r.d = v3(0.0f, 0.0f, rng_float(g) < 0.5f ? 1.0f : -1.0f); // axis-aligned: zero components
+        else if (mode > 0.9f) r.d = v3_scale(r.d, urand(g, 0.01f, 100.0f));        // not unit length
+    }
+    r.tmin = rng_float(g) < 0.5f ? 0.001f : 0.0f;
+    r.tmax = rng_float(g) < 0.8f ? INFINITY : urand(g, 0.5f, 40.0f);
+    return r;
+}
+
+static bool same_hit(bool fa, const hit *a, bool fb, const hit *b) {
+    if (fa != fb) return false;
+    if (!fa) return true;
+    return a->prim == b->prim && memcmp(&a->t, &b->t, sizeof a->t) == 0;
+}
+
+// Compares every structure with brute force on RAYS_PER_SCENE rays over one scene layout.
+static void check_scene(uint64_t seed, size_t n) {
+    glint_error err;
+    accel_kind kinds[3] = {ACCEL_NONE, ACCEL_BVH, ACCEL_BVH2};
+    glint_scene *sc[3];
+    accel *ac[3];
+    for (int k = 0; k < 3; k++) {
+        rng g = rng_for_sample(seed, n, 0); // the same spheres for every kind
+        sc[k] = random_scene(&g, n, kinds[k]);
+        ac[k] = accel_build(sc[k], &err);
+        CHECK(ac[k] != NULL);
+        if (!ac[k]) return;
+        sc[k]->accel = ac[k]; // freed with the scene
+    }
+    bvh wide;
+    CHECK(bvh_build(&wide, sc[0]->spheres, sc[0]->sphere_count, true));
+    accel_stats st;
+    accel_get_stats(ac[1], &st);
+    CHECK(n == 0 || (st.leaves >= 1 && st.depth >= 1 && st.leaves <= n));
+    accel_get_stats(ac[2], &st);
+    CHECK(n == 0 || (st.leaves >= 1 && st.depth >= 1 && st.nodes + 1 == st.leaves));
+
+    rng g = rng_for_sample(seed, n, 1);
+    int bad = 0, hits = 0;
+    for (int i = 0; i < RAYS_PER_SCENE; i++) {
+        ray r = random_ray(&g, sc[0]);
+        hit h[3], hs;
+        bool f[3];
+        for (int k = 0; k < 3; k++) {
+            memset(&h[k], 0, sizeof h[k]);
+            f[k] = accel_intersect(ac[k], &r, &h[k]);
+        }
+        memset(&hs, 0, sizeof hs);
+        bool fs = bvh_intersect_scalar(&wide, &r, &hs);
+        hits += f[0];
+        bool ok = same_hit(f[0], &h[0], f[1], &h[1]) && same_hit(f[0], &h[0], f[2], &h[2]) &&
+                  same_hit(f[0], &h[0], fs, &hs);
+        for (int k = 0; k < 3; k++) ok = ok && accel_occluded(ac[k], &r) == f[0];
+        ok = ok && bvh_occluded_scalar(&wide, &r) == f[0];
+        if (!ok) {
+            if (bad++ < 5)
+                fprintf(stderr,
+                        "n=%zu ray o=(%.9g %.9g %.9g) d=(%.9g %.9g %.9g) t=(%g %g): none %d %u %.9g, bvh %d %u %.9g, "
+                        "bvh2 %d %u %.9g, scalar %d %u %.9g\n",
+                        n, (double)r.o.x, (double)r.o.y, (double)r.o.z, (double)r.d.x, (double)r.d.y, (double)r.d.z,
+                        (double)r.tmin, (double)r.tmax, f[0], h[0].prim, (double)h[0].t, f[1], h[1].prim,
+                        (double)h[1].t, f[2], h[2].prim, (double)h[2].t, fs, hs.prim, (double)hs.t);
+        }
+    }
+    CHECK(bad == 0);
+    mismatches += bad;
+    // The rays must exercise both outcomes (except in the empty scene).
+    CHECK(n == 0 || (hits > 0 && hits < RAYS_PER_SCENE));
+    bvh_release(&wide);
+    for (int k = 0; k < 3; k++) glint_scene_free(sc[k]);
+}
+
+// Every sphere at one centre: the SAH cannot split by centroid, ties must resolve to the lowest index.
+static void check_coincident(void) {
+    glint_error err;
+    accel_kind kinds[3] = {ACCEL_NONE, ACCEL_BVH, ACCEL_BVH2};
+    glint_scene *sc[3];
+    accel *ac[3];
+    for (int k = 0; k < 3; k++) {
+        sc[k] = scene_new("coincident");
+        sc[k]->settings.accel = kinds[k];
+        for (int i = 0; i < 300; i++) scene_add_sphere(sc[k], (sphere){v3(1, 2, 3), i % 3 == 0 ? 1.0f : 0.5f * (float)(1 + i % 5), 0});
+        ac[k] = accel_build(sc[k], &err);
+        CHECK(ac[k] != NULL);
+    }
+    accel_stats st;
+    accel_get_stats(ac[1], &st);
+    CHECK(st.depth < BVH_MAX_DEPTH);
+    rng g = rng_for_sample(7, 7, 7);
+    int bad = 0;
+    for (int i = 0; i < 2000; i++) {
+        ray r = random_ray(&g, sc[0]);
+        hit h[3];
+        bool f[3];
+        for (int k = 0; k < 3; k++) f[k] = accel_intersect(ac[k], &r, &h[k]);
+        if (!same_hit(f[0], &h[0], f[1], &h[1]) || !same_hit(f[0], &h[0], f[2], &h[2])) bad++;
+    }
+    CHECK(bad == 0);
+    // Straight at the centre from outside: the outermost shell (radius 2.5) is first, and of its many
+    // copies the lowest index (4) wins the tie; from the centre, the innermost (radius 0.5, index 5).
+    ray r = {v3(1, 2, -2), v3(0, 0, 1), 0.0f, INFINITY};
+    for (int k = 0; k < 3; k++) {
+        hit h;
+        CHECK(accel_intersect(ac[k], &r, &h) && h.prim == 4 && h.t == 2.5f);
+    }
+    r.o = v3(1, 2, 3);
+    for (int k = 0; k < 3; k++) {
+        hit h;
+        CHECK(accel_intersect(ac[k], &r, &h) && h.prim == 5 && h.t == 0.5f);
+    }
+    for (int k = 0; k < 3; k++) {
+        accel_free(ac[k]);
+        sc[k]->accel = NULL;
+        glint_scene_free(sc[k]);
+    }
+}
+
+static void check_empty(void) {
+    glint_error err;
+    accel_kind kinds[3] = {ACCEL_NONE, ACCEL_BVH, ACCEL_BVH2};
+    for (int k = 0; k < 3; k++) {
+        glint_scene *s = scene_new("empty");
+        s->settings.accel = kinds[k];
+        accel *a = accel_build(s, &err);
+        CHECK(a != NULL);
+        ray r = {v3(0, 0, 0), v3(0, 0, 1), 0.0f, INFINITY};
+        hit h;
+        CHECK(!accel_intersect(a, &r, &h));
+        CHECK(!accel_occluded(a, &r));
+        accel_stats st;
+        accel_get_stats(a, &st);
+        CHECK(st.nodes == 0 && st.leaves == 0);
+        accel_free(a);
+        glint_scene_free(s);
+    }
+}
+
+// The exact t of a known configuration, and the ground sphere of rtiow-final seen from the camera.
+static void check_known(void) {
+    glint_error err;
+    glint_scene *s = scene_new("known");
+    scene_add_sphere(s, (sphere){v3(0, -1000, 0), 1000.0f, 0});
+    scene_add_sphere(s, (sphere){v3(0, 1, 0), 1.0f, 0});
+    scene_add_sphere(s, (sphere){v3(0, 1, 0), -0.9f, 0});
+    accel *a = accel_build(s, &err);
+    CHECK(a != NULL);
+    if (!a) return;
+    s->accel = a;
+    ray r = {v3(0, 1, -5), v3(0, 0, 1), 0.001f, INFINITY};
+    hit h;
+    CHECK(accel_intersect(a, &r, &h) && h.prim == 1 && h.t == 4.0f);
+    r.o = v3(0, 1, 0); // inside the shell: the negative-radius sphere first
+    CHECK(accel_intersect(a, &r, &h) && h.prim == 2);
+    CHECK_NEAR(h.t, 0.9, 1e-6);
+    r = (ray){v3(13, 2, 3), v3_unit(v3(-13, -2.5f, -3)), 0.001f, INFINITY}; // down onto the ground
+    CHECK(accel_intersect(a, &r, &h) && h.prim == 0);
+    CHECK_NEAR(h.t, 10.8781562524, 2e-6); // the root computed in double precision
+    r.tmax = h.t; // the interval is open: a hit exactly at tmax does not count
+    CHECK(!accel_occluded(a, &r));
+    glint_scene_free(s);
+}
+
+int main(void) {
+    const size_t sizes[] = {1, 2, 3, 5, 17, 1000};
+    for (size_t i = 0; i < sizeof sizes / sizeof sizes[0]; i++)
+        for (uint64_t seed = 1; seed <= 3; seed++) check_scene(seed, sizes[i]);
+    check_scene(9, 0);
+    check_coincident();
+    check_empty();
+    check_known();
+    if (mismatches) fprintf(stderr, "%d rays disagreed\n", mismatches);
+    printf("SIMD traversal %s\n", BVH_SIMD ? "compiled in and compared with the scalar path" : "not compiled in");
+    return check_summary();
+}

@@ -1,0 +1,726 @@
+// test_obj.c — the OBJ/MTL loader: real meshes load with counts taken independently (awk/Python over the
+// files), edge cases from tinyobjloader and assimp, a table of malformed inputs with their exact messages,
+// a table of warnings, the MTL -> material mapping, triangulation of concave faces, and the number parser.
+#include "check.h"
+#include "core/rng.h"
+#include "scene/load_obj.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#define DATA GLINT_SOURCE_DIR "/tests/data/obj/"
+
+static char tmpdir[64];
+
+// ---- helpers --------------------------------------------------------------------------------------------
+
+typedef struct warnings {
+    char msg[16][1200];
+    int count;
+} warnings;
+
+static void collect(const char *m, void *user) {
+    warnings *w = user;
+    if (w->count < 16) snprintf(w->msg[w->count], sizeof w->msg[0], "%s", m);
+    w->count++;
+}
+
+static const char *tmp_path(const char *name) {
+    static char buf[8][256];
+    static int k;
+    k = (k + 1) % 8;
+    snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
+    return buf[k];
+}
+
+static void write_text(const char *name, const char *text) {
+    FILE *f = fopen(tmp_path(name), "wb");
+    if (!f) return;
+    fputs(text, f);
+    fclose(f);
+}
+
+// `pattern` with every '@' replaced by the temporary directory.
+static const char *expand(const char *pattern) {
+    static char buf[2048];
+    size_t k = 0;
+    for (const char *p = pattern; *p && k + 80 < sizeof buf; p++) {
+        if (*p == '@') k += (size_t)snprintf(buf + k, sizeof buf - k, "%s", tmpdir);
+        else buf[k++] = *p;
+    }
+    buf[k] = '\0';
+    return buf;
+}
+
+static glint_status load(const char *path, obj_model *m, warnings *w, glint_error *err) {
+    memset(w, 0, sizeof *w);
+    obj_options opt = {collect, w, false};
+    return obj_load(path, &opt, m, err);
+}
+
+static bool same_string(const char *got, const char *expected) {
+    if (strcmp(got, expected) == 0) return true;
+    fprintf(stderr, "  got      '%s'\n  expected '%s'\n", got, expected);
+    return false;
+}
+
+// Area of a triangle and its unit normal, in double.
+static double tri_area(const mesh *m, size_t i, double n[3]) {
+    vec3 a = m->positions[m->triangles[i].v[0]], b = m->positions[m->triangles[i].v[1]],
+         c = m->positions[m->triangles[i].v[2]];
+    double u[3] = {(double)b.x - a.x, (double)b.y - a.y, (double)b.z - a.z};
+    double v[3] = {(double)c.x - a.x, (double)c.y - a.y, (double)c.z - a.z};
+    double x[3] = {u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]};
+    double len = sqrt(x[0] * x[0] + x[1] * x[1] + x[2] * x[2]);
+    for (int k = 0; k < 3; k++) n[k] = len > 0 ? x[k] / len : 0;
+    return 0.5 * len;
+}
+
+// Newell's vector area of a polygon given by 0-based position indices: half its length is the area.
+static void polygon_vector_area(const mesh *m, const int *idx, int n, double out[3]) {
+    out[0] = out[1] = out[2] = 0;
+    for (int i = 0; i < n; i++) {
+        vec3 a = m->positions[idx[i]], b = m->positions[idx[(i + 1) % n]];
+        out[0] += 0.5 * ((double)a.y - b.y) * ((double)a.z + b.z);
+        out[1] += 0.5 * ((double)a.z - b.z) * ((double)a.x + b.x);
+        out[2] += 0.5 * ((double)a.x - b.x) * ((double)a.y + b.y);
+    }
+}
+
+// A planar polygon is triangulated correctly when its triangles all face the polygon's way and their areas
+// add up to its area (an inverted or overlapping triangle would add area twice).
+static void check_triangulation(const mesh *m, size_t first, size_t count, const int *idx, int n) {
+    double va[3];
+    polygon_vector_area(m, idx, n, va);
+    double area = sqrt(va[0] * va[0] + va[1] * va[1] + va[2] * va[2]), sum = 0;
+    bool facing = true;
+    for (size_t i = first; i < first + count; i++) {
+        double nn[3];
+        sum += tri_area(m, i, nn);
+        facing &= nn[0] * va[0] + nn[1] * va[1] + nn[2] * va[2] > 0;
+    }
+    CHECK(facing);
+    CHECK_NEAR(sum, area, 1e-9 + 1e-6 * area);
+}
+
+// ---- real meshes ----------------------------------------------------------------------------------------
+
+static void test_cornell_original(void) {
+    obj_model m;
+    warnings w;
+    glint_error err;
+    CHECK(load(DATA "cornell-box-original/CornellBox-Original.obj", &m, &w, &err) == GLINT_OK);
+    // awk: v 72, f 18 quads -> 36 triangles; CRLF, tabs, negative indices, Ke light, inline comments.
+    CHECK(m.mesh.position_count == 72);
+    CHECK(m.mesh.triangle_count == 36);
+    CHECK(m.mesh.uv_count == 0 && m.mesh.normal_count == 0);
+    CHECK(w.count == 0 && m.warning_count == 0);
+    // The first face `f -4 -3 -2 -1` follows the first four vertices: a fan (0,1,2), (0,2,3).
+    CHECK(m.mesh.triangles[0].v[0] == 0 && m.mesh.triangles[0].v[1] == 1 && m.mesh.triangles[0].v[2] == 2);
+    CHECK(m.mesh.triangles[1].v[0] == 0 && m.mesh.triangles[1].v[1] == 2 && m.mesh.triangles[1].v[2] == 3);
+    CHECK(m.mesh.positions[0].x == -1.01f && m.mesh.positions[0].z == 0.99f);
+    CHECK(m.mesh.triangles[0].n[0] == -1 && m.mesh.triangles[0].t[0] == -1);
+    static const char *const names[] = {"floor", "ceiling", "backWall", "rightWall", "leftWall", "shortBox", "tallBox", "light"};
+    CHECK(m.material_count == 8);
+    for (size_t i = 0; i < 8 && i < m.material_count; i++) {
+        CHECK(strcmp(m.materials[i].name, names[i]) == 0);
+        CHECK(m.materials[i].defined);
+        CHECK(m.materials[i].diffuse_map == NULL);
+        CHECK(m.materials[i].mat.kind == (i == 7 ? MAT_DIFFUSE_LIGHT : MAT_LAMBERTIAN));
+    }
+    material light = m.materials[7].mat, left = m.materials[4].mat;
+    CHECK(light.emission.x == 17.0f && light.emission.y == 12.0f && light.emission.z == 4.0f);
+    CHECK(left.albedo.x == 0.63f && left.albedo.y == 0.065f && left.albedo.z == 0.05f);
+    CHECK(m.mesh.triangles[0].material == 0);
+    CHECK(m.mesh.triangles[35].material == 7); // the light is the last face
+    // Bounds from the file (awk): x -1.02..1.00, y 0..1.99, z -1.04..0.99.
+    CHECK(m.mesh.bounds.lo.x == -1.02f && m.mesh.bounds.hi.x == 1.0f);
+    CHECK(m.mesh.bounds.lo.y == 0.0f && m.mesh.bounds.hi.y == 1.99f);
+    CHECK(m.mesh.bounds.lo.z == -1.04f && m.mesh.bounds.hi.z == 0.99f);
+    obj_model_free(&m);
+}
+
+static void test_spot(void) {
+    obj_model m;
+    warnings w;
+    glint_error err;
+    CHECK(load(DATA "spot/spot_triangulated.obj", &m, &w, &err) == GLINT_OK);
+    // awk: v 2930, vt 3225, vn 0, f 5856 triangles `v/vt`; no mtllib.
+    CHECK(m.mesh.position_count == 2930 && m.mesh.uv_count == 3225 && m.mesh.normal_count == 0);
+    CHECK(m.mesh.triangle_count == 5856);
+    CHECK(m.material_count == 0 && w.count == 0);
+    bool uv_everywhere = true, no_normals = true, unit_square = true;
+    for (size_t i = 0; i < m.mesh.triangle_count; i++)
+        for (int k = 0; k < 3; k++) {
+            uv_everywhere &= m.mesh.triangles[i].t[k] >= 0;
+            no_normals &= m.mesh.triangles[i].n[k] == -1;
+        }
+    for (size_t i = 0; i < m.mesh.uv_count; i++)
+        // About the unit square: awk finds 4 of them slightly outside (down to u = -0.052, up to v = 1.00065).
+        unit_square &= m.mesh.uvs[i].u >= -0.06f && m.mesh.uvs[i].u <= 1 && m.mesh.uvs[i].v >= 0 && m.mesh.uvs[i].v <= 1.001f;
+    CHECK(uv_everywhere && no_normals && unit_square);
+    CHECK(m.mesh.triangles[0].material == -1);
+    // Smooth normals can be computed for it.
+    CHECK(mesh_compute_normals(&m.mesh));
+    CHECK(m.mesh.normal_count == 2930 && m.mesh.triangles[5855].n[2] >= 0);
+    obj_model_free(&m);
+    // The control mesh: 160 quads, 16 pentagons, 4 triangles -> 372 triangles (awk: sum of corners - 2).
+    CHECK(load(DATA "spot/spot_control_mesh.obj", &m, &w, &err) == GLINT_OK);
+    CHECK(m.mesh.position_count == 188 && m.mesh.uv_count == 267 && m.mesh.triangle_count == 372);
+    CHECK(w.count == 0);
+    obj_model_free(&m);
+}
+
+static void test_spider(void) {
+    obj_model m;
+    warnings w;
+    glint_error err;
+    CHECK(load(DATA "assimp-spider/spider.obj", &m, &w, &err) == GLINT_OK);
+    // awk: v 762, vt 302, vn 747, f 1368 triangles; Python: 56 of them repeat a position (zero area).
+    CHECK(m.mesh.position_count == 762 && m.mesh.uv_count == 302 && m.mesh.normal_count == 747);
+    CHECK(m.zero_area_faces == 56);
+    CHECK(m.mesh.triangle_count == 1368 - 56);
+    CHECK(w.count == 2);
+    CHECK(same_string(w.msg[0], DATA "assimp-spider/spider.obj:2902: warning: face has zero area; skipped"));
+    CHECK(same_string(w.msg[1], DATA "assimp-spider/spider.obj: warning: 56 zero-area faces skipped in total (the first on line 2902)"));
+    // Four materials used (Brusttex is defined but never used), every map_Kd a `.\file.jpg` path.
+    static const char *const names[] = {"HLeibTex", "Skin", "BeinTex", "Augentex"};
+    static const char *const maps[] = {"SpiderTex.jpg", "wal67ar_small.jpg", "drkwood2.jpg", "engineflare1.jpg"};
+    CHECK(m.material_count == 4);
+    for (size_t i = 0; i < 4 && i < m.material_count; i++) {
+        const obj_material *om = &m.materials[i];
+        CHECK(strcmp(om->name, names[i]) == 0);
+        CHECK(om->defined && om->mat.kind == MAT_LAMBERTIAN);
+        char expect[512];
+        snprintf(expect, sizeof expect, "%sassimp-spider/%s", DATA, maps[i]);
+        CHECK(om->diffuse_map && same_string(om->diffuse_map, expect));
+        CHECK(om->diffuse_map && access(om->diffuse_map, R_OK) == 0);
+    }
+    CHECK(m.materials[1].mat.albedo.x == 0.827451f);
+    bool full = true;
+    for (size_t i = 0; i < m.mesh.triangle_count; i++)
+        for (int k = 0; k < 3; k++) full &= m.mesh.triangles[i].t[k] >= 0 && m.mesh.triangles[i].n[k] >= 0;
+    CHECK(full);
+    obj_model_free(&m);
+}
+
+static void test_bunny(void) {
+    obj_model m;
+    warnings w;
+    glint_error err;
+    CHECK(load(DATA "stanford-bunny/stanford-bunny.obj", &m, &w, &err) == GLINT_OK);
+    // awk: v 35947, f 69451 triangles (the header says the same).
+    CHECK(m.mesh.position_count == 35947 && m.mesh.triangle_count == 69451);
+    CHECK(w.count == 0 && m.zero_area_faces == 0);
+    // Python (min/max of the coordinates rounded to float).
+    CHECK(m.mesh.bounds.lo.x == -0.094690f && m.mesh.bounds.hi.x == 0.061009f);
+    CHECK(m.mesh.bounds.lo.y == 0.032987f && m.mesh.bounds.hi.y == 0.187321f);
+    CHECK(m.mesh.bounds.lo.z == -0.061874f && m.mesh.bounds.hi.z == 0.058800f);
+    obj_model_free(&m);
+}
+
+static void test_edge_cases(void) {
+    obj_model m;
+    warnings w;
+    glint_error err;
+    // Embree's Cornell box: negative indices, `o` objects, a commented-out face, blank lines with spaces.
+    CHECK(load(DATA "tinyobjloader/cornell_box.obj", &m, &w, &err) == GLINT_OK);
+    CHECK(m.mesh.position_count == 76 && m.mesh.triangle_count == 36 && m.material_count == 5 && w.count == 0);
+    obj_model_free(&m);
+    // Groups with two names; a group without usemtl keeps the previous material.
+    CHECK(load(DATA "tinyobjloader/cube.obj", &m, &w, &err) == GLINT_OK);
+    CHECK(m.mesh.triangle_count == 12 && m.material_count == 3 && w.count == 0);
+    static const int slot[12] = {0, 0, 0, 0, 1, 1, 0, 0, 2, 2, 0, 0}; // white white(inherited) red white green white
+    for (int i = 0; i < 12 && (size_t)i < m.mesh.triangle_count; i++) CHECK(m.mesh.triangles[i].material == slot[i]);
+    CHECK(m.materials[1].mat.albedo.x == 1.0f && m.materials[1].mat.albedo.y == 0.0f);
+    obj_model_free(&m);
+    // Full v/vt/vn faces, smoothing groups, indented MTL keys with Tr/Tf/d/Ke.
+    CHECK(load(DATA "tinyobjloader/issue-162-smoothing-group.obj", &m, &w, &err) == GLINT_OK);
+    CHECK(m.mesh.triangle_count == 12 && m.mesh.uv_count == 4 && m.mesh.normal_count == 6 && w.count == 0);
+    CHECK(m.material_count == 2 && m.materials[0].mat.kind == MAT_LAMBERTIAN);
+    CHECK(m.materials[0].mat.albedo.x == 0.5f && m.materials[1].mat.albedo.y == 0.5f);
+    CHECK(m.mesh.triangles[2].t[0] == 0 && m.mesh.triangles[2].n[0] == 1);
+    obj_model_free(&m);
+    // N-gons of 7, 8 and 5 corners; the pentagon repeats a vertex (v19 = v20), so one fan triangle has no
+    // area: 5 + 6 + 2 = 13 triangles instead of the 14 of a blind fan.
+    CHECK(load(DATA "tinyobjloader/issue-319-002.obj", &m, &w, &err) == GLINT_OK);
+    CHECK(m.mesh.triangle_count == 13 && w.count == 0);
+    static const int f1[] = {1, 0, 10, 9, 8, 7, 5}, f2[] = {4, 6, 11, 14, 12, 13, 3, 2};
+    if (m.mesh.triangle_count == 13) {
+        check_triangulation(&m.mesh, 0, 5, f1, 7);
+        check_triangulation(&m.mesh, 5, 6, f2, 8);
+    }
+    obj_model_free(&m);
+    CHECK(load(DATA "tinyobjloader/issue-330.obj", &m, &w, &err) == GLINT_OK);
+    CHECK(m.mesh.triangle_count == 3 && w.count == 0);
+    obj_model_free(&m);
+    // A keyhole polygon of 66 corners (two of them repeated): 64 triangles by ear clipping.
+    CHECK(load(DATA "assimp/concave_polygon.obj", &m, &w, &err) == GLINT_OK);
+    CHECK(m.mesh.triangle_count == 64 && w.count == 0 && m.material_count == 1);
+    static const int key[66] = {27, 23, 19, 15, 11, 5,  2,  1,  3,  6,  12, 16, 20, 24, 28, 34, 38,
+                                42, 46, 50, 54, 60, 63, 64, 62, 59, 53, 49, 45, 41, 37, 31, 32, 35,
+                                39, 43, 47, 51, 55, 57, 61, 58, 56, 52, 48, 44, 40, 36, 33, 30, 26,
+                                22, 18, 14, 10, 8,  4,  7,  9,  13, 17, 21, 25, 29, 32, 31};
+    int key0[66];
+    for (int i = 0; i < 66; i++) key0[i] = key[i] - 1;
+    if (m.mesh.triangle_count == 64) check_triangulation(&m.mesh, 0, 64, key0, 66);
+    obj_model_free(&m);
+    // Lines and points among faces; `usemtl Default` without any mtllib.
+    CHECK(load(DATA "assimp/testmixed.obj", &m, &w, &err) == GLINT_OK);
+    CHECK(m.mesh.triangle_count == 12 && m.material_count == 1 && !m.materials[0].defined);
+    CHECK(m.materials[0].mat.kind == MAT_LAMBERTIAN && m.materials[0].mat.albedo.x == 0.5f);
+    CHECK(w.count == 3);
+    CHECK(same_string(w.msg[0], DATA "assimp/testmixed.obj:15: warning: 'l' statements are not supported; ignored (reported once)"));
+    CHECK(same_string(w.msg[1], DATA "assimp/testmixed.obj:23: warning: 'p' statements are not supported; ignored (reported once)"));
+    CHECK(same_string(w.msg[2], DATA "assimp/testmixed.obj:14: warning: material 'Default' is not defined in any material library; using the default material"));
+    obj_model_free(&m);
+    // The two invalid files of tinyobjloader.
+    CHECK(load(DATA "tinyobjloader/invalid-relative-vertex-index.obj", &m, &w, &err) == GLINT_ERR_INPUT);
+    CHECK(same_string(err.message, DATA "tinyobjloader/invalid-relative-vertex-index.obj:1: vertex index -4 out of range, no vertices defined before this face"));
+    CHECK(m.mesh.triangles == NULL && m.materials == NULL);
+    CHECK(load(DATA "tinyobjloader/issue-140-zero-face-idx.obj", &m, &w, &err) == GLINT_ERR_INPUT);
+    CHECK(same_string(err.message, DATA "tinyobjloader/issue-140-zero-face-idx.obj:16: vertex index 0 out of range, expected 1..4 or -4..-1"));
+}
+
+// ---- malformed inputs -----------------------------------------------------------------------------------
+
+typedef struct bad_case {
+    const char *obj, *mtl; // mtl is written to bad.mtl; the obj refers to it with `mtllib bad.mtl`
+    const char *message;   // '@' stands for the temporary directory
+} bad_case;
+
+static const bad_case bad_cases[] = {
+    {"v 1 2\n", NULL, "@/bad.obj:1: 'v' has 2 numbers, expected 3 (x y z) to 7"},
+    {"v 1 2 3 4 5 6 7 8\n", NULL, "@/bad.obj:1: 'v' has 8 numbers, expected 3 (x y z) to 7"},
+    {"v 1 2 3\nv 1 2.5.1 3\n", NULL, "@/bad.obj:2: malformed number '2.5.1', expected a decimal number such as -1.25e3"},
+    {"v 1,5 2 3\n", NULL, "@/bad.obj:1: malformed number '1,5', expected a decimal number such as -1.25e3"},
+    {"v 0x1p3 0 0\n", NULL, "@/bad.obj:1: malformed number '0x1p3', expected a decimal number such as -1.25e3"},
+    {"v 1 2 3e\n", NULL, "@/bad.obj:1: malformed number '3e', expected a decimal number such as -1.25e3"},
+    {"# comment\r\nv nan 0 0\r\n", NULL, "@/bad.obj:2: 'nan' is not a finite number, expected a decimal number"},
+    {"v 0 -inf 0\n", NULL, "@/bad.obj:1: '-inf' is not a finite number, expected a decimal number"},
+    {"v 0 0 1.#QNAN\n", NULL, "@/bad.obj:1: '1.#QNAN' is not a finite number, expected a decimal number"},
+    {"v 1e39 0 0\n", NULL, "@/bad.obj:1: number '1e39' is out of the range of a float, expected a magnitude below 3.4e38"},
+    {"vn 1 0\n", NULL, "@/bad.obj:1: 'vn' has 2 numbers, expected 3 (x y z)"},
+    {"vt\n", NULL, "@/bad.obj:1: 'vt' has 0 numbers, expected 1 to 3 (u [v [w]])"},
+    {"vt 0.5 0.5 0.5 0.5\n", NULL, "@/bad.obj:1: 'vt' has 4 numbers, expected 1 to 3 (u [v [w]])"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 4\n", NULL, "@/bad.obj:4: vertex index 4 out of range, expected 1..3 or -3..-1"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 0 1 2\n", NULL, "@/bad.obj:4: vertex index 0 out of range, expected 1..3 or -3..-1"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf -4 -3 -2\n", NULL, "@/bad.obj:4: vertex index -4 out of range, expected 1..3 or -3..-1"},
+    {"f 1 2 3\nv 0 0 0\nv 1 0 0\nv 0 1 0\n", NULL, "@/bad.obj:1: vertex index 1 out of range, no vertices defined before this face"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 99999999999999999999 1 2\n", NULL,
+     "@/bad.obj:4: vertex index 99999999999999999999 out of range, expected 1..3 or -3..-1"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1 2/1 3/1\n", NULL,
+     "@/bad.obj:4: texture coordinate index 1 out of range, no texture coordinates defined before this face"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//2\n", NULL, "@/bad.obj:5: normal index 2 out of range, expected 1..1 or -1..-1"},
+    {"v 0 0 0\nv 1 0 0\nf 1 2\n", NULL, "@/bad.obj:3: face has 2 vertices, expected at least 3"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/ 2 3\n", NULL,
+     "@/bad.obj:4: malformed face vertex '1/', expected v, v/vt, v//vn or v/vt/vn with integer indices"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1/1/1/1 2 3\n", NULL,
+     "@/bad.obj:4: malformed face vertex '1/1/1/1', expected v, v/vt, v//vn or v/vt/vn with integer indices"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf a b c\n", NULL,
+     "@/bad.obj:4: malformed face vertex 'a', expected v, v/vt, v//vn or v/vt/vn with integer indices"},
+    {"v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3#x\n", NULL,
+     "@/bad.obj:4: malformed face vertex '3#x', expected v, v/vt, v//vn or v/vt/vn with integer indices"},
+    {"usemtl\n", NULL, "@/bad.obj:1: 'usemtl' needs a material name"},
+    {"mtllib   # no name\n", NULL, "@/bad.obj:1: 'mtllib' needs a file name"},
+    {"mtllib bad.mtl\n", "Kd 1 1 1\n", "@/bad.mtl:1: 'Kd' before any 'newmtl', expected 'newmtl name' first"},
+    {"mtllib bad.mtl\n", "newmtl\n", "@/bad.mtl:1: 'newmtl' needs a material name"},
+    {"mtllib bad.mtl\n", "newmtl a\nKd 1 1\n", "@/bad.mtl:2: 'Kd' has 2 numbers, expected r g b"},
+    {"mtllib bad.mtl\n", "newmtl a\r\nKd 1 -1 1\r\n", "@/bad.mtl:2: 'Kd' has a negative component -1, expected values >= 0"},
+    {"mtllib bad.mtl\n", "newmtl a\nKe 1 inf 0\n", "@/bad.mtl:2: 'inf' is not a finite number, expected a decimal number"},
+    {"mtllib bad.mtl\n", "newmtl a\nd 1.5\n", "@/bad.mtl:2: 'd' is 1.5, expected a value from 0 to 1"},
+    {"mtllib bad.mtl\n", "newmtl a\nTr -0.5\n", "@/bad.mtl:2: 'Tr' is -0.5, expected a value from 0 to 1"},
+    {"mtllib bad.mtl\n", "newmtl a\nNs -2\n", "@/bad.mtl:2: 'Ns' is -2, expected a value >= 0"},
+    {"mtllib bad.mtl\n", "newmtl a\nNi abc\n", "@/bad.mtl:2: malformed number 'abc', expected a decimal number such as -1.25e3"},
+    {"mtllib bad.mtl\n", "newmtl a\nillum 11\n", "@/bad.mtl:2: 'illum' is '11', expected an integer from 0 to 10"},
+    {"mtllib bad.mtl\n", "newmtl a\nillum 2 3\n", "@/bad.mtl:2: 'illum' has more than one value, expected an integer from 0 to 10"},
+    {"mtllib bad.mtl\n", "newmtl a\nmap_Kd -s 1 1 1\n", "@/bad.mtl:2: 'map_Kd' needs a file name"},
+};
+
+static void test_malformed(void) {
+    int n = (int)(sizeof bad_cases / sizeof bad_cases[0]);
+    CHECK(n >= 15);
+    for (int i = 0; i < n; i++) {
+        const bad_case *c = &bad_cases[i];
+        write_text("bad.obj", c->obj);
+        write_text("bad.mtl", c->mtl ? c->mtl : "");
+        obj_model m;
+        warnings w;
+        glint_error err;
+        glint_status st = load(tmp_path("bad.obj"), &m, &w, &err);
+        CHECK(st == GLINT_ERR_INPUT);
+        if (st != GLINT_ERR_INPUT) {
+            fprintf(stderr, "  case %d loaded\n", i);
+            obj_model_free(&m);
+            continue;
+        }
+        if (!same_string(err.message, expand(c->message))) {
+            CHECK(false);
+            fprintf(stderr, "  in case %d\n", i);
+        } else CHECK(true);
+        CHECK(m.mesh.positions == NULL && m.mesh.triangle_count == 0 && m.materials == NULL);
+    }
+    obj_model m;
+    warnings w;
+    glint_error err;
+    CHECK(load(tmp_path("no-such.obj"), &m, &w, &err) == GLINT_ERR_INPUT);
+    CHECK(same_string(err.message, expand("@/no-such.obj: cannot open: No such file or directory")));
+    CHECK(load(tmpdir, &m, &w, &err) == GLINT_ERR_INPUT);
+    CHECK(same_string(err.message, expand("@: cannot open: Is a directory")));
+}
+
+// ---- warnings -------------------------------------------------------------------------------------------
+
+typedef struct warn_case {
+    const char *obj, *mtl;
+    size_t triangles;
+    const char *messages[3];
+} warn_case;
+
+#define TRI "v 0 0 0\nv 1 0 0\nv 0 1 0\n"
+
+static const warn_case warn_cases[] = {
+    {TRI "v 2 0 0\nf 1 2 4\nf 1 2 3\nf 1 1 3\n", NULL, 1,
+     {"@/w.obj:5: warning: face has zero area; skipped", "@/w.obj: warning: 2 zero-area faces skipped in total (the first on line 5)"}},
+    {TRI "v 1 1 0\nf 1 2 4 3\nf 1 2 1 2\n", NULL, 2, {"@/w.obj:6: warning: face has zero area; skipped"}},
+    {"mtllib nothere.mtl\n" TRI "f 1 2 3\n", NULL, 1,
+     {"@/w.obj:1: warning: cannot open material library 'nothere.mtl' (No such file or directory); its materials are undefined"}},
+    {TRI "usemtl ghost\nf 1 2 3\n", NULL, 1,
+     {"@/w.obj:4: warning: material 'ghost' is not defined in any material library; using the default material"}},
+    {"mtllib w.mtl\n" TRI "usemtl a\nf 1 2 3\n", "newmtl a\nmap_Kd nothere.png\n", 1,
+     {"@/w.mtl:2: warning: texture 'nothere.png' not found (No such file or directory); material 'a' uses its Kd colour"}},
+    {"mtllib w.mtl\n" TRI "f 1 2 3\n", "newmtl a\nnewmtl b\nnewmtl a\nfoo 1\nfoo 2\nKd spectral x.rfl\n", 1,
+     {"@/w.mtl:3: warning: material 'a' is defined again; the first definition is used",
+      "@/w.mtl:4: warning: 'foo' statements are not supported; ignored (reported once)",
+      "@/w.mtl:6: warning: 'Kd spectral' statements are not supported; ignored (reported once)"}},
+    {TRI "l 1 2\nl 2 3\ncurv 0 1 1 2\nf 1 2 3\n", NULL, 1,
+     {"@/w.obj:4: warning: 'l' statements are not supported; ignored (reported once)",
+      "@/w.obj:6: warning: 'curv' statements are not supported; ignored (reported once)"}},
+    {"v 1 2 3\n", NULL, 0, {"@/w.obj: warning: no faces; the mesh is empty"}},
+    {"", NULL, 0, {"@/w.obj: warning: no faces; the mesh is empty"}},
+};
+
+static void test_warnings(void) {
+    for (size_t i = 0; i < sizeof warn_cases / sizeof warn_cases[0]; i++) {
+        const warn_case *c = &warn_cases[i];
+        write_text("w.obj", c->obj);
+        write_text("w.mtl", c->mtl ? c->mtl : "");
+        obj_model m;
+        warnings w;
+        glint_error err;
+        glint_status st = load(tmp_path("w.obj"), &m, &w, &err);
+        CHECK(st == GLINT_OK);
+        if (st != GLINT_OK) {
+            fprintf(stderr, "  case %zu failed: %s\n", i, err.message);
+            continue;
+        }
+        int expected = 0;
+        while (expected < 3 && c->messages[expected]) expected++;
+        CHECK(w.count == expected);
+        CHECK(m.warning_count == (size_t)expected);
+        CHECK(m.mesh.triangle_count == c->triangles);
+        for (int k = 0; k < expected && k < w.count; k++) {
+            bool ok = same_string(w.msg[k], expand(c->messages[k]));
+            CHECK(ok);
+            if (!ok) fprintf(stderr, "  in case %zu\n", i);
+        }
+        obj_model_free(&m);
+    }
+}
+
+// ---- MTL -> material ------------------------------------------------------------------------------------
+
+typedef struct map_case {
+    const char *mtl;
+    material_kind kind;
+    float a, b, c; // albedo (lambertian, metal, dielectric tint) or emission
+    float extra;   // metal fuzz, dielectric ior
+} map_case;
+
+static const map_case map_cases[] = {
+    {"Kd 0.2 0.4 0.6", MAT_LAMBERTIAN, 0.2f, 0.4f, 0.6f, 0},
+    {"Kd 0.25", MAT_LAMBERTIAN, 0.25f, 0.25f, 0.25f, 0},
+    {"Ns 10", MAT_LAMBERTIAN, 0.5f, 0.5f, 0.5f, 0},
+    {"Kd 0.1 0.1 0.1\nKs 0.9 0.8 0.7\nillum 3\nNs 98", MAT_METAL, 0.9f, 0.8f, 0.7f, 0.14142136f},
+    {"illum 5\nKs 1 1 1", MAT_METAL, 1, 1, 1, 0},
+    {"illum 8\nKs 2 0.5 0.5\nKd 0 0 0\nNs 0", MAT_METAL, 1, 0.5f, 0.5f, 1},
+    {"Kd 0.8 0.8 0.8\nKs 0.3 0.3 0.3\nillum 3", MAT_LAMBERTIAN, 0.8f, 0.8f, 0.8f, 0},
+    {"Kd 0.1 0.1 0.1\nKs 0.9 0.9 0.9\nillum 2", MAT_LAMBERTIAN, 0.1f, 0.1f, 0.1f, 0},
+    {"d 0.5\nNi 1.33", MAT_DIELECTRIC, 1, 1, 1, 1.33f},
+    {"d -halo 0.5", MAT_DIELECTRIC, 1, 1, 1, 1.5f},
+    {"illum 7\nNi 2.4\nTf 0.9 1 0.8", MAT_DIELECTRIC, 0.9f, 1, 0.8f, 2.4f},
+    {"illum 4", MAT_DIELECTRIC, 1, 1, 1, 1.5f},
+    {"Tr 0.3", MAT_DIELECTRIC, 1, 1, 1, 1.5f},
+    {"Tr 0.3\nd 1", MAT_LAMBERTIAN, 0.5f, 0.5f, 0.5f, 0},
+    {"Ni 0\nd 0.2", MAT_DIELECTRIC, 1, 1, 1, 1.5f},
+    {"Ke 17 12 4\nKd 0.78 0.78 0.78", MAT_DIFFUSE_LIGHT, 17, 12, 4, 0},
+    {"Ke 0 0 0\nKd 0.5 0.6 0.7\nillum 2", MAT_LAMBERTIAN, 0.5f, 0.6f, 0.7f, 0},
+    {"Ke 1 1 1\nd 0.1\nillum 3\nKs 1 1 1", MAT_DIFFUSE_LIGHT, 1, 1, 1, 0},
+};
+
+static void test_mapping(void) {
+    for (size_t i = 0; i < sizeof map_cases / sizeof map_cases[0]; i++) {
+        const map_case *c = &map_cases[i];
+        char text[512];
+        snprintf(text, sizeof text, "newmtl m\n%s\n", c->mtl);
+        obj_material *mats;
+        size_t count;
+        glint_error err;
+        CHECK(mtl_parse("x.mtl", text, strlen(text), NULL, &mats, &count, &err) == GLINT_OK);
+        CHECK(count == 1);
+        if (count != 1) continue;
+        const material *m = &mats[0].mat;
+        bool ok = m->kind == c->kind;
+        vec3 v = m->kind == MAT_DIFFUSE_LIGHT ? m->emission : m->albedo;
+        ok &= fabsf(v.x - c->a) < 1e-6f && fabsf(v.y - c->b) < 1e-6f && fabsf(v.z - c->c) < 1e-6f;
+        if (m->kind == MAT_METAL) ok &= fabsf(m->fuzz - c->extra) < 1e-6f;
+        if (m->kind == MAT_DIELECTRIC) ok &= fabsf(m->ior - c->extra) < 1e-6f;
+        CHECK(ok);
+        if (!ok)
+            fprintf(stderr, "  mapping case %zu: got %s (%g %g %g) fuzz %g ior %g\n", i, material_kind_name(m->kind),
+                    (double)v.x, (double)v.y, (double)v.z, (double)m->fuzz, (double)m->ior);
+        CHECK(strcmp(mats[0].name, "m") == 0 && mats[0].defined && mats[0].line == 1);
+        obj_materials_free(mats, count);
+    }
+}
+
+static void test_texture_paths(void) {
+    obj_options skip = {NULL, NULL, true};
+    obj_material *mats;
+    size_t count;
+    glint_error err;
+    // Options before the file name are skipped; `\` becomes `/`; paths are relative to the MTL's directory.
+    const char *text = "newmtl a\nmap_Kd -s 1 1 1 -o 0 0 -bm 2 -clamp on tex.png\n"
+                       "newmtl b\nmap_Kd .\\sub\\tex 2.png\n"
+                       "newmtl c\nmap_Kd /abs/t.png # comment\n"
+                       "newmtl d\nmap_Kd -s 2 -weird.png\n";
+    CHECK(mtl_parse("dir/x.mtl", text, strlen(text), &skip, &mats, &count, &err) == GLINT_OK);
+    CHECK(count == 4);
+    if (count == 4) {
+        CHECK(same_string(mats[0].diffuse_map, "dir/tex.png"));
+        CHECK(same_string(mats[1].diffuse_map, "dir/sub/tex 2.png"));
+        CHECK(same_string(mats[2].diffuse_map, "/abs/t.png"));
+        CHECK(same_string(mats[3].diffuse_map, "dir/-weird.png"));
+    }
+    obj_materials_free(mats, count);
+    // A Windows absolute path is retried as the bare file name next to the MTL file.
+    write_text("tex.png", "not really a png");
+    write_text("win.mtl", "newmtl a\nmap_Kd C:\\Users\\me\\textures\\tex.png\n");
+    write_text("win.obj", "mtllib win.mtl\n" TRI "usemtl a\nf 1 2 3\n");
+    obj_model m;
+    warnings w;
+    CHECK(load(tmp_path("win.obj"), &m, &w, &err) == GLINT_OK);
+    CHECK(w.count == 0 && m.material_count == 1);
+    if (m.material_count == 1) CHECK(m.materials[0].diffuse_map && same_string(m.materials[0].diffuse_map, tmp_path("tex.png")));
+    obj_model_free(&m);
+}
+
+// ---- OBJ features ---------------------------------------------------------------------------------------
+
+static void test_index_forms(void) {
+    const char *text = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\n"
+                       "vt 0 0\nvt 1 0\nvt 0 1 0\nvt 1\n"
+                       "vn 0 0 1\nvn 0 0 -1\n"
+                       "f 1 2 3\n"
+                       "f 1/1 2/2 3/3\n"
+                       "f 1//1 2//2 3//1\n"
+                       "f 1/1/1 2/2/2 3/3/1\n"
+                       "f -4/-4/-2 -3/-3/-1 -1/-1/-1\n"
+                       "f\t2\t4  3 \r\n";
+    obj_model m;
+    glint_error err;
+    CHECK(obj_parse("forms.obj", text, strlen(text), NULL, &m, &err) == GLINT_OK);
+    CHECK(m.mesh.triangle_count == 6 && m.mesh.uv_count == 4 && m.mesh.normal_count == 2);
+    if (m.mesh.triangle_count == 6) {
+        const mesh_triangle *t = m.mesh.triangles;
+        CHECK(t[0].v[2] == 2 && t[0].t[0] == -1 && t[0].n[0] == -1);
+        CHECK(t[1].t[0] == 0 && t[1].t[2] == 2 && t[1].n[1] == -1);
+        CHECK(t[2].t[0] == -1 && t[2].n[1] == 1);
+        CHECK(t[3].t[1] == 1 && t[3].n[1] == 1 && t[3].n[2] == 0);
+        CHECK(t[4].v[0] == 0 && t[4].v[1] == 1 && t[4].v[2] == 3 && t[4].t[2] == 3 && t[4].n[0] == 0 && t[4].n[2] == 1);
+        CHECK(t[5].v[0] == 1 && t[5].v[1] == 3 && t[5].v[2] == 2);
+    }
+    CHECK(m.mesh.uvs[3].u == 1.0f && m.mesh.uvs[3].v == 0.0f); // `vt u` alone: v = 0
+    obj_model_free(&m);
+}
+
+static void test_polygons(void) {
+    // A convex hexagon: a fan of 4 from its first corner.
+    const char *hex = "v 2 0 0\nv 1 1.7 0\nv -1 1.7 0\nv -2 0 0\nv -1 -1.7 0\nv 1 -1.7 0\nf 1 2 3 4 5 6\n";
+    obj_model m;
+    glint_error err;
+    CHECK(obj_parse("hex.obj", hex, strlen(hex), NULL, &m, &err) == GLINT_OK);
+    CHECK(m.mesh.triangle_count == 4);
+    static const int hex_idx[6] = {0, 1, 2, 3, 4, 5};
+    if (m.mesh.triangle_count == 4) {
+        check_triangulation(&m.mesh, 0, 4, hex_idx, 6);
+        for (int i = 0; i < 4; i++) CHECK(m.mesh.triangles[i].v[0] == 0);
+    }
+    obj_model_free(&m);
+    // Concave: an L in the y-z plane (listed clockwise seen from +x), a dart quad, a U, a comb.
+    static const struct { const char *obj; int n; size_t tris; } shapes[] = {
+        {"v 0 0 0\nv 0 0 2\nv 0 1 2\nv 0 1 1\nv 0 2 1\nv 0 2 0\nf 1 2 3 4 5 6\n", 6, 4},
+        {"v 0 0 0\nv 2 1 0\nv 0 2 0\nv 0.5 1 0\nf 1 2 3 4\n", 4, 2},
+        {"v 0 0 0\nv 3 0 0\nv 3 3 0\nv 2 3 0\nv 2 1 0\nv 1 1 0\nv 1 3 0\nv 0 3 0\nf 1 2 3 4 5 6 7 8\n", 8, 6},
+        {"v 0 0 5\nv 4 0 5\nv 4 3 5\nv 3.5 1 5\nv 3 3 5\nv 2.5 1 5\nv 2 3 5\nv 1.5 1 5\nv 1 3 5\nv 0.5 1 5\nv 0 3 5\n"
+         "f 1 2 3 4 5 6 7 8 9 10 11\n", 11, 9},
+        {"v 0 0 0\nv 0 0 2\nv 0 1 2\nv 0 1 1\nv 0 2 1\nv 0 2 0\nf -1 -2 -3 -4 -5 -6\n", 6, 4}, // reversed winding
+    };
+    for (size_t s = 0; s < sizeof shapes / sizeof shapes[0]; s++) {
+        CHECK(obj_parse("c.obj", shapes[s].obj, strlen(shapes[s].obj), NULL, &m, &err) == GLINT_OK);
+        CHECK(m.mesh.triangle_count == shapes[s].tris);
+        int idx[16];
+        for (int i = 0; i < shapes[s].n; i++) idx[i] = s == 4 ? shapes[s].n - 1 - i : i;
+        if (m.mesh.triangle_count == shapes[s].tris) check_triangulation(&m.mesh, 0, shapes[s].tris, idx, shapes[s].n);
+        obj_model_free(&m);
+    }
+    // A concave face above the ear-clipping limit: a fan, with a warning.
+    enum { N = OBJ_MAX_EAR_CLIP + 44 };
+    size_t cap = (size_t)N * 64 + 64, k = 0;
+    char *big = malloc(cap);
+    for (int i = 0; i < N; i++) {
+        double a = 2 * 3.14159265358979 * i / N, r = i % 2 ? 1.0 : 2.0; // a star: every other corner reflex
+        k += (size_t)snprintf(big + k, cap - k, "v %.6f %.6f 0\n", r * cos(a), r * sin(a));
+    }
+    k += (size_t)snprintf(big + k, cap - k, "f");
+    for (int i = 1; i <= N; i++) k += (size_t)snprintf(big + k, cap - k, " %d", i);
+    snprintf(big + k, cap - k, "\n");
+    warnings w;
+    memset(&w, 0, sizeof w);
+    obj_options opt = {collect, &w, false};
+    CHECK(obj_parse("star.obj", big, strlen(big), &opt, &m, &err) == GLINT_OK);
+    CHECK(m.mesh.triangle_count == N - 2);
+    CHECK(w.count == 1 && same_string(w.msg[0], "star.obj:301: warning: concave face with 300 vertices triangulated as a fan; it may be wrong"));
+    obj_model_free(&m);
+    free(big);
+}
+
+static void test_materials_in_obj(void) {
+    // usemtl before mtllib, two libraries on one line, a library whose name has a space, repeated mtllib,
+    // faces before any usemtl, and a name defined in two libraries (the first wins).
+    write_text("one.mtl", "newmtl red\nKd 1 0 0\nnewmtl both\nKd 0.1 0.1 0.1\n");
+    write_text("two.mtl", "newmtl green\nKd 0 1 0\nnewmtl both\nKd 0.9 0.9 0.9\n");
+    write_text("my lib.mtl", "newmtl lamp\nKe 5 5 5\n");
+    write_text("m.obj", TRI "f 1 2 3\nusemtl green\nf 1 2 3\nmtllib one.mtl two.mtl\nmtllib one.mtl\n"
+                        "mtllib my lib.mtl\nusemtl red\nf 1 2 3\nusemtl both\nf 1 2 3\nusemtl lamp\nf 1 2 3\n"
+                        "usemtl green\nf 1 2 3\n");
+    obj_model m;
+    warnings w;
+    glint_error err;
+    CHECK(load(tmp_path("m.obj"), &m, &w, &err) == GLINT_OK);
+    CHECK(w.count == 0);
+    CHECK(m.material_count == 4 && m.mesh.triangle_count == 6);
+    if (m.material_count == 4 && m.mesh.triangle_count == 6) {
+        static const int slots[6] = {-1, 0, 1, 2, 3, 0};
+        for (int i = 0; i < 6; i++) CHECK(m.mesh.triangles[i].material == slots[i]);
+        CHECK(strcmp(m.materials[0].name, "green") == 0 && m.materials[0].mat.albedo.y == 1.0f);
+        CHECK(m.materials[1].mat.albedo.x == 1.0f);
+        CHECK(m.materials[2].mat.albedo.x == 0.1f);
+        CHECK(m.materials[3].mat.kind == MAT_DIFFUSE_LIGHT);
+        CHECK(m.materials[0].line == 5 && m.materials[3].line == 14);
+    }
+    obj_model_free(&m);
+    // skip_files: libraries are not opened and nothing is reported about them.
+    const char *text = "mtllib nothere.mtl\nusemtl x\n" TRI "f 1 2 3\n";
+    memset(&w, 0, sizeof w);
+    obj_options opt = {collect, &w, true};
+    CHECK(obj_parse("mem.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
+    CHECK(w.count == 1 && same_string(w.msg[0], "mem.obj:2: warning: material 'x' is not defined in any material library; using the default material"));
+    obj_model_free(&m);
+}
+
+static void test_comments_and_blanks(void) {
+    const char *text = "# header\n   # indented comment\n\t\n\nv 0 0 0 # inline\nv 1 0 0\t\r\nv 0 1 0 1.0\nv 0 0 1 0.5 0.5 0.5\n"
+                       "o thing\ng a b  c\ns off\ns 1\nf 1 2 3 # comment\nf 1 3 4";
+    obj_model m;
+    glint_error err;
+    warnings w;
+    memset(&w, 0, sizeof w);
+    obj_options opt = {collect, &w, false};
+    CHECK(obj_parse("c.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
+    CHECK(m.mesh.position_count == 4 && m.mesh.triangle_count == 2 && w.count == 0);
+    obj_model_free(&m);
+}
+
+// ---- numbers --------------------------------------------------------------------------------------------
+
+// Every coordinate the loader reads equals strtof's reading of the same text, bit for bit.
+static void test_numbers_match_strtof(void) {
+    rng r = rng_for_sample(2024, 0, 0);
+    enum { LINES = 40000 };
+    size_t cap = (size_t)LINES * 3 * 48 + 1024, k = 0;
+    char *text = malloc(cap);
+    char (*tokens)[48] = malloc((size_t)LINES * 3 * sizeof *tokens);
+    static const char *const fixed[] = {"0", "-0", "+.5", "5.", "1E+3", "1e-45", "1.4e-45", "7e-46", "3.4028235e38",
+                                        "3.40282356e38", "1.17549435e-38", "0.000000000000000000000000000000000001",
+                                        "123456789012345678901234567890", "0.1", "0.30000000000000004",
+                                        "16777217", "16777219", "2.5e-40", "-1e-320", "9007199254740993",
+                                        "1.00000005960464477539062500001", "1.000000059604644775390625"};
+    int nfixed = (int)(sizeof fixed / sizeof fixed[0]);
+    for (int i = 0; i < LINES * 3; i++) {
+        char *t = tokens[i];
+        int mode = i < nfixed ? -1 : (int)(rng_u32(&r) % 6);
+        uint32_t bits = rng_u32(&r);
+        float f;
+        memcpy(&f, &bits, sizeof f);
+        if (!isfinite(f)) f = 1.5f;
+        double d = (double)rng_u32(&r) / 4294967296.0 * 2000.0 - 1000.0;
+        switch (mode) {
+        case -1: snprintf(t, 48, "%s", fixed[i]); break;
+        case 0: snprintf(t, 48, "%.9g", (double)f); break;     // any float, round trip
+        case 1: snprintf(t, 48, "%.6f", d); break;             // OBJ exporters' style
+        case 2: snprintf(t, 48, "%.17g", d); break;            // more digits than a float holds
+        case 3: snprintf(t, 48, "%.8e", (double)f); break;
+        case 4: snprintf(t, 48, "%d", (int)(rng_u32(&r) % 2000000) - 1000000); break;
+        default: snprintf(t, 48, "%.3g", d * 1e-3); break;
+        }
+    }
+    for (int i = 0; i < LINES; i++)
+        k += (size_t)snprintf(text + k, cap - k, "v %s %s %s\n", tokens[3 * i], tokens[3 * i + 1], tokens[3 * i + 2]);
+    obj_model m;
+    glint_error err;
+    glint_status st = obj_parse("n.obj", text, k, NULL, &m, &err);
+    CHECK(st == GLINT_OK);
+    if (st != GLINT_OK) fprintf(stderr, "%s\n", err.message);
+    int mismatches = 0;
+    for (int i = 0; st == GLINT_OK && i < LINES * 3; i++) {
+        vec3 p = m.mesh.positions[i / 3];
+        float got = i % 3 == 0 ? p.x : i % 3 == 1 ? p.y : p.z, want = strtof(tokens[i], NULL);
+        if (memcmp(&got, &want, sizeof got) != 0) {
+            if (mismatches++ < 5) fprintf(stderr, "  '%s': got %.9g, strtof %.9g\n", tokens[i], (double)got, (double)want);
+        }
+    }
+    CHECK(mismatches == 0);
+    if (st == GLINT_OK) obj_model_free(&m);
+    free(text);
+    free(tokens);
+}
+
+int main(void) {
+    snprintf(tmpdir, sizeof tmpdir, "/tmp/glint-test-obj-XXXXXX");
+    if (!mkdtemp(tmpdir)) {
+        perror("mkdtemp");
+        return 1;
+    }
+    test_cornell_original();
+    test_spot();
+    test_spider();
+    test_bunny();
+    test_edge_cases();
+    test_malformed();
+    test_warnings();
+    test_mapping();
+    test_texture_paths();
+    test_index_forms();
+    test_polygons();
+    test_materials_in_obj();
+    test_comments_and_blanks();
+    test_numbers_match_strtof();
+    static const char *const files[] = {"bad.obj", "bad.mtl", "w.obj", "w.mtl", "tex.png", "win.mtl", "win.obj",
+                                        "one.mtl", "two.mtl", "my lib.mtl", "m.obj"};
+    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) unlink(tmp_path(files[i]));
+    rmdir(tmpdir);
+    return check_summary();
+}

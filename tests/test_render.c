@@ -1,0 +1,227 @@
+// test_render.c — the render loop: each pixel is the mean of its samples in index order (bit for bit the
+// sequential sum), the same for any thread count; progress reports; a stop keeps completed samples only.
+#include "check.h"
+#include "integrator/integrator.h"
+#include "render/film.h"
+#include "scene/scene.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+// A small scene of the kind the integrator names: coloured spheres under point and ambient light
+// (Whitted, colour mode) or diffuse, metal and glass spheres under a sky (path tracer).
+static glint_scene *make_scene(integrator_kind kind, int width, int height, int spp) {
+    glint_scene *s = scene_new("test");
+    render_settings *rs = &s->settings;
+    rs->width = width;
+    rs->height = height;
+    rs->spp = spp;
+    rs->seed = 7;
+    rs->integrator = kind;
+    rs->max_depth = kind == INTEGRATOR_PATH ? 8 : 3;
+    rs->transform = TRANSFORM_GAMMA2;
+    s->camera.lookfrom = v3(0, 1, 3);
+    s->camera.lookat = v3(0, 0, -1);
+    s->camera.vfov_degrees = 60.0f;
+    material m[4];
+    if (kind == INTEGRATOR_PATH) {
+        rs->background = BACKGROUND_SKY;
+        m[0] = material_default(MAT_LAMBERTIAN);
+        m[1] = material_default(MAT_METAL);
+        m[1].fuzz = 0.2f;
+        m[2] = material_default(MAT_DIELECTRIC);
+        m[3] = material_default(MAT_LAMBERTIAN);
+        m[3].albedo = v3(0.8f, 0.8f, 0.0f);
+    } else {
+        rs->background_color = v3(0.2f, 0.3f, 0.5f);
+        for (int i = 0; i < 4; i++) {
+            m[i] = material_default(MAT_PHONG);
+            m[i].specular = 50 * (i + 1);
+            m[i].reflective = 0.1f * (float)i;
+        }
+        m[0].albedo = v3(1, 0, 0);
+        m[1].albedo = v3(0, 1, 0);
+        m[2].albedo = v3(0, 0, 1);
+        m[3].albedo = v3(1, 1, 0);
+        light l = {.kind = LIGHT_AMBIENT, .intensity = v3s(0.2f)};
+        scene_add_light(s, l);
+        l = (light){.kind = LIGHT_POINT, .intensity = v3s(0.6f), .position = v3(2, 3, 1)};
+        scene_add_light(s, l);
+    }
+    for (int i = 0; i < 4; i++) scene_add_material(s, &m[i], NULL);
+    scene_add_sphere(s, (sphere){v3(-1.1f, 0, -1), 0.5f, 0});
+    scene_add_sphere(s, (sphere){v3(0, 0, -1), 0.5f, 1});
+    scene_add_sphere(s, (sphere){v3(1.1f, 0, -1), 0.5f, 2});
+    scene_add_sphere(s, (sphere){v3(0, -100.5f, -1), 100.0f, 3});
+    return s;
+}
+
+// Mean of samples 0..n-1 of pixel (x, y), accumulated exactly as the contract says.
+static void reference_pixel(const glint_scene *s, int x, int y, int n, float out[3]) {
+    uint64_t pixel = (uint64_t)y * (uint64_t)s->settings.width + (uint64_t)x;
+    thread_stats ts = {0};
+    double sum[3] = {0, 0, 0};
+    for (int k = 0; k < n; k++) {
+        rng r = rng_for_sample(s->settings.seed, pixel, (uint64_t)k);
+        vec3 c = integrator_sample(s, x, y, (uint32_t)k, &r, &ts);
+        if (!v3_is_finite(c)) continue;
+        sum[0] += c.x;
+        sum[1] += c.y;
+        sum[2] += c.z;
+    }
+    for (int c = 0; c < 3; c++) out[c] = (float)(sum[c] / n);
+}
+
+static glint_image *render(glint_scene *s, int threads, glint_status *st, glint_render_stats *stats) {
+    glint_render_options opt = {.threads = threads};
+    glint_image *img = NULL;
+    glint_error err;
+    *st = glint_render(s, &opt, NULL, NULL, &img, stats, &err);
+    return img;
+}
+
+// Bit-identical images for 1..5 threads, each pixel exactly the sequential mean; sizes that are not
+// multiples of the tile, and an image of a single tile rendered by more threads than tiles (each pass then
+// waits for the previous one).
+static void test_deterministic(integrator_kind kind, int width, int height, int spp) {
+    glint_scene *s = make_scene(kind, width, height, spp);
+    glint_status st;
+    glint_render_stats stats;
+    glint_image *first = render(s, 1, &st, &stats);
+    CHECK(st == GLINT_OK && first != NULL);
+    if (!first) { glint_scene_free(s); return; }
+    CHECK(stats.samples == (uint64_t)width * (uint64_t)height * (uint64_t)spp);
+    CHECK(stats.threads == 1);
+    int mismatches = 0;
+    for (int y = 0; y < height; y++)
+        for (int x = 0; x < width; x++) {
+            float want[3];
+            reference_pixel(s, x, y, spp, want);
+            if (memcmp(want, &first->rgb[((size_t)y * (size_t)width + (size_t)x) * 3], sizeof want) != 0)
+                mismatches++;
+        }
+    CHECK(mismatches == 0);
+    size_t bytes = (size_t)width * (size_t)height * 3 * sizeof(float);
+    for (int threads = 2; threads <= 5; threads++) {
+        glint_image *img = render(s, threads, &st, &stats);
+        CHECK(st == GLINT_OK && img != NULL);
+        CHECK(stats.threads == threads);
+        CHECK(img && memcmp(img->rgb, first->rgb, bytes) == 0);
+        glint_image_free(img);
+    }
+    glint_image_free(first);
+    glint_scene_free(s);
+}
+
+typedef struct progress_log {
+    int calls;
+    double last;
+    bool monotonic, in_range;
+    bool stop_at_first; ///< call glint_request_stop from the first report
+} progress_log;
+
+static void on_progress(double fraction, void *user) {
+    progress_log *log = user;
+    if (fraction < log->last) log->monotonic = false;
+    if (!(fraction >= 0.0 && fraction <= 1.0)) log->in_range = false;
+    log->last = fraction;
+    log->calls++;
+    if (log->stop_at_first) glint_request_stop();
+}
+
+static void test_progress(void) {
+    glint_scene *s = make_scene(INTEGRATOR_WHITTED, 40, 30, 4);
+    progress_log log = {.monotonic = true, .in_range = true};
+    glint_render_options opt = {.threads = 2};
+    glint_image *img = NULL;
+    glint_render_stats stats;
+    glint_error err;
+    CHECK(glint_render(s, &opt, on_progress, &log, &img, &stats, &err) == GLINT_OK);
+    CHECK(log.calls >= 1 && log.monotonic && log.in_range);
+    CHECK(log.last == 1.0); // the last report says done
+    glint_image_free(img);
+    glint_scene_free(s);
+}
+
+// A stop requested before the render: nothing is rendered, the image is black, and the request is
+// answered (the next render runs to the end).
+static void test_stop_before(void) {
+    glint_scene *s = make_scene(INTEGRATOR_WHITTED, 20, 10, 2);
+    glint_request_stop();
+    glint_status st;
+    glint_render_stats stats;
+    glint_image *img = render(s, 2, &st, &stats);
+    CHECK(st == GLINT_ERR_INTERRUPTED);
+    CHECK(stats.samples == 0);
+    int nonzero = 0;
+    for (size_t i = 0; img && i < 20 * 10 * 3; i++) nonzero += img->rgb[i] != 0.0f;
+    CHECK(img != NULL && nonzero == 0);
+    glint_image_free(img);
+    img = render(s, 2, &st, &stats);
+    CHECK(st == GLINT_OK && stats.samples == 20 * 10 * 2);
+    glint_image_free(img);
+    glint_scene_free(s);
+}
+
+// A stop in the middle of a long render (from the first progress report): every pixel holds the mean of
+// its first k samples for some k, never a sum divided by spp, never a mix.
+static void test_stop_during(void) {
+    enum { SW = 6, SH = 5, SPP = 400000 };
+    glint_scene *s = make_scene(INTEGRATOR_PATH, SW, SH, SPP);
+    progress_log log = {.monotonic = true, .in_range = true, .stop_at_first = true};
+    glint_render_options opt = {.threads = 2};
+    glint_image *img = NULL;
+    glint_render_stats stats;
+    glint_error err;
+    glint_status st = glint_render(s, &opt, on_progress, &log, &img, &stats, &err);
+    // Only a machine that renders 12 million path samples within the first report could finish.
+    CHECK(st == GLINT_ERR_INTERRUPTED || st == GLINT_OK);
+    CHECK(img != NULL);
+    if (!img) { glint_scene_free(s); return; }
+    if (st == GLINT_ERR_INTERRUPTED) CHECK(stats.samples < (uint64_t)SW * SH * SPP);
+    int inconsistent = 0;
+    uint64_t matched_samples = 0;
+    for (int y = 0; y < SH; y++)
+        for (int x = 0; x < SW; x++) {
+            const float *got = &img->rgb[((size_t)y * SW + (size_t)x) * 3];
+            uint64_t pixel = (uint64_t)y * SW + (uint64_t)x;
+            thread_stats ts = {0};
+            double sum[3] = {0, 0, 0};
+            // Walk the running mean until it equals the pixel: k = 0 is a black pixel.
+            bool found = got[0] == 0.0f && got[1] == 0.0f && got[2] == 0.0f;
+            for (int k = 0; !found && k < SPP; k++) {
+                rng r = rng_for_sample(s->settings.seed, pixel, (uint64_t)k);
+                vec3 c = integrator_sample(s, x, y, (uint32_t)k, &r, &ts);
+                if (v3_is_finite(c)) {
+                    sum[0] += c.x;
+                    sum[1] += c.y;
+                    sum[2] += c.z;
+                }
+                float mean[3];
+                for (int i = 0; i < 3; i++) mean[i] = (float)(sum[i] / (k + 1));
+                if (memcmp(mean, got, sizeof mean) == 0) {
+                    found = true;
+                    matched_samples += (uint64_t)k + 1;
+                }
+            }
+            if (!found) inconsistent++;
+        }
+    printf("stop during the render: %s after %llu samples, pixels hold %llu\n",
+           st == GLINT_OK ? "finished" : "stopped", (unsigned long long)stats.samples,
+           (unsigned long long)matched_samples);
+    CHECK(inconsistent == 0);
+    CHECK(matched_samples <= stats.samples); // no pixel claims samples that were not rendered
+    glint_image_free(img);
+    glint_scene_free(s);
+}
+
+int main(void) {
+    test_deterministic(INTEGRATOR_WHITTED, 37, 21, 1);
+    test_deterministic(INTEGRATOR_WHITTED, 37, 21, 5);
+    test_deterministic(INTEGRATOR_PATH, 35, 18, 6);
+    test_deterministic(INTEGRATOR_PATH, 5, 3, 9); // one tile, four passes, up to five threads
+    test_progress();
+    test_stop_before();
+    test_stop_during();
+    return check_summary();
+}

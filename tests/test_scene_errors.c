@@ -1,0 +1,300 @@
+// test_scene_errors.c — a table of malformed scenes, each with the exact message and status expected.
+#include "check.h"
+#include "glint.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/// One malformed scene: its text (len 0 = up to the NUL) and the whole message glint must print.
+typedef struct bad_scene {
+    int line; ///< where the case is in this file, for failure reports
+    const char *text;
+    size_t len;
+    const char *message;
+} bad_scene;
+
+// For texts that contain a NUL byte.
+#define BYTES(s) s, sizeof(s) - 1
+#define TEXT(s) s, 0
+
+static const bad_scene cases[] = {
+    // --- JSON syntax ---
+    {__LINE__, TEXT(""), "bad.json:1:1: the file is empty; expected a JSON object"},
+    {__LINE__, TEXT(" \n\t\n"), "bad.json:1:1: the file holds only white space; expected a JSON object"},
+    {__LINE__, TEXT("{\n  \"render\": {\"width\": 64,"),
+     "bad.json:2:26: expected a key in double quotes, got end of file"},
+    {__LINE__, TEXT("{\"render\": {\"output\": \"gam"), "bad.json:1:23: unterminated string; expected a closing '\"'"},
+    {__LINE__, TEXT("{\"render\" {}}"), "bad.json:1:11: expected ':' after the key \"render\", got '{'"},
+    {__LINE__, TEXT("{\"objects\": [1, 2,]}"),
+     "bad.json:1:18: trailing comma before ']'; expected another value after ','"},
+    {__LINE__, TEXT("{\"render\": {\"spp\": 4,}}"),
+     "bad.json:1:21: trailing comma before '}'; expected another key after ','"},
+    {__LINE__, TEXT("{\"render\": {\"width\": 0768}}"),
+     "bad.json:1:22: invalid number '0768'; expected a JSON number such as 12, -0.5 or 6.02e23"},
+    {__LINE__, TEXT("{\"render\": {\"width\": NaN}}"),
+     "bad.json:1:22: expected a value (object, array, string, number, true, false or null), got 'NaN'"},
+    {__LINE__, TEXT("{\"render\": {}} {\"camera\": {}}"),
+     "bad.json:1:16: unexpected '{' after the end of the top-level value; expected end of file"},
+    {__LINE__, TEXT("{\"render\": {}}\ngarbage"),
+     "bad.json:2:1: unexpected 'garbage' after the end of the top-level value; expected end of file"},
+    {__LINE__, TEXT("{'render': {}}"), "bad.json:1:2: expected a key in double quotes or '}', got '''"},
+    {__LINE__, TEXT("{\n  // a comment\n  \"render\": {}\n}"),
+     "bad.json:2:3: expected a key in double quotes or '}', got '/'"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\"} {\"type\": \"sphere\"}]}"),
+     "bad.json:1:33: expected ',' or ']' after an element of the array opened at 1:13, got '{'"},
+    {__LINE__, TEXT("{\"materials\": {\"a\": {\"type\": \"phong\"]}}"),
+     "bad.json:1:37: expected ',' or '}' after a member of the object opened at 1:21, got ']'"},
+    {__LINE__, TEXT("{\"materials\": {\"bad\tname\": {}}}"),
+     "bad.json:1:20: control character U+0009 inside a string; write it as \\u0009"},
+    {__LINE__, TEXT("{\"materials\": {\"a\nb\": {}}}"),
+     "bad.json:1:18: line break inside a string; expected a closing '\"' first (write \\n for a line break)"},
+    {__LINE__, TEXT("{\"render\": {\"output\": \"srgb\\x\"}}"),
+     "bad.json:1:28: invalid escape '\\x' in a string; expected one of \\\" \\\\ \\/ \\b \\f \\n \\r \\t \\uXXXX"},
+    {__LINE__, TEXT("{\"materials\": {\"\\ud83d\": {}}}"),
+     "bad.json:1:17: unpaired UTF-16 high surrogate \\uD83D; expected a low surrogate \\uDC00-\\uDFFF after it"},
+    {__LINE__, TEXT("{\"materials\": {\"a\\u0000b\": {}}}"), "bad.json:1:18: \\u0000 (NUL) is not allowed in a string"},
+    {__LINE__, BYTES("{\"render\": {}}\0"),
+     "bad.json:1:15: unexpected control character U+0000 after the end of the top-level value; expected end of file"},
+    {__LINE__, BYTES("{\"materials\": {\"a\0\": {}}}"),
+     "bad.json:1:18: NUL byte inside a string; strings cannot contain U+0000"},
+    {__LINE__, TEXT("{\"materials\": {\"caf\xe9\": {}}}"),
+     "bad.json:1:20: invalid UTF-8 byte 0xE9 in a string; the file must be UTF-8"},
+    {__LINE__, TEXT("{\"render\": {\"seed\": 1234567890123456789012345678901234567890123456789012345678901234567890}}"),
+     "bad.json:1:21: number '123456789012345678901234...' has 70 characters; at most 63 are allowed"},
+    // --- the shape of the scene ---
+    {__LINE__, TEXT("[{\"type\": \"sphere\"}]"),
+     "bad.json:1:1: the scene must be a JSON object, got [{\"type\": \"sphere\"}]"},
+    {__LINE__, TEXT("{\"render\": {}, \"cameras\": {}}"),
+     "bad.json:1:16: unknown key \"cameras\" in the scene; expected one of: render, camera, materials, objects, "
+     "lights"},
+    {__LINE__, TEXT("{\"render\": {\"samples\": 4}}"),
+     "bad.json:1:13: unknown key \"samples\" in render; expected one of: width, height, spp, max_depth, seed, "
+     "integrator, background, output, accel"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"viewport\", \"vfov\": 40}}"),
+     "bad.json:1:33: unknown key \"vfov\" in camera (viewport); expected one of: type, position, viewport, distance"},
+    {__LINE__, TEXT("{\"materials\": {\n  \"red\": {\"type\": \"phong\", \"colour\": [1, 0, 0]}\n}}"),
+     "bad.json:2:28: unknown key \"colour\" in material \"red\"; expected one of: type, color, specular, reflective, "
+     "specular_color"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1, "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:1:33: unknown key \"centre\" in object 0 (sphere); expected one of: type, center, radius, material"},
+    {__LINE__, TEXT("{\"lights\": [{\"type\": \"ambient\", \"intensity\": 0.2, \"position\": [0, 0, 0]}]}"),
+     "bad.json:1:51: unknown key \"position\" in light 0 (ambient); expected one of: type, intensity"},
+    {__LINE__, TEXT("{\"render\": {\"width\": 64, \"width\": 32}}"),
+     "bad.json:1:26: duplicate key \"width\" in render (first given at 1:13)"},
+    {__LINE__, TEXT("{\"materials\": {\"red\": {\"type\": \"phong\"}, \"red\": {\"type\": \"phong\"}}}"),
+     "bad.json:1:42: duplicate material name \"red\" (first defined at 1:16)"},
+    {__LINE__, TEXT("{\"render\": [400, 225]}"), "bad.json:1:12: render must be a JSON object, got [400, 225]"},
+    {__LINE__, TEXT("{\"materials\": [{\"type\": \"phong\"}]}"),
+     "bad.json:1:15: \"materials\" must be a JSON object mapping names to materials, got [{\"type\": \"phong\"}]"},
+    {__LINE__, TEXT("{\"objects\": {\"type\": \"sphere\"}}"),
+     "bad.json:1:13: \"objects\" must be an array of objects, got an object"},
+    {__LINE__, TEXT("{\"objects\": [\"sphere\"]}"), "bad.json:1:14: object 0 must be a JSON object, got \"sphere\""},
+    {__LINE__, TEXT("{\"materials\": {\"\": {\"type\": \"phong\"}}}"),
+     "bad.json:1:16: material name \"\" must be 1 to 128 bytes long"},
+    // --- render settings ---
+    {__LINE__, TEXT("{\"render\": {\"width\": \"768\"}}"),
+     "bad.json:1:22: \"width\" must be an integer in [1, 16384], got \"768\""},
+    {__LINE__, TEXT("{\"render\": {\"width\": 768.5}}"),
+     "bad.json:1:22: \"width\" must be an integer in [1, 16384], got 768.5"},
+    {__LINE__, TEXT("{\"render\": {\"width\": 1000000000}}"),
+     "bad.json:1:22: \"width\" must be an integer in [1, 16384], got 1000000000"},
+    {__LINE__, TEXT("{\"render\": {\"height\": -225}}"),
+     "bad.json:1:23: \"height\" must be an integer in [1, 16384], got -225"},
+    {__LINE__, TEXT("{\"render\": {\"spp\": 0}}"), "bad.json:1:20: \"spp\" must be an integer in [1, 1000000], got 0"},
+    {__LINE__, TEXT("{\"render\": {\"max_depth\": -1}}"),
+     "bad.json:1:26: \"max_depth\" must be an integer in [0, 10000], got -1"},
+    {__LINE__, TEXT("{\"render\": {\"seed\": 9007199254740994}}"),
+     "bad.json:1:21: \"seed\" must be an integer in [0, 9007199254740992], got 9007199254740994"},
+    {__LINE__, TEXT("{\"render\": {\"spp\": null}}"),
+     "bad.json:1:20: \"spp\" must be an integer in [1, 1000000], got null"},
+    {__LINE__, TEXT("{\"render\": {\"output\": \"gamma\"}}"),
+     "bad.json:1:23: \"output\" must be \"linear\", \"gamma2\" or \"srgb\", got \"gamma\""},
+    {__LINE__, TEXT("{\"render\": {\"accel\": \"kdtree\"}}"),
+     "bad.json:1:22: \"accel\" must be \"bvh\", \"bvh2\" or \"none\", got \"kdtree\""},
+    {__LINE__, TEXT("{\"render\": {\"integrator\": \"raytrace\"}}"),
+     "bad.json:1:27: \"integrator\" must be \"whitted\", \"path\" or an object with a \"type\", got \"raytrace\""},
+    {__LINE__, TEXT("{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"colour\"}}}"),
+     "bad.json:1:55: \"mode\" must be \"paper\" or \"color\", got \"colour\""},
+    {__LINE__, TEXT("{\"render\": {\"integrator\": {\"type\": \"path\", \"mode\": \"paper\"}}}"),
+     "bad.json:1:44: unknown key \"mode\" in integrator (path); expected one of: type"},
+    {__LINE__, TEXT("{\"render\": {\"background\": \"blue\"}}"),
+     "bad.json:1:27: \"background\" must be a colour (a number or [r, g, b]), "
+     "\"sky\" or an object with a \"type\", got "
+     "\"blue\""},
+    {__LINE__, TEXT("{\"render\": {\"background\": [1, 1]}}"),
+     "bad.json:1:27: \"background\" must be a finite number >= 0 or an array of 3 such numbers [r, g, b], got [1, 1]"},
+    {__LINE__, TEXT("{\"render\": {\"background\": {\"type\": \"sky\", \"zenith\": [0.5, -0.7, 1]}}}"),
+     "bad.json:1:59: \"zenith\"[1] must be a finite number >= 0, got -0.7"},
+    // --- camera ---
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"pinhole\"}}"),
+     "bad.json:1:21: \"type\" must be \"viewport\" or \"lookat\", got \"pinhole\""},
+    {__LINE__, TEXT("{\"camera\": {\"lookfrom\": [0, 0, 1]}}"),
+     "bad.json:1:12: missing required key \"type\" in camera; expected one of \"viewport\" or \"lookat\""},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"lookfrom\": [1, 2, 3], \"lookat\": [1, 2, 3]}}"),
+     "bad.json:1:64: \"lookfrom\" and \"lookat\" must be different points"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"lookfrom\": [0, 5, 0], \"lookat\": [0, 0, 0]}}"),
+     "bad.json:1:12: \"vup\" must be a non-zero vector not parallel to the view direction (lookat - lookfrom)"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"vfov\": 180}}"),
+     "bad.json:1:39: \"vfov\" must be a number in (0, 180), got 180"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"focus_distance\": -10}}"),
+     "bad.json:1:49: \"focus_distance\" must be a finite number >= 0, got -10"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"viewport\", \"viewport\": [1, 0]}}"),
+     "bad.json:1:49: \"viewport\"[1] must be a finite number > 0, got 0"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"viewport\", \"distance\": 0}}"),
+     "bad.json:1:45: \"distance\" must be a finite number > 0, got 0"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"viewport\", \"position\": [0, 0]}}"),
+     "bad.json:1:45: \"position\" must be an array of 3 numbers (x, y, z), got [0, 0]"},
+    // --- materials ---
+    {__LINE__, TEXT("{\"materials\": {\"glass\": {\"type\": \"glass\", \"ior\": 1.5}}}"),
+     "bad.json:1:34: \"type\" must be \"lambertian\", \"metal\", \"dielectric\", "
+     "\"phong\" or \"diffuse_light\", got \"glass\""},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"albedo\": [1, 1, 1]}}}"),
+     "bad.json:1:21: missing required key \"type\" in material \"m\"; expected one of \"lambertian\", \"metal\", "
+     "\"dielectric\", \"phong\" or \"diffuse_light\""},
+    {__LINE__, TEXT("{\"materials\": {\"steel\": {\"type\": \"metal\", \"fuzz\": 2}}}"),
+     "bad.json:1:51: \"fuzz\" must be a number in [0, 1], got 2"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": [0.5, 1.5, 0.5]}}}"),
+     "bad.json:1:60: \"albedo\"[1] must be a number in [0, 1], got 1.5"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": \"red\"}}}"),
+     "bad.json:1:54: \"albedo\" must be a number in [0, 1] or an array of 3 such numbers [r, g, b], got \"red\""},
+    {__LINE__, TEXT("{\"materials\": {\"g\": {\"type\": \"dielectric\", \"ior\": 0}}}"),
+     "bad.json:1:51: \"ior\" must be a finite number > 0, got 0"},
+    {__LINE__, TEXT("{\"materials\": {\"r\": {\"type\": \"phong\", \"specular\": 9900.5}}}"),
+     "bad.json:1:51: \"specular\" must be an integer in [-1, 2147483647], got 9900.5"},
+    {__LINE__, TEXT("{\"materials\": {\"r\": {\"type\": \"phong\", \"reflective\": -0.2}}}"),
+     "bad.json:1:53: \"reflective\" must be a number in [0, 1], got -0.2"},
+    {__LINE__, TEXT("{\"materials\": {\"l\": {\"type\": \"diffuse_light\", \"two_sided\": \"yes\"}}}"),
+     "bad.json:1:60: \"two_sided\" must be true or false, got \"yes\""},
+    {__LINE__, TEXT("{\"materials\": {\"l\": {\"type\": \"diffuse_light\", \"emission\": 1e999}}}"),
+     "bad.json:1:59: \"emission\" must be a finite number >= 0 or an array of 3 such numbers [r, g, b], got 1e999"},
+    // --- objects ---
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"cube\", \"size\": 1}]}"),
+     "bad.json:1:23: \"type\" must be \"sphere\", got \"cube\""},
+    {__LINE__, TEXT("{\"objects\": [\n  {\"type\": \"sphere\", \"radius\": 1, \"material\": \"m\"}\n]}"),
+     "bad.json:2:3: missing required key \"center\" in object 0 (sphere)"},
+    {__LINE__, TEXT("{\"objects\": [{\"center\": [0, 0, 0]}]}"),
+     "bad.json:1:14: missing required key \"type\" in object 0; expected one of \"sphere\""},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0, "
+                    "\"material\": {\"type\": \"phong\"}}]}"),
+     "bad.json:1:64: \"radius\" must be a finite non-zero number, got 0"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": \"abc\", "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:1:64: \"radius\" must be a finite non-zero number, got \"abc\""},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1e999, "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:1:64: \"radius\" must be a finite non-zero number, got 1e999"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1e39, "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:1:64: \"radius\" must be a finite non-zero number, got 1e39"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, -1e999, 0], \"radius\": 1, "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:1:47: \"center\"[1] must be a finite number, got -1e999"},
+    {__LINE__,
+     TEXT("{\"materials\": {\"red\": {\"type\": \"phong\"}, \"green\": {\"type\": \"phong\"}},\n"
+          " \"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"material\": \"blu\"}]}"),
+     "bad.json:2:79: material \"blu\" is not defined (defined: red, green)"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, "
+                    "\"material\": \"red\"}]}"),
+     "bad.json:1:79: material \"red\" is not defined (no named materials are defined)"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"material\": 3}]}"),
+     "bad.json:1:79: \"material\" must be the name of a material in \"materials\" or a material object, got 3"},
+    {__LINE__,
+     TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, "
+          "\"material\": {\"type\": \"metal\", "
+          "\"roughness\": 1}}]}"),
+     "bad.json:1:97: unknown key \"roughness\" in the material of object 0 (sphere); expected one of: type, "
+     "albedo, fuzz"},
+    // --- lights ---
+    {__LINE__, TEXT("{\"lights\": [{\"type\": \"spot\", \"intensity\": 1}]}"),
+     "bad.json:1:22: \"type\" must be \"ambient\", \"point\" or \"directional\", got \"spot\""},
+    {__LINE__, TEXT("{\"lights\": [{\"type\": \"point\", \"position\": [2, 1, 0]}]}"),
+     "bad.json:1:13: missing required key \"intensity\" in light 0 (point)"},
+    {__LINE__, TEXT("{\"lights\": [{\"type\": \"ambient\", \"intensity\": -0.2}]}"),
+     "bad.json:1:46: \"intensity\" must be a finite number >= 0 or an array of 3 such numbers [r, g, b], got -0.2"},
+    {__LINE__, TEXT("{\"lights\": [{\"type\": \"directional\", \"intensity\": 0.2, \"direction\": [0, 0, 0]}]}"),
+     "bad.json:1:68: \"direction\" must be a non-zero vector, got [0, 0, 0]"},
+};
+
+static void check_message(int line, glint_status status, const glint_scene *scene, const char *got, const char *want) {
+    if (status == GLINT_ERR_INPUT && scene == NULL && strcmp(got, want) == 0) {
+        check_passed++;
+        return;
+    }
+    check_failed++;
+    fprintf(stderr, "%s:%d: status %d (want %d), scene %s\n  got:  %s\n  want: %s\n", __FILE__, line, (int)status,
+            (int)GLINT_ERR_INPUT, scene ? "returned" : "NULL", got, want);
+}
+
+static void run_table(void) {
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        const bad_scene *c = &cases[i];
+        glint_scene *scene = NULL;
+        glint_error err = {{0}};
+        size_t len = c->len ? c->len : strlen(c->text);
+        glint_status st = glint_scene_parse("bad.json", c->text, len, &scene, &err);
+        check_message(c->line, st, scene, err.message, c->message);
+        glint_scene_free(scene);
+    }
+}
+
+// Nesting bombs fail at the first bracket past the limit, without deep recursion anywhere.
+static void test_deep_nesting(void) {
+    size_t n = 100000;
+    char *text = malloc(n + 8);
+    if (!text) return;
+    memcpy(text, "{\"a\": ", 6);
+    memset(text + 6, '[', n);
+    glint_scene *scene = NULL;
+    glint_error err;
+    glint_status st = glint_scene_parse("deep.json", text, n + 6, &scene, &err);
+    check_message(__LINE__, st, scene, err.message,
+                  "deep.json:1:134: arrays and objects nested more than 128 levels deep");
+    free(text);
+}
+
+// Size limits are checked before anything is parsed.
+static void test_too_large(void) {
+    glint_scene *scene = NULL;
+    glint_error err;
+    static const char text[] = "{}";
+    glint_status st = glint_scene_parse("huge.json", text, (size_t)300 << 20, &scene, &err);
+    check_message(__LINE__, st, scene, err.message,
+                  "huge.json: the scene is 314572800 bytes; at most 268435456 bytes (256 MiB) are allowed");
+}
+
+// Files: a missing file, a directory, and a malformed file on disk give the reason or the position.
+static void test_files(void) {
+    glint_scene *scene = NULL;
+    glint_error err;
+    char want[1024];
+    glint_status st = glint_scene_load("no/such/scene.json", &scene, &err);
+    snprintf(want, sizeof want, "no/such/scene.json: cannot open: %s", strerror(ENOENT));
+    check_message(__LINE__, st, scene, err.message, want);
+
+    st = glint_scene_load(".", &scene, &err);
+    snprintf(want, sizeof want, ".: cannot open: %s", strerror(EISDIR));
+    check_message(__LINE__, st, scene, err.message, want);
+
+    const char *path = "test_scene_errors.tmp.json";
+    FILE *f = fopen(path, "wb");
+    CHECK(f != NULL);
+    if (!f) return;
+    fputs("{\n  \"render\": {\"width\": 64, \"height\": 0}\n}\n", f);
+    fclose(f);
+    st = glint_scene_load(path, &scene, &err);
+    check_message(__LINE__, st, scene, err.message,
+                  "test_scene_errors.tmp.json:2:37: \"height\" must be an integer in [1, 16384], got 0");
+    remove(path);
+}
+
+int main(void) {
+    run_table();
+    test_deep_nesting();
+    test_too_large();
+    test_files();
+    printf("%zu malformed scenes in the table\n", sizeof cases / sizeof cases[0]);
+    return check_summary();
+}
