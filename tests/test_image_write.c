@@ -47,8 +47,8 @@ static uint8_t *read_file(const char *path, size_t *size) {
 }
 
 // Linear values covering black, mid-grey, the clamp at both ends, NaN and a gradient.
-static glint_image *test_image(output_transform transform) {
-    glint_image *img = film_new(W, H, transform);
+static glint_image *test_image(output_transform encoding) {
+    glint_image *img = film_new(W, H, encoding);
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++)
             for (int c = 0; c < 3; c++) {

@@ -13,6 +13,8 @@ material material_default(material_kind kind) {
     m.reflective = 0.0f;
     m.emission = v3s(1.0f);
     m.two_sided = false;
+    m.albedo_texture = -1;
+    m.emission_texture = -1;
     return m;
 }
 

@@ -6,6 +6,7 @@
 #include "core/vec.h"
 
 #include <stdbool.h>
+#include <stdint.h>
 
 typedef enum material_kind {
     MAT_LAMBERTIAN,   ///< ideal diffuse, albedo
@@ -26,6 +27,8 @@ typedef struct material {
     bool has_specular_color;
     vec3 emission;        ///< diffuse_light: emitted radiance
     bool two_sided;       ///< diffuse_light: emit on both sides
+    int32_t albedo_texture;   ///< scene texture giving albedo/colour at the hit, or -1: `albedo`
+    int32_t emission_texture; ///< scene texture scaling `emission`, or -1
 } material;
 
 /// A material of the given kind with every parameter at its documented default.

@@ -4,20 +4,20 @@
 #include <math.h>
 #include <stdlib.h>
 
-glint_image *film_new(int width, int height, output_transform transform) {
+glint_image *film_new(int width, int height, output_transform encoding) {
     glint_image *img = malloc(sizeof *img);
     if (!img) return NULL;
     img->width = width;
     img->height = height;
-    img->transform = transform;
+    img->transform = encoding;
     img->rgb = calloc((size_t)width * (size_t)height * 3u, sizeof(float));
     if (!img->rgb) { free(img); return NULL; }
     return img;
 }
 
-uint8_t film_encode(float v, output_transform transform) {
+uint8_t film_encode(float v, output_transform encoding) {
     if (!(v > 0.0f)) return 0; // also maps NaN to black
-    switch (transform) {
+    switch (encoding) {
     case TRANSFORM_LINEAR: break;
     case TRANSFORM_GAMMA2: v = sqrtf(v); break;
     case TRANSFORM_SRGB: v = v <= 0.0031308f ? 12.92f * v : 1.055f * powf(v, 1.0f / 2.4f) - 0.055f; break;

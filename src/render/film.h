@@ -14,9 +14,9 @@ struct glint_image {
 };
 
 /// A black image; NULL when out of memory.
-glint_image *film_new(int width, int height, output_transform transform);
+glint_image *film_new(int width, int height, output_transform encoding);
 
 /// Display encoding of one linear value: transform, clamp to [0,1], round to nearest of 0..255.
-uint8_t film_encode(float linear, output_transform transform);
+uint8_t film_encode(float linear, output_transform encoding);
 
 #endif

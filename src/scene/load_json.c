@@ -974,10 +974,10 @@ static bool read_render(loader *ld, jval v) {
     static const output_transform transform_kinds[] = {TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SRGB};
     static const char *const accels[] = {"bvh", "bvh2", "none"};
     static const accel_kind accel_kinds[] = {ACCEL_BVH, ACCEL_BVH2, ACCEL_NONE};
-    int transform = -1, accel = -1;
-    if (!read_enum(ld, &o, "output", transforms, 3, &transform) || !read_enum(ld, &o, "accel", accels, 3, &accel))
+    int output = -1, accel = -1;
+    if (!read_enum(ld, &o, "output", transforms, 3, &output) || !read_enum(ld, &o, "accel", accels, 3, &accel))
         return false;
-    if (transform >= 0) rs->transform = transform_kinds[transform];
+    if (output >= 0) rs->transform = transform_kinds[output];
     if (accel >= 0) rs->accel = accel_kinds[accel];
     rs->width = (int)width;
     rs->height = (int)height;

@@ -7,7 +7,11 @@
 #include "camera/camera.h"
 #include "material/material.h"
 #include "light/light.h"
+#include "geometry/mesh.h"
 #include "geometry/sphere.h"
+#include "geometry/transform.h"
+#include "geometry/triangle.h"
+#include "material/texture.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -42,6 +46,27 @@ enum {
 
 struct accel; // defined in accel/accel.h
 
+/// What an instance places: a mesh (its triangles) or a single sphere, in object space.
+typedef enum instance_kind { INSTANCE_MESH, INSTANCE_SPHERE } instance_kind;
+
+/// One placement of shared geometry with its own transform: meshes are loaded once and placed many
+/// times; a sphere under a transform that is not a similarity becomes an instance too.
+typedef struct instance {
+    instance_kind kind;
+    uint32_t index;   ///< scene meshes[index] or object-space spheres in instance_spheres[index]
+    transform xf;     ///< xf.m: object to world; xf.inv: world to object
+    int32_t material; ///< overrides every triangle's material, or -1: the mesh's own materials
+} instance;
+
+/// A mesh loaded from a file, shared by every instance that places it.
+typedef struct scene_mesh {
+    mesh geometry;
+    uint32_t *slot_material; ///< mesh material slot (mesh_triangle.material) -> scene material index
+    size_t slot_count;
+    uint32_t default_material; ///< for triangles with no slot (material -1)
+    char *path;                ///< file it was loaded from, to load each file once
+} scene_mesh;
+
 struct glint_scene {
     char *path;            ///< scene file name, as given, for messages
     render_settings settings;
@@ -56,6 +81,20 @@ struct glint_scene {
 
     light *lights;
     size_t light_count;
+
+    quad *quads;             ///< world-space parallelograms (boxes are six of them)
+    size_t quad_count;
+
+    texture *textures;       ///< material_t.albedo_texture / emission_texture index these
+    char **texture_names;    ///< NULL entry for anonymous (inline) textures
+    size_t texture_count;
+
+    scene_mesh *meshes;
+    size_t mesh_count;
+    sphere *instance_spheres; ///< object-space spheres of INSTANCE_SPHERE instances
+    size_t instance_sphere_count;
+    instance *instances;
+    size_t instance_count;
 
     struct accel *accel;   ///< built by scene_prepare
 };
