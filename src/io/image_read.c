@@ -35,13 +35,17 @@ void image_rgb_free(image_rgb *img) {
     img->width = img->height = 0;
 }
 
+// Whether a w x h image is within IMAGE_READ_MAX_PIXELS; sets the message when it is not.
+static bool size_ok(const char *name, size_t w, size_t h, glint_error *err) {
+    if (w > 0 && h > 0 && w <= IMAGE_READ_MAX_PIXELS && h <= IMAGE_READ_MAX_PIXELS / w) return true;
+    set_error(err, "%s: image size %zux%zu is not supported, expected at most %zu pixels", name, w, h,
+              (size_t)IMAGE_READ_MAX_PIXELS);
+    return false;
+}
+
 // Checks the size and allocates the float pixels; NULL (with a message) when too large or out of memory.
 static float *alloc_pixels(const char *name, size_t w, size_t h, glint_error *err) {
-    if (w == 0 || h == 0 || w > IMAGE_READ_MAX_PIXELS || h > IMAGE_READ_MAX_PIXELS / w) {
-        set_error(err, "%s: image size %zux%zu is not supported, expected at most %zu pixels", name, w, h,
-                  (size_t)IMAGE_READ_MAX_PIXELS);
-        return NULL;
-    }
+    if (!size_ok(name, w, h, err)) return NULL;
     float *p = malloc(w * h * 3 * sizeof *p);
     if (!p) set_error(err, "%s: out of memory for a %zux%zu image", name, w, h);
     return p;
@@ -127,18 +131,18 @@ static glint_status decode_jpeg(const char *name, const unsigned char *data, siz
     jpeg_mem_src(&st->cinfo, data, (unsigned long)size);
     jpeg_read_header(&st->cinfo, TRUE);
     st->cinfo.out_color_space = JCS_RGB; // grey and YCbCr alike come out as RGB
-    jpeg_start_decompress(&st->cinfo);
-    size_t w = st->cinfo.output_width, h = st->cinfo.output_height;
-    glint_status status = GLINT_OK;
-    if (st->cinfo.output_components != 3) {
-        set_error(err, "%s: cannot decode JPEG: %d colour components, expected 3", name, st->cinfo.output_components);
-        status = GLINT_ERR_INPUT;
-    } else if (!(st->pixels = alloc_pixels(name, w, h, err))) {
-        status = GLINT_ERR_INPUT;
-    } else if (!(st->row = malloc(w * 3))) {
-        set_error(err, "%s: out of memory", name);
-        status = GLINT_ERR_INPUT;
+    size_t w = st->cinfo.image_width, h = st->cinfo.image_height;
+    // Check the size before jpeg_start_decompress, which allocates whole-image buffers for progressive files.
+    if (size_ok(name, w, h, err)) {
+        jpeg_start_decompress(&st->cinfo);
+        w = st->cinfo.output_width;
+        h = st->cinfo.output_height;
+        if (st->cinfo.output_components != 3)
+            set_error(err, "%s: cannot decode JPEG: %d colour components, expected 3", name, st->cinfo.output_components);
+        else if ((st->pixels = alloc_pixels(name, w, h, err)) && !(st->row = malloc(w * 3)))
+            set_error(err, "%s: out of memory", name);
     }
+    glint_status status = st->row ? GLINT_OK : GLINT_ERR_INPUT;
     if (status != GLINT_OK) {
         jpeg_destroy_decompress(&st->cinfo);
         free(st->row);

@@ -1092,7 +1092,7 @@ static bool obj_mtllib(obj_parser *ps, cursor *c) {
     char *whole = join_path(ps->dir, names, n);
     if (!whole) return fail(&ps->rep, "out of memory");
     // The whole argument may be one name with blanks; otherwise it is a list of names.
-    bool single = check_file(whole) == 0 || !memchr(names, ' ', n);
+    bool single = check_file(whole) == 0 || (!memchr(names, ' ', n) && !memchr(names, '\t', n));
     if (single) {
         bool ok = obj_library(ps, whole, names, n);
         free(whole);
