@@ -351,6 +351,21 @@ static void test_errors(void) {
     const unsigned char bad_jpeg[] = {0xff, 0xd8, 0xff, 0xe0, 0x00, 0x02, 0xff, 0xc0, 0x00, 0x03, 0x01, 0x01, 0x01};
     write_bytes(tmp_path("bad.jpg"), bad_jpeg, sizeof bad_jpeg);
     check_error(tmp_path("bad.jpg"), "cannot decode JPEG: ");
+    // A JPEG whose frame header claims 65000 x 65000 pixels is refused before libjpeg allocates anything.
+    f = fopen(tmp_path("baseline.jpg"), "rb");
+    static unsigned char jpg[1 << 16];
+    n = f ? fread(jpg, 1, sizeof jpg, f) : 0;
+    if (f) fclose(f);
+    bool patched = false;
+    for (size_t i = 2; i + 9 < n && !patched && jpg[i] == 0xff; i += 2 + ((size_t)jpg[i + 2] << 8 | jpg[i + 3]))
+        if (jpg[i + 1] == 0xc0) {
+            jpg[i + 5] = jpg[i + 7] = 0xfd; // height and width 0xfde8 = 65000
+            jpg[i + 6] = jpg[i + 8] = 0xe8;
+            patched = true;
+        }
+    CHECK(patched);
+    write_bytes(tmp_path("huge.jpg"), jpg, n);
+    check_error(tmp_path("huge.jpg"), "image size 65000x65000 is not supported, expected at most 67108864 pixels");
     texture t;
     glint_error err;
     CHECK(texture_image_load(tmp_path("missing.png"), &t, &err) == GLINT_ERR_INPUT);
@@ -375,7 +390,7 @@ int main(void) {
     test_real_files();
     test_errors();
     static const char *const files[] = {"rgb.png", "ga.png", "linear16.png", "baseline.jpg", "progressive.jpg",
-                                        "text.png", "empty.jpg", "cut.png", "bad.jpg"};
+                                        "text.png", "empty.jpg", "cut.png", "bad.jpg", "huge.jpg"};
     for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) unlink(tmp_path(files[i]));
     rmdir(tmpdir);
     return check_summary();

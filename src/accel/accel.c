@@ -86,6 +86,15 @@ bool accel_intersect(const accel *a, const ray *r, hit *h) {
     return false;
 }
 
+void accel_intersect2(const accel *a, const ray r[2], hit h[2], bool found[2]) {
+    if (a->kind == ACCEL_BVH) {
+        bvh_intersect2(&a->bvh, &r[0], &r[1], &h[0], &h[1], &found[0], &found[1]);
+        return;
+    }
+    found[0] = accel_intersect(a, &r[0], &h[0]);
+    found[1] = accel_intersect(a, &r[1], &h[1]);
+}
+
 bool accel_occluded(const accel *a, const ray *r) {
     switch (a->kind) {
     case ACCEL_BVH: return bvh_occluded(&a->bvh, r);

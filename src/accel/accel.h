@@ -30,6 +30,9 @@ void accel_get_stats(const accel *a, accel_stats *out);
 
 /// Nearest hit with r->tmin < t < r->tmax; false when the ray escapes.
 bool accel_intersect(const accel *a, const ray *r, hit *h);
+/// Closest hits of two independent rays at once (faster than two calls: their traversals overlap in the
+/// processor); found[i] says whether ray i hit, and h[i] is then its hit.
+void accel_intersect2(const accel *a, const ray r[2], hit h[2], bool found[2]);
 /// Whether anything lies on the ray with r->tmin < t < r->tmax (for shadow rays).
 bool accel_occluded(const accel *a, const ray *r);
 

@@ -103,6 +103,8 @@ bool bvh2_occluded(const bvh *b, const ray *r);
 bool bvh_intersect(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH, SIMD when compiled in, else scalar.
 bool bvh_occluded(const bvh *b, const ray *r);
+/// Closest hits of two independent rays in the wide BVH, their traversals interleaved step by step.
+void bvh_intersect2(const bvh *b, const ray *r0, const ray *r1, hit *h0, hit *h1, bool *f0, bool *f1);
 /// Closest hit in the wide BVH by the portable scalar path (always compiled, for tests).
 bool bvh_intersect_scalar(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH by the portable scalar path.
