@@ -67,6 +67,7 @@ static ray random_ray(rng *g, const glint_scene *s) {
     }
     r.tmin = rng_float(g) < 0.5f ? 0.001f : 0.0f;
     r.tmax = rng_float(g) < 0.8f ? INFINITY : urand(g, 0.5f, 40.0f);
+    if (rng_float(g) < 0.005f) r.d.y = NAN; // hits nothing, in every structure
     return r;
 }
 
@@ -99,9 +100,18 @@ static void check_scene(uint64_t seed, size_t n) {
     CHECK(n == 0 || (st.leaves >= 1 && st.depth >= 1 && st.nodes + 1 == st.leaves));
 
     rng g = rng_for_sample(seed, n, 1);
-    int bad = 0, hits = 0;
+    int bad = 0, hits = 0, bad_pairs = 0;
+    ray prev = {v3(0, 0, 0), v3(0, 0, 1), 0.0f, INFINITY};
     for (int i = 0; i < RAYS_PER_SCENE; i++) {
         ray r = random_ray(&g, sc[0]);
+        // Two rays traversed together give what each gives alone.
+        ray pair[2] = {prev, r};
+        hit hp[2], h0, h1;
+        bool fp[2];
+        accel_intersect2(ac[1], pair, hp, fp);
+        bool f0 = accel_intersect(ac[0], &prev, &h0), f1 = accel_intersect(ac[0], &r, &h1);
+        if (!same_hit(fp[0], &hp[0], f0, &h0) || !same_hit(fp[1], &hp[1], f1, &h1)) bad_pairs++;
+        prev = r;
         hit h[3], hs;
         bool f[3];
         for (int k = 0; k < 3; k++) {
@@ -126,7 +136,8 @@ static void check_scene(uint64_t seed, size_t n) {
         }
     }
     CHECK(bad == 0);
-    mismatches += bad;
+    CHECK(bad_pairs == 0);
+    mismatches += bad + bad_pairs;
     // The rays must exercise both outcomes (except in the empty scene).
     CHECK(n == 0 || (hits > 0 && hits < RAYS_PER_SCENE));
     bvh_release(&wide);

@@ -10,10 +10,19 @@
 
 struct glint_scene;
 
+/// Kinds of primitive a hit can be on.
+typedef enum hit_kind { HIT_SPHERE = 0, HIT_QUAD = 1, HIT_TRIANGLE = 2 } hit_kind;
+
+/// No instance: the primitive is in world space.
+#define HIT_NO_INSTANCE 0xffffffffu
+
 /// The result of a closest-hit query: distance along the ray and which primitive.
 typedef struct hit {
     float t;
-    uint32_t prim; ///< sphere index
+    uint32_t prim;     ///< index into the scene's array of `kind` (spheres, quads; triangles of the instance's mesh)
+    uint32_t kind;     ///< hit_kind
+    uint32_t instance; ///< scene instance the primitive belongs to, or HIT_NO_INSTANCE
+    float b1, b2;      ///< triangle barycentrics of vertices 1 and 2; quad (alpha, beta)
 } hit;
 
 typedef struct accel_stats {

@@ -21,10 +21,14 @@ typedef struct thread_stats {
 /// Where a ray met a surface, with what shading needs.
 typedef struct surface {
     vec3 p;        ///< hit point
-    vec3 n;        ///< unit normal facing against the incoming ray
-    bool front;    ///< the ray arrived on the side the outward normal points to
+    vec3 n;        ///< unit shading normal facing against the incoming ray
+    vec3 ng;       ///< unit geometric normal on the same side as n (for offsets and emission sides)
+    bool front;    ///< the ray arrived on the side the outward (geometric) normal points to
     uint32_t material;
     float u, v;    ///< texture coordinates
+    float error;   ///< bound on the distance of p from the true surface, for offsetting spawned rays
+    hit_kind kind; ///< what was hit, for primitive-specific refinement (sphere re-projection)
+    uint32_t prim, instance;
 } surface;
 
 /// Shading data of a closest hit found by accel_intersect for ray r.
@@ -35,8 +39,13 @@ static inline surface surface_at(const glint_scene *s, const ray *r, const hit *
     vec3 outward = sphere_normal(sp, out.p); // inward for a negative radius
     out.front = v3_dot(r->d, outward) < 0.0f;
     out.n = out.front ? outward : v3_neg(outward);
+    out.ng = out.n;
     out.material = sp->material;
     sphere_uv(sp->radius < 0.0f ? v3_neg(outward) : outward, &out.u, &out.v);
+    out.error = 0.0f;
+    out.kind = HIT_SPHERE;
+    out.prim = h->prim;
+    out.instance = HIT_NO_INSTANCE;
     return out;
 }
 
