@@ -63,6 +63,10 @@ glint_status glint_scene_parse(const char *name, const char *text, size_t length
 glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err);
 /// Image size the scene will render at.
 void glint_scene_size(const glint_scene *scene, int *width, int *height);
+/// Number of warnings the loader collected (problems in mesh files it worked around); the library prints none.
+size_t glint_scene_warning_count(const glint_scene *scene);
+/// Warning i (0-based), formatted "file:line: warning: what happened; what is done instead", or NULL past the end.
+const char *glint_scene_warning(const glint_scene *scene, size_t i);
 void glint_scene_free(glint_scene *scene);
 
 /// Prepares (builds the BVH, once) and renders the scene. On GLINT_ERR_INTERRUPTED *out still holds the samples completed so far.

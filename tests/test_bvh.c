@@ -74,7 +74,8 @@ static ray random_ray(rng *g, const glint_scene *s) {
 static bool same_hit(bool fa, const hit *a, bool fb, const hit *b) {
     if (fa != fb) return false;
     if (!fa) return true;
-    return a->prim == b->prim && memcmp(&a->t, &b->t, sizeof a->t) == 0;
+    return a->prim == b->prim && memcmp(&a->t, &b->t, sizeof a->t) == 0 && a->kind == HIT_SPHERE &&
+           b->kind == HIT_SPHERE && a->instance == HIT_NO_INSTANCE && b->instance == HIT_NO_INSTANCE;
 }
 
 // Compares every structure with brute force on RAYS_PER_SCENE rays over one scene layout.

@@ -131,7 +131,7 @@ static void test_lambertian(void) {
         long obs[NBINS] = {0}, n = 100000, below = 0, bad = 0;
         for (long i = 0; i < n; i++) {
             scatter_event ev;
-            if (!mat_scatter(&m, d_in, nrm, true, &r, &ev) || !ev.diffuse || fabs(v3_len(ev.dir) - 1.0) > 1e-5 ||
+            if (!mat_scatter(&m, m.albedo, d_in, nrm, true, &r, &ev) || !ev.diffuse || fabs(v3_len(ev.dir) - 1.0) > 1e-5 ||
                 ev.weight.x != 0.25f || ev.weight.y != 0.5f || ev.weight.z != 0.75f) {
                 bad++;
                 continue;
@@ -167,7 +167,7 @@ static void test_metal(void) {
     vec3 nrm = v3(0, 1, 0), d_in = v3_unit(v3(1, -1, 0.5f));
     rng r = rng_for_sample(5, 0, 0);
     scatter_event ev;
-    CHECK(mat_scatter(&m, d_in, nrm, true, &r, &ev));
+    CHECK(mat_scatter(&m, m.albedo, d_in, nrm, true, &r, &ev));
     vec3 mirror = v3_reflect(d_in, nrm);
     CHECK(v3_len(v3_sub(ev.dir, mirror)) < 1e-6f && ev.weight.x == 0.7f && ev.weight.z == 0.5f && !ev.diffuse);
 
@@ -183,7 +183,7 @@ static void test_metal(void) {
             for (int j = 0; j < NPHI; j++) prob[i * NPHI + j] = p / NPHI;
         }
         for (long i = 0; i < n; i++) {
-            if (!mat_scatter(&m, v3(0, -1, 0), nrm, true, &r, &ev)) { absorbed++; continue; }
+            if (!mat_scatter(&m, m.albedo, v3(0, -1, 0), nrm, true, &r, &ev)) { absorbed++; continue; }
             double c, phi;
             local_angles(nrm, ev.dir, &c, &phi);
             double a = acos(fmin(1.0, c));
@@ -201,7 +201,7 @@ static void test_metal(void) {
     vec3 d_graze = v3((float)sqrt(1 - c_r * c_r), (float)-c_r, 0);
     long kept = 0, n = 200000;
     for (long i = 0; i < n; i++)
-        if (mat_scatter(&m, d_graze, nrm, true, &r, &ev)) {
+        if (mat_scatter(&m, m.albedo, d_graze, nrm, true, &r, &ev)) {
             kept++;
             if (!(v3_dot(ev.dir, nrm) > 0.0f)) kept = -n; // a surviving direction below the surface fails
         }
@@ -230,7 +230,7 @@ static void test_dielectric(void) {
         long refl = 0, n = 200000, bad = 0;
         for (long i = 0; i < n; i++) {
             scatter_event ev;
-            if (!mat_scatter(&m, d, nrm, cases[k].front, &r, &ev) || ev.weight.x != 1.0f) { bad++; continue; }
+            if (!mat_scatter(&m, m.albedo, d, nrm, cases[k].front, &r, &ev) || ev.weight.x != 1.0f) { bad++; continue; }
             if (ev.dir.z > 0) {
                 refl++;
                 if (v3_len(v3_sub(ev.dir, v3_reflect(d, nrm))) > 1e-6f) bad++;
@@ -248,7 +248,7 @@ static void test_dielectric(void) {
     long refl = 0, n = 10000;
     for (long i = 0; i < n; i++) {
         scatter_event ev;
-        if (mat_scatter(&m, d, nrm, false, &r, &ev) && ev.dir.z > 0) refl++;
+        if (mat_scatter(&m, m.albedo, d, nrm, false, &r, &ev) && ev.dir.z > 0) refl++;
     }
     CHECK(refl == n);
     CHECK_NEAR(mat_dielectric_reflectance(0.6f, 1.5f), 1.0, 0);
@@ -264,7 +264,7 @@ static void test_phong(void) {
     long mirror = 0, n = 100000, bad = 0;
     for (long i = 0; i < n; i++) {
         scatter_event ev;
-        if (!mat_scatter(&m, d, nrm, true, &r, &ev)) { bad++; continue; }
+        if (!mat_scatter(&m, m.albedo, d, nrm, true, &r, &ev)) { bad++; continue; }
         if (!ev.diffuse) {
             mirror++;
             if (v3_len(v3_sub(ev.dir, v3_reflect(d, nrm))) > 1e-6f || ev.weight.x != 1.0f) bad++;
@@ -281,12 +281,44 @@ static void test_emitter(void) {
     m.emission = v3(2, 3, 4);
     rng r = rng_for_sample(8, 0, 0);
     scatter_event ev;
-    CHECK(!mat_scatter(&m, v3(0, -1, 0), v3(0, 1, 0), true, &r, &ev));
-    CHECK(mat_emitted(&m, true).y == 3.0f && mat_emitted(&m, false).y == 0.0f);
+    CHECK(!mat_scatter(&m, m.albedo, v3(0, -1, 0), v3(0, 1, 0), true, &r, &ev));
+    vec3 p = v3s(0.0f);
+    CHECK(mat_emitted(&m, NULL, true, 0, 0, p).y == 3.0f && mat_emitted(&m, NULL, false, 0, 0, p).y == 0.0f);
     m.two_sided = true;
-    CHECK(mat_emitted(&m, false).z == 4.0f);
+    CHECK(mat_emitted(&m, NULL, false, 0, 0, p).z == 4.0f);
     material lam = material_default(MAT_LAMBERTIAN);
-    CHECK(mat_emitted(&lam, true).x == 0.0f);
+    CHECK(mat_emitted(&lam, NULL, true, 0, 0, p).x == 0.0f);
+}
+
+// Textures: the albedo texture replaces `albedo` (a checker gives each region its colour, and the scatter
+// weight follows), the emission texture multiplies `emission`; materials without textures never look one up.
+static void test_textured_materials(void) {
+    texture tex[2] = {texture_checker(1.0f, v3(0.2f, 0.4f, 0.6f), v3(0.9f, 0.8f, 0.7f)), texture_solid(v3(0.5f, 1.0f, 2.0f))};
+    material m = material_default(MAT_LAMBERTIAN);
+    m.albedo = v3s(0.3f);
+    CHECK(mat_albedo(&m, NULL, 0.5f, 0.5f, v3(0.5f, 0.5f, 0.5f)).x == 0.3f);
+    m.albedo_texture = 0;
+    vec3 even = mat_albedo(&m, tex, 0, 0, v3(0.5f, 0.5f, 0.5f)), odd = mat_albedo(&m, tex, 0, 0, v3(1.5f, 0.5f, 0.5f));
+    CHECK(even.x == 0.2f && even.y == 0.4f && even.z == 0.6f);
+    CHECK(odd.x == 0.9f && odd.y == 0.8f && odd.z == 0.7f);
+    rng r = rng_for_sample(9, 0, 0);
+    scatter_event ev;
+    CHECK(mat_scatter(&m, odd, v3(0, -1, 0), v3(0, 1, 0), true, &r, &ev) && ev.weight.y == 0.8f);
+    material l = material_default(MAT_DIFFUSE_LIGHT);
+    l.emission = v3s(4.0f);
+    l.emission_texture = 1;
+    vec3 e = mat_emitted(&l, tex, true, 0, 0, v3s(0.0f));
+    CHECK(e.x == 2.0f && e.y == 4.0f && e.z == 8.0f);
+    CHECK(mat_emitted(&l, tex, false, 0, 0, v3s(0.0f)).x == 0.0f);
+    // Dielectric events say whether they crossed the surface.
+    material g = material_default(MAT_DIELECTRIC);
+    long crossed = 0, n = 20000;
+    for (long i = 0; i < n; i++)
+        if (mat_scatter(&g, g.albedo, v3(0, 0, -1), v3(0, 0, 1), true, &r, &ev) && ev.transmitted == (ev.dir.z < 0))
+            crossed += ev.transmitted;
+        else
+            crossed = -n;
+    CHECK(binomial_ok("dielectric transmission at normal incidence", crossed, n, 0.96));
 }
 
 int main(void) {
@@ -298,5 +330,6 @@ int main(void) {
     test_dielectric();
     test_phong();
     test_emitter();
+    test_textured_materials();
     return check_summary();
 }

@@ -3,6 +3,7 @@
 #include "glint.h"
 
 #include <errno.h>
+#include <stdbool.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -67,8 +68,8 @@ static const bad_scene cases[] = {
     {__LINE__, TEXT("[{\"type\": \"sphere\"}]"),
      "bad.json:1:1: the scene must be a JSON object, got [{\"type\": \"sphere\"}]"},
     {__LINE__, TEXT("{\"render\": {}, \"cameras\": {}}"),
-     "bad.json:1:16: unknown key \"cameras\" in the scene; expected one of: render, camera, materials, objects, "
-     "lights"},
+     "bad.json:1:16: unknown key \"cameras\" in the scene; expected one of: render, camera, textures, materials, "
+     "objects, lights"},
     {__LINE__, TEXT("{\"render\": {\"samples\": 4}}"),
      "bad.json:1:13: unknown key \"samples\" in render; expected one of: width, height, spp, max_depth, seed, "
      "integrator, background, output, accel"},
@@ -79,7 +80,8 @@ static const bad_scene cases[] = {
      "specular_color"},
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1, "
                     "\"material\": \"m\"}]}"),
-     "bad.json:1:33: unknown key \"centre\" in object 0 (sphere); expected one of: type, center, radius, material"},
+     "bad.json:1:33: unknown key \"centre\" in object 0 (sphere); expected one of: type, center, radius, material, "
+     "transform"},
     {__LINE__, TEXT("{\"lights\": [{\"type\": \"ambient\", \"intensity\": 0.2, \"position\": [0, 0, 0]}]}"),
      "bad.json:1:51: unknown key \"position\" in light 0 (ambient); expected one of: type, intensity"},
     {__LINE__, TEXT("{\"render\": {\"width\": 64, \"width\": 32}}"),
@@ -159,7 +161,15 @@ static const bad_scene cases[] = {
     {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": [0.5, 1.5, 0.5]}}}"),
      "bad.json:1:60: \"albedo\"[1] must be a number in [0, 1], got 1.5"},
     {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": \"red\"}}}"),
-     "bad.json:1:54: \"albedo\" must be a number in [0, 1] or an array of 3 such numbers [r, g, b], got \"red\""},
+     "bad.json:1:54: texture \"red\" is not defined (no named textures are defined)"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": true}}}"),
+     "bad.json:1:54: \"albedo\" must be a number in [0, 1], an array of 3 such numbers [r, g, b], a texture name or a "
+     "texture object, got true"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": [1, 1]}}}"),
+     "bad.json:1:54: \"albedo\" must be a number in [0, 1], an array of 3 such numbers [r, g, b], a texture name or a "
+     "texture object, got [1, 1]"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"phong\", \"specular_color\": \"t\"}}}"),
+     "bad.json:1:57: \"specular_color\" must be a number in [0, 1] or an array of 3 such numbers [r, g, b], got \"t\""},
     {__LINE__, TEXT("{\"materials\": {\"g\": {\"type\": \"dielectric\", \"ior\": 0}}}"),
      "bad.json:1:51: \"ior\" must be a finite number > 0, got 0"},
     {__LINE__, TEXT("{\"materials\": {\"r\": {\"type\": \"phong\", \"specular\": 9900.5}}}"),
@@ -172,11 +182,12 @@ static const bad_scene cases[] = {
      "bad.json:1:59: \"emission\" must be a finite number >= 0 or an array of 3 such numbers [r, g, b], got 1e999"},
     // --- objects ---
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"cube\", \"size\": 1}]}"),
-     "bad.json:1:23: \"type\" must be \"sphere\", got \"cube\""},
+     "bad.json:1:23: \"type\" must be \"sphere\", \"quad\", \"box\" or \"mesh\", got \"cube\""},
     {__LINE__, TEXT("{\"objects\": [\n  {\"type\": \"sphere\", \"radius\": 1, \"material\": \"m\"}\n]}"),
      "bad.json:2:3: missing required key \"center\" in object 0 (sphere)"},
     {__LINE__, TEXT("{\"objects\": [{\"center\": [0, 0, 0]}]}"),
-     "bad.json:1:14: missing required key \"type\" in object 0; expected one of \"sphere\""},
+     "bad.json:1:14: missing required key \"type\" in object 0; expected one of \"sphere\", \"quad\", \"box\" or "
+     "\"mesh\""},
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0, "
                     "\"material\": {\"type\": \"phong\"}}]}"),
      "bad.json:1:64: \"radius\" must be a finite non-zero number, got 0"},
@@ -207,6 +218,150 @@ static const bad_scene cases[] = {
           "\"roughness\": 1}}]}"),
      "bad.json:1:97: unknown key \"roughness\" in the material of object 0 (sphere); expected one of: type, "
      "albedo, fuzz"},
+    // --- textures ---
+    {__LINE__, TEXT("{\"textures\": [{\"type\": \"solid\"}]}"),
+     "bad.json:1:14: \"textures\" must be a JSON object mapping names to textures, got [{\"type\": \"solid\"}]"},
+    {__LINE__, TEXT("{\"textures\": {\"wood\": {\"type\": \"wood\"}}}"),
+     "bad.json:1:32: \"type\" must be \"solid\", \"checker\", \"noise\", \"turbulence\", \"marble\" or \"image\", "
+     "got \"wood\""},
+    {__LINE__, TEXT("{\"textures\": {\"c\": {\"type\": \"checker\", \"size\": 2}}}"),
+     "bad.json:1:40: unknown key \"size\" in texture \"c\"; expected one of: type, scale, even, odd"},
+    {__LINE__, TEXT("{\"textures\": {\"c\": {\"type\": \"checker\", \"scale\": 0}}}"),
+     "bad.json:1:49: \"scale\" must be a finite number > 0, got 0"},
+    {__LINE__, TEXT("{\"textures\": {\"c\": {\"type\": \"checker\", \"scale\": 1e-40}}}"),
+     "bad.json:1:49: \"scale\" must be at least 1.17549e-38, got 1e-40"},
+    {__LINE__, TEXT("{\"textures\": {\"c\": {\"type\": \"checker\", \"odd\": [0, -1, 0]}}}"),
+     "bad.json:1:51: \"odd\"[1] must be a finite number >= 0, got -1"},
+    {__LINE__, TEXT("{\"textures\": {\"n\": {\"type\": \"noise\", \"depth\": 7}}}"),
+     "bad.json:1:38: unknown key \"depth\" in texture \"n\"; expected one of: type, scale, color, seed"},
+    {__LINE__, TEXT("{\"textures\": {\"m\": {\"type\": \"marble\", \"depth\": 0}}}"),
+     "bad.json:1:48: \"depth\" must be an integer in [1, 32], got 0"},
+    {__LINE__, TEXT("{\"textures\": {\"s\": {\"type\": \"solid\"}}}"),
+     "bad.json:1:20: missing required key \"color\" in texture \"s\""},
+    {__LINE__, TEXT("{\"textures\": {\"i\": {\"type\": \"image\", \"file\": \"\"}}}"),
+     "bad.json:1:46: \"file\" must be a non-empty string (a path relative to the scene file), got \"\""},
+    {__LINE__, TEXT("{\"textures\": {\"a\": {\"type\": \"solid\", \"color\": 1}, "
+                    "\"a\": {\"type\": \"solid\", \"color\": 0}}}"),
+     "bad.json:1:51: duplicate texture name \"a\" (first defined at 1:15)"},
+    {__LINE__,
+     TEXT("{\"textures\": {\"wood\": {\"type\": \"solid\", \"color\": 0.5}, \"tiles\": {\"type\": \"checker\"}},\n"
+          " \"materials\": {\"m\": {\"type\": \"metal\", \"albedo\": \"woood\"}}}"),
+     "bad.json:2:49: texture \"woood\" is not defined (defined: wood, tiles)"},
+    {__LINE__,
+     TEXT("{\"textures\": {\"hot\": {\"type\": \"solid\", \"color\": [1, 2, 1]}},\n"
+          " \"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": \"hot\"}}}"),
+     "bad.json:2:54: \"albedo\" must stay in [0, 1], but this texture has colour components up to 2"},
+    {__LINE__,
+     TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": {\"type\": \"checker\", \"even\": 0.5, "
+          "\"odd\": 3}}}}"),
+     "bad.json:1:54: \"albedo\" must stay in [0, 1], but this texture has colour components up to 3"},
+    {__LINE__,
+     TEXT("{\"materials\": {\"m\": {\"type\": \"dielectric\", \"tint\": {\"type\": \"noise\", \"scael\": 4}}}}"),
+     "bad.json:1:70: unknown key \"scael\" in the texture \"tint\" of material \"m\"; expected one of: type, scale, "
+     "color, seed"},
+    {__LINE__, TEXT("{\"materials\": {\"l\": {\"type\": \"diffuse_light\", \"emission\": {\"color\": 4}}}}"),
+     "bad.json:1:59: missing required key \"type\" in the texture \"emission\" of material \"l\"; expected one of "
+     "\"solid\", \"checker\", \"noise\", \"turbulence\", \"marble\" or \"image\""},
+    // --- transforms ---
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", "
+                    "\"transform\": [{\"translate\": [1, 0, 0]}, 3]}]}"),
+     "bad.json:2:124: transform[1] must be a JSON object, got 3"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1, 0, 0], \"v\": [0, 1, 0], "
+                    "\"material\": \"m\", \"transform\": {\"translate\": [1, 0, 0]}}]}"),
+     "bad.json:2:109: \"transform\" must be an array of operations ({\"translate\": ...}, {\"rotate\": ...}, "
+     "{\"scale\": ...} or {\"matrix\": ...}), got an object"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"rotation\": {\"axis\": [0, 1, 0], \"degrees\": 15}}]}]}"),
+     "bad.json:3:19: unknown key \"rotation\" in transform[0]; expected one of: translate, rotate, scale, matrix"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"scale\": 2}, {\"translate\": [1, 0, 0], \"scale\": 2}]}]}"),
+     "bad.json:3:32: transform[1] must hold exactly one operation (translate, rotate, scale or matrix), got 2; put "
+     "each in its own element, they apply in array order"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{}]}]}"),
+     "bad.json:3:18: transform[0] must hold exactly one operation (translate, rotate, scale or matrix), got 0; put "
+     "each in its own element, they apply in array order"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"rotate\": {\"axis\": [0, 0, 0], \"degrees\": 15}}]}]}"),
+     "bad.json:3:38: \"axis\" must be a non-zero vector, got [0, 0, 0]"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"rotate\": {\"axis\": [0, 1, 0], \"angle\": 15}}]}]}"),
+     "bad.json:3:49: unknown key \"angle\" in \"rotate\" of transform[0]; expected one of: axis, degrees"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"rotate\": {\"axis\": [0, 1, 0]}}]}]}"),
+     "bad.json:3:29: missing required key \"degrees\" in \"rotate\" of transform[0]"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"scale\": 0}]}]}"),
+     "bad.json:3:28: \"scale\" must be a finite non-zero number, got 0"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"scale\": [1, 0, 1]}]}]}"),
+     "bad.json:3:32: \"scale\"[1] must be a finite non-zero number, got 0"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"scale\": \"2\"}]}]}"),
+     "bad.json:3:28: \"scale\" must be a finite non-zero number or an array of 3 such numbers [x, y, z], got \"2\""},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"matrix\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 0, 0, 0, 0, 0, 1]}]}]}"),
+     "bad.json:3:29: \"matrix\" is singular (determinant 0); expected an invertible matrix"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"matrix\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1, 1]}]}]}"),
+     "bad.json:3:29: \"matrix\" must be affine: its last row must be [0, 0, 0, 1], got [0, 0, 1, 1]"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"matrix\": [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0]}]}]}"),
+     "bad.json:3:29: \"matrix\" must be an array of 16 numbers (a 4x4 matrix, row by row), got [1, 0, 0, 0, 0, "
+     "1, 0, 0, 0, 0, 1, 0]"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"translate\": [0, 1e999, 0]}]}]}"),
+     "bad.json:3:36: \"translate\"[1] must be a finite number, got 1e999"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"scale\": 1e30}, {\"scale\": 1e30}]}]}"),
+     "bad.json:3:35: transform[1] makes the transform overflow single precision"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\",\n"
+                    "   \"transform\": [{\"scale\": 1e-30}, {\"scale\": 1e-30}]}]}"),
+     "bad.json:3:17: \"transform\" is singular or too close to it to invert in single precision (determinant 0)"},
+    // --- quads and boxes ---
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1, 0, 0], \"v\": [2, 0, 0], "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:2:68: \"u\" and \"v\" must be non-zero and not parallel (the quad has no area)"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [3e38, 0, 0], \"v\": [0, 3e38, 0], "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:2:71: the quad is too large: its area overflows single precision"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1, 0, 0], \"material\": \"m\"}]}"),
+     "bad.json:1:14: missing required key \"v\" in object 0 (quad)"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"box\", \"min\": [0, 5, 0], \"max\": [1, 3, 1], "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:1:55: \"max\" must be greater than \"min\" in every coordinate, but \"max\"[1] = 3 <= \"min\"[1] = 5"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 0], "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:1:55: \"max\" must be greater than \"min\" in every coordinate, but \"max\"[2] = 0 <= \"min\"[2] = 0"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"size\": 1}]}"),
+     "bad.json:1:66: unknown key \"size\" in object 0 (box); expected one of: type, min, max, material, transform"},
+    // --- meshes (files that exist or not are in test_files) ---
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"mesh\", \"file\": 3}]}"),
+     "bad.json:1:39: \"file\" must be a non-empty string (a path relative to the scene file), got 3"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"mesh\"}]}"),
+     "bad.json:1:14: missing required key \"file\" in object 0 (mesh)"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"mesh\", \"file\": \"a.obj\", \"smooth\": true}]}"),
+     "bad.json:1:48: unknown key \"smooth\" in object 0 (mesh); expected one of: type, file, material, transform, "
+     "face_normals"},
     // --- lights ---
     {__LINE__, TEXT("{\"lights\": [{\"type\": \"spot\", \"intensity\": 1}]}"),
      "bad.json:1:22: \"type\" must be \"ambient\", \"point\" or \"directional\", got \"spot\""},
@@ -290,8 +445,99 @@ static void test_files(void) {
     remove(path);
 }
 
+// Writes a small file for a test; false (and a failed check) when it cannot.
+static bool write_file(const char *path, const char *text) {
+    FILE *f = fopen(path, "wb");
+    CHECK(f != NULL);
+    if (!f) return false;
+    fputs(text, f);
+    return fclose(f) == 0;
+}
+
+// Parses text named `name` and checks the message starts with `prefix` (the rest is another reader's wording).
+static void check_prefix(int line, const char *name, const char *text, const char *prefix) {
+    glint_scene *scene = NULL;
+    glint_error err = {{0}};
+    glint_status st = glint_scene_parse(name, text, strlen(text), &scene, &err);
+    if (st == GLINT_ERR_INPUT && scene == NULL && strncmp(err.message, prefix, strlen(prefix)) == 0) {
+        check_passed++;
+    } else {
+        check_failed++;
+        fprintf(stderr, "%s:%d: status %d\n  got:  %s\n  want: %s...\n", __FILE__, line, (int)st, err.message, prefix);
+    }
+    glint_scene_free(scene);
+}
+
+static void check_parse(int line, const char *name, const char *text, const char *want) {
+    glint_scene *scene = NULL;
+    glint_error err = {{0}};
+    glint_status st = glint_scene_parse(name, text, strlen(text), &scene, &err);
+    check_message(line, st, scene, err.message, want);
+    glint_scene_free(scene);
+}
+
+// Mesh and image files: missing, directories, relative to the scene's directory, of the wrong kind, or broken.
+static void test_referenced_files(void) {
+    char want[1024];
+    snprintf(want, sizeof want, "bad.json:1:39: mesh file \"nosuch.obj\": cannot open: %s", strerror(ENOENT));
+    check_parse(__LINE__, "bad.json", "{\"objects\": [{\"type\": \"mesh\", \"file\": \"nosuch.obj\"}]}", want);
+    snprintf(want, sizeof want, "bad.json:1:39: mesh file \".\": cannot open: %s", strerror(EISDIR));
+    check_parse(__LINE__, "bad.json", "{\"objects\": [{\"type\": \"mesh\", \"file\": \".\"}]}", want);
+    // Relative to the scene file's directory, which the message shows when it differs from what is written.
+    snprintf(want, sizeof want, "sub/bad.json:1:39: mesh file \"x.obj\" (sub/x.obj): cannot open: %s",
+             strerror(ENOENT));
+    check_parse(__LINE__, "sub/bad.json", "{\"objects\": [{\"type\": \"mesh\", \"file\": \"x.obj\"}]}", want);
+    snprintf(want, sizeof want, "sub/bad.json:1:39: mesh file \"/no/x.obj\": cannot open: %s", strerror(ENOENT));
+    check_parse(__LINE__, "sub/bad.json", "{\"objects\": [{\"type\": \"mesh\", \"file\": \"/no/x.obj\"}]}", want);
+    snprintf(want, sizeof want, "bad.json:1:46: image file \"nosuch.png\": cannot open: %s", strerror(ENOENT));
+    check_parse(__LINE__, "bad.json", "{\"textures\": {\"t\": {\"type\": \"image\", \"file\": \"nosuch.png\"}}}", want);
+    snprintf(want, sizeof want, "bad.json:1:46: image file \".\": cannot open: %s", strerror(EISDIR));
+    check_parse(__LINE__, "bad.json", "{\"textures\": {\"t\": {\"type\": \"image\", \"file\": \".\"}}}", want);
+    snprintf(want, sizeof want, "bad.json:1:80: image file \"no.jpg\": cannot open: %s", strerror(ENOENT));
+    check_parse(__LINE__, "bad.json",
+                "{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": {\"type\": \"image\", \"file\": "
+                "\"no.jpg\"}}}}",
+                want);
+    // Devices and other special files are refused before anything reads them.
+    check_parse(__LINE__, "bad.json", "{\"objects\": [{\"type\": \"mesh\", \"file\": \"/dev/null\"}]}",
+                "bad.json:1:39: mesh file \"/dev/null\": cannot open: not a regular file");
+
+    const char *ply = "test_scene_errors.tmp.ply", *obj = "test_scene_errors.tmp.obj",
+               *png = "test_scene_errors.tmp.png", *mtl = "test_scene_errors.tmp.mtl",
+               *obj2 = "test_scene_errors.tmp2.obj";
+    if (write_file(ply, "ply\n"))
+        check_parse(__LINE__, "bad.json",
+                    "{\"objects\": [{\"type\": \"mesh\", \"file\": \"test_scene_errors.tmp.ply\"}]}",
+                    "bad.json:1:39: mesh file \"test_scene_errors.tmp.ply\": unsupported format; expected a Wavefront "
+                    "OBJ file (.obj)");
+    // The OBJ reader's own message follows, with its file and line.
+    if (write_file(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"))
+        check_prefix(__LINE__, "bad.json",
+                     "{\"objects\": [{\"type\": \"mesh\", \"file\": \"test_scene_errors.tmp.obj\"}]}",
+                     "bad.json:1:39: mesh file \"test_scene_errors.tmp.obj\": test_scene_errors.tmp.obj:4: ");
+    // An image that does not decode: the image reader's reason, without its repeated path.
+    if (write_file(png, "not an image\n")) {
+        check_prefix(__LINE__, "bad.json",
+                     "{\"textures\": {\"t\": {\"type\": \"image\", \"file\": \"test_scene_errors.tmp.png\"}}}",
+                     "bad.json:1:46: image file \"test_scene_errors.tmp.png\": not a PNG or JPEG");
+        // The same as an OBJ material's map_Kd: the message names the mesh and the material.
+        if (write_file(mtl, "newmtl skin\nKd 1 1 1\nmap_Kd test_scene_errors.tmp.png\n") &&
+            write_file(obj2, "mtllib test_scene_errors.tmp.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl skin\nf 1 2 3\n"))
+            check_prefix(__LINE__, "bad.json",
+                         "{\"objects\": [{\"type\": \"mesh\", \"file\": \"test_scene_errors.tmp2.obj\"}]}",
+                         "bad.json:1:39: mesh file \"test_scene_errors.tmp2.obj\": material \"skin\": image file "
+                         "\"test_scene_errors.tmp.png\": not a PNG or JPEG");
+    }
+    remove(ply);
+    remove(obj);
+    remove(png);
+    remove(mtl);
+    remove(obj2);
+}
+
 int main(void) {
     run_table();
+    test_referenced_files();
     test_deep_nesting();
     test_too_large();
     test_files();

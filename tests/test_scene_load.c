@@ -1,9 +1,12 @@
 // test_scene_load.c — good scene files parse to the expected scene structs: defaults, named and inline
-// materials, both cameras, every light kind, number-or-RGB colours, key order, encodings.
+// materials, both cameras, every light kind, number-or-RGB colours, key order, encodings; textures, quads,
+// boxes, transforms (order, baking, instances), meshes (loaded once, MTL materials) and the issue-5 scenes.
 #include "check.h"
 #include "glint.h"
 #include "scene/scene.h"
 
+#include <math.h>
+#include <stdbool.h>
 #include <string.h>
 
 #define CHECK_VEC(v, X, Y, Z)             \
@@ -303,6 +306,385 @@ static void test_paper_file(void) {
     glint_scene_free(s);
 }
 
+// Parses text as a file in scenes/, so that relative paths resolve to the repository's meshes and images.
+static glint_scene *parse_in_scenes(const char *text) {
+    glint_scene *s = NULL;
+    glint_error err = {{0}};
+    glint_status st = glint_scene_parse(GLINT_SOURCE_DIR "/scenes/inline.json", text, strlen(text), &s, &err);
+    CHECK(st == GLINT_OK);
+    if (st != GLINT_OK) fprintf(stderr, "  unexpected error: %s\n", err.message);
+    return st == GLINT_OK ? s : NULL;
+}
+
+// Index of the material with this name, or -1 (names of OBJ materials may repeat: the first counts).
+static long material_named(const glint_scene *s, const char *name) { return scene_find_material(s, name); }
+
+static void test_textures(void) {
+    glint_scene *s = parse_in_scenes(
+        "{\"textures\": {\n"
+        "  \"tiles\": {\"type\": \"checker\", \"scale\": 0.32, \"even\": [0.2, 0.3, 0.1], \"odd\": 0.9},\n"
+        "  \"plain\": {\"type\": \"checker\"},\n"
+        "  \"n\": {\"type\": \"noise\", \"scale\": 4},\n"
+        "  \"t\": {\"type\": \"turbulence\", \"scale\": 2, \"depth\": 5, \"color\": [1, 0.5, 0.25], \"seed\": 7},\n"
+        "  \"marble\": {\"type\": \"marble\", \"scale\": 4, \"depth\": 7},\n"
+        "  \"red\": {\"type\": \"solid\", \"color\": [1, 0, 0]},\n"
+        "  \"hot\": {\"type\": \"solid\", \"color\": 4},\n"
+        "  \"spot\": {\"type\": \"image\", \"file\": \"meshes/spot/spot_texture.png\"},\n"
+        "  \"spot2\": {\"type\": \"image\", \"file\": \"meshes/spot/../spot/spot_texture.png\"}\n"
+        "},\n"
+        "\"materials\": {\n"
+        "  \"ground\": {\"type\": \"lambertian\", \"albedo\": \"tiles\"},\n"
+        "  \"steel\": {\"type\": \"metal\", \"albedo\": \"red\", \"fuzz\": 0.1},\n"
+        "  \"glass\": {\"type\": \"dielectric\", \"tint\": {\"type\": \"solid\", \"color\": [0.9, 1, 0.9]}},\n"
+        "  \"shiny\": {\"type\": \"phong\", \"color\": \"marble\"},\n"
+        "  \"lamp\": {\"type\": \"diffuse_light\", \"emission\": \"hot\"},\n"
+        "  \"plainlamp\": {\"type\": \"diffuse_light\", \"emission\": [1, 2, 3]},\n"
+        "  \"cow\": {\"type\": \"lambertian\", \"albedo\": {\"type\": \"image\", \"file\": "
+        "\"meshes/spot/spot_texture.png\"}},\n"
+        "  \"cow2\": {\"type\": \"lambertian\", \"albedo\": \"spot2\"},\n"
+        "  \"grey\": {\"type\": \"lambertian\", \"albedo\": 0.5}\n"
+        "}}");
+    if (!s) return;
+    // One image file, three references (two names, one inline): decoded once.
+    CHECK(s->texture_count == 9);
+    CHECK(scene_find_texture(s, "tiles") == 0 && scene_find_texture(s, "spot") == 7);
+    const texture *t = &s->textures[0];
+    CHECK(t->kind == TEX_CHECKER);
+    CHECK_NEAR(t->scale, 0.32, 1e-7);
+    CHECK_VEC(t->even, 0.2, 0.3, 0.1);
+    CHECK_VEC(t->odd, 0.9, 0.9, 0.9);
+    t = &s->textures[1]; // the defaults
+    CHECK(t->kind == TEX_CHECKER && t->scale == 1.0f);
+    CHECK_VEC(t->even, 1, 1, 1);
+    CHECK_VEC(t->odd, 0, 0, 0);
+    t = &s->textures[2];
+    CHECK(t->kind == TEX_NOISE && t->noise == NOISE_PLAIN && t->scale == 4.0f && t->perlin != NULL);
+    CHECK_VEC(t->color, 1, 1, 1);
+    t = &s->textures[3];
+    CHECK(t->kind == TEX_NOISE && t->noise == NOISE_TURBULENCE && t->scale == 2.0f && t->depth == 5);
+    CHECK_VEC(t->color, 1, 0.5, 0.25);
+    // A different seed, different tables.
+    CHECK(s->textures[2].perlin && t->perlin && memcmp(s->textures[2].perlin, t->perlin, sizeof *t->perlin) != 0);
+    t = &s->textures[4];
+    CHECK(t->kind == TEX_NOISE && t->noise == NOISE_MARBLE && t->depth == 7);
+    CHECK(s->textures[5].kind == TEX_SOLID);
+    CHECK_VEC(s->textures[5].color, 1, 0, 0);
+    CHECK_VEC(s->textures[6].color, 4, 4, 4);
+    t = &s->textures[7];
+    CHECK(t->kind == TEX_IMAGE && t->image.width == 1024 && t->image.height == 1024 && t->image.pixels != NULL);
+    CHECK(s->textures[8].kind == TEX_SOLID && s->texture_names[8] == NULL);
+    CHECK_VEC(s->textures[8].color, 0.9, 1, 0.9);
+
+    const material *m = &s->materials[material_named(s, "ground")];
+    CHECK(m->kind == MAT_LAMBERTIAN && m->albedo_texture == 0);
+    m = &s->materials[material_named(s, "steel")];
+    CHECK(m->kind == MAT_METAL && m->albedo_texture == 5 && m->emission_texture == -1);
+    m = &s->materials[material_named(s, "glass")];
+    CHECK(m->kind == MAT_DIELECTRIC && m->albedo_texture == 8);
+    m = &s->materials[material_named(s, "shiny")];
+    CHECK(m->kind == MAT_PHONG && m->albedo_texture == 4);
+    // An emission texture gives the radiance: the scalar emission stays 1.
+    m = &s->materials[material_named(s, "lamp")];
+    CHECK(m->kind == MAT_DIFFUSE_LIGHT && m->emission_texture == 6 && m->albedo_texture == -1);
+    CHECK_VEC(m->emission, 1, 1, 1);
+    m = &s->materials[material_named(s, "plainlamp")];
+    CHECK(m->emission_texture == -1);
+    CHECK_VEC(m->emission, 1, 2, 3);
+    CHECK(s->materials[material_named(s, "cow")].albedo_texture == 7);
+    CHECK(s->materials[material_named(s, "cow2")].albedo_texture == 7);
+    m = &s->materials[material_named(s, "grey")];
+    CHECK(m->albedo_texture == -1);
+    CHECK_VEC(m->albedo, 0.5, 0.5, 0.5);
+    glint_scene_free(s);
+}
+
+// Whether two vectors are bit-for-bit equal.
+static bool same_vec(vec3 a, vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+static void test_quads_and_boxes(void) {
+    glint_scene *s = parse(
+        "{\"materials\": {\"w\": {\"type\": \"lambertian\"}, \"l\": {\"type\": \"diffuse_light\", \"emission\": 15}},\n"
+        " \"objects\": [\n"
+        "  {\"type\": \"quad\", \"q\": [0, 0, 555], \"u\": [0, 0, -555], \"v\": [0, 555, 0], \"material\": \"w\"},\n"
+        "  {\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [165, 330, 165], \"material\": \"w\"},\n"
+        "  {\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [165, 330, 165], \"material\": \"w\", \"transform\":\n"
+        "   [{\"rotate\": {\"axis\": [0, 1, 0], \"degrees\": 15}}, {\"translate\": [265, 0, 295]}]},\n"
+        "  {\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1, 0, 0], \"v\": [0, 1, 0], \"material\": \"l\",\n"
+        "   \"transform\": [{\"scale\": [-1, 1, 1]}]}\n"
+        "]}");
+    if (!s) return;
+    CHECK(s->quad_count == 14 && s->sphere_count == 0 && s->instance_count == 0);
+    if (s->quad_count != 14) {
+        glint_scene_free(s);
+        return;
+    }
+    const quad *q = &s->quads[0];
+    CHECK_VEC(q->q, 0, 0, 555);
+    CHECK_VEC(q->u, 0, 0, -555);
+    CHECK_VEC(q->v, 0, 555, 0);
+    CHECK_VEC(q->normal, 1, 0, 0); // the front is where u x v points: the red wall faces into the box
+    CHECK_NEAR(q->area, 555.0 * 555.0, 1e-3);
+    CHECK(q->material == 0);
+
+    // The plain box: six faces, normals outwards, the box's exact coordinates at every corner.
+    double area = 0.0;
+    for (int i = 1; i <= 6; i++) {
+        q = &s->quads[i];
+        vec3 c = v3_scale(v3_add(q->p[0], q->p[2]), 0.5f);
+        CHECK(v3_dot(q->normal, v3_sub(c, v3(82.5f, 165.0f, 82.5f))) > 0.0f);
+        area += q->area;
+        for (int k = 0; k < 4; k++) {
+            vec3 p = q->p[k];
+            CHECK((p.x == 0 || p.x == 165) && (p.y == 0 || p.y == 330) && (p.z == 0 || p.z == 165));
+        }
+    }
+    CHECK_NEAR(area, 2.0 * (165.0 * 330.0 * 2.0 + 165.0 * 165.0), 1e-2);
+
+    // The Cornell box's tall box: rotated 15 degrees about y (x' = x cos + z sin, z' = -x sin + z cos, the
+    // book's rotate_y), then translated; still six outward faces sharing exactly eight corners.
+    double c15 = cos(15.0 * 3.14159265358979323846 / 180.0), s15 = sin(15.0 * 3.14159265358979323846 / 180.0);
+    vec3 centre = v3((float)(82.5 * c15 + 82.5 * s15 + 265.0), 165.0f, (float)(-82.5 * s15 + 82.5 * c15 + 295.0));
+    vec3 corners[24];
+    int distinct = 0;
+    for (int i = 7; i <= 12; i++) {
+        q = &s->quads[i];
+        const quad *plain = &s->quads[i - 6];
+        vec3 c = v3_scale(v3_add(q->p[0], q->p[2]), 0.5f);
+        CHECK(v3_dot(q->normal, v3_sub(c, centre)) > 0.0f);
+        CHECK_NEAR(q->area, plain->area, 1e-2 * plain->area * 1e-3);
+        for (int k = 0; k < 4; k++) {
+            vec3 p = plain->p[k], w = q->p[k];
+            CHECK_NEAR(w.x, p.x * c15 + p.z * s15 + 265.0, 1e-3);
+            CHECK_NEAR(w.y, p.y, 1e-3);
+            CHECK_NEAR(w.z, -p.x * s15 + p.z * c15 + 295.0, 1e-3);
+            bool seen = false;
+            for (int j = 0; j < distinct && !seen; j++) seen = same_vec(corners[j], w);
+            if (!seen) corners[distinct++] = w;
+        }
+    }
+    CHECK(distinct == 8); // shared corners are bit-identical: the transformed box stays watertight
+
+    // A mirror keeps the front: the quad in the z = 0 plane still faces +z after x -> -x.
+    q = &s->quads[13];
+    CHECK_VEC(q->normal, 0, 0, 1);
+    CHECK(q->material == 1);
+    CHECK_NEAR(q->area, 1.0, 1e-6);
+    for (int k = 0; k < 4; k++) CHECK(q->p[k].x <= 0.0f && q->p[k].y >= 0.0f && q->p[k].z == 0.0f);
+    glint_scene_free(s);
+}
+
+// Transform operations apply in array order: the first one to the object, each next one to the result.
+static void test_transform_order(void) {
+    glint_scene *s = parse(
+        "{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+        " \"objects\": [\n"
+        "  {\"type\": \"sphere\", \"center\": [1, 0, 0], \"radius\": 0.5, \"material\": \"m\", \"transform\":\n"
+        "   [{\"rotate\": {\"axis\": [0, 1, 0], \"degrees\": 90}}, {\"translate\": [1, 0, 0]}]},\n"
+        "  {\"type\": \"sphere\", \"center\": [1, 0, 0], \"radius\": 0.5, \"material\": \"m\", \"transform\":\n"
+        "   [{\"translate\": [1, 0, 0]}, {\"rotate\": {\"axis\": [0, 1, 0], \"degrees\": 90}}]},\n"
+        "  {\"type\": \"sphere\", \"center\": [1, 0, 0], \"radius\": 0.5, \"material\": \"m\", \"transform\":\n"
+        "   [{\"scale\": 2}, {\"matrix\": [1, 0, 0, 5, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]}]},\n"
+        "  {\"type\": \"sphere\", \"center\": [0, 1, 0], \"radius\": -0.5, \"material\": \"m\", \"transform\":\n"
+        "   [{\"rotate\": {\"axis\": [1, 1, 1], \"degrees\": 30}}, {\"scale\": [-3, 3, 3]}]},\n"
+        "  {\"type\": \"sphere\", \"center\": [0, 1, 0], \"radius\": 0.5, \"material\": \"m\", \"transform\":\n"
+        "   [{\"scale\": [1, 2, 1]}, {\"translate\": [0, 0, 4]}]},\n"
+        "  {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", \"transform\": []}\n"
+        "]}");
+    if (!s) return;
+    CHECK(s->sphere_count == 5 && s->instance_count == 1 && s->instance_sphere_count == 1);
+    if (s->sphere_count == 5) {
+        CHECK_VEC(s->spheres[0].center, 1, 0, -1); // (1,0,0) turned to (0,0,-1), then moved by +x
+        CHECK_VEC(s->spheres[1].center, 0, 0, -2); // moved to (2,0,0), then turned
+        CHECK_NEAR(s->spheres[0].radius, 0.5, 1e-7);
+        CHECK_VEC(s->spheres[2].center, 7, 0, 0);
+        CHECK_NEAR(s->spheres[2].radius, 1.0, 1e-7);
+        // Rotation, mirror and uniform scale: still a sphere, three times larger, still hollow.
+        CHECK_NEAR(s->spheres[3].radius, -1.5, 1e-5);
+        CHECK_NEAR(v3_len(s->spheres[3].center), 3.0, 1e-5);
+        CHECK_VEC(s->spheres[4].center, 0, 0, 0);
+        CHECK_NEAR(s->spheres[4].radius, 1.0, 0);
+    }
+    // A non-uniform scale makes an ellipsoid: an instance of the object-space sphere.
+    if (s->instance_count == 1 && s->instance_sphere_count == 1) {
+        const instance *in = &s->instances[0];
+        CHECK(in->kind == INSTANCE_SPHERE && in->index == 0 && in->material == 0);
+        CHECK_VEC(s->instance_spheres[0].center, 0, 1, 0);
+        CHECK_NEAR(s->instance_spheres[0].radius, 0.5, 0);
+        CHECK(in->xf.m.m[1][1] == 2.0f && in->xf.m.m[2][3] == 4.0f && in->xf.inv.m[1][1] == 0.5f);
+        CHECK_VEC(mat4_apply_point(&in->xf.m, v3(0, 1, 0)), 0, 2, 4);
+    }
+    glint_scene_free(s);
+}
+
+// Meshes: each file loads once however often it is placed; its MTL materials become scene materials.
+static void test_meshes(void) {
+    glint_scene *s = parse_in_scenes(
+        "{\"materials\": {\"gold\": {\"type\": \"metal\", \"albedo\": [1, 0.8, 0.3]}},\n"
+        " \"objects\": [\n"
+        "  {\"type\": \"mesh\", \"file\": \"meshes/cornell-box-original/CornellBox-Original.obj\", \"face_normals\": "
+        "true},\n"
+        "  {\"type\": \"mesh\", \"file\": "
+        "\"meshes/cornell-box-original/../cornell-box-original/CornellBox-Original.obj\",\n"
+        "   \"face_normals\": true, \"material\": \"gold\", \"transform\": [{\"translate\": [3, 0, 0]}]},\n"
+        "  {\"type\": \"mesh\", \"file\": \"meshes/cornell-box-original/CornellBox-Original.obj\"}\n"
+        "]}");
+    if (s) {
+        // Two spellings of one file, placed twice with flat normals: one mesh; smooth normals: another.
+        CHECK(s->mesh_count == 2 && s->instance_count == 3);
+        if (s->mesh_count == 2 && s->instance_count == 3) {
+            const instance *in = s->instances;
+            CHECK(in[0].kind == INSTANCE_MESH && in[0].index == 0 && in[0].material == -1);
+            CHECK(in[1].kind == INSTANCE_MESH && in[1].index == 0 && in[1].material == scene_find_material(s, "gold"));
+            CHECK(in[1].xf.m.m[0][3] == 3.0f && in[1].xf.inv.m[0][3] == -3.0f);
+            CHECK(in[2].index == 1 && in[2].material == -1);
+            const scene_mesh *m = &s->meshes[0];
+            CHECK(m->geometry.triangle_count == 36 && m->slot_count == 8);
+            CHECK(strstr(m->path, "/scenes/meshes/cornell-box-original/CornellBox-Original.obj") != NULL);
+            bool flat = true, smooth = true;
+            for (size_t i = 0; i < m->geometry.triangle_count; i++) flat = flat && m->geometry.triangles[i].n[0] == -1;
+            for (size_t i = 0; i < s->meshes[1].geometry.triangle_count; i++)
+                smooth = smooth && s->meshes[1].geometry.triangles[i].n[0] >= 0;
+            CHECK(flat && smooth);
+            // Every slot maps to a material named after the file and the MTL name.
+            const char *prefix = "meshes/cornell-box-original/CornellBox-Original.obj:";
+            for (size_t i = 0; i < m->slot_count; i++) {
+                const char *name = s->material_names[m->slot_material[i]];
+                CHECK(name && strncmp(name, prefix, strlen(prefix)) == 0);
+            }
+            long lamp = scene_find_material(s, "meshes/cornell-box-original/CornellBox-Original.obj:light");
+            long red = scene_find_material(s, "meshes/cornell-box-original/CornellBox-Original.obj:leftWall");
+            CHECK(lamp >= 0 && red >= 0);
+            if (lamp >= 0 && red >= 0) {
+                CHECK(s->materials[lamp].kind == MAT_DIFFUSE_LIGHT && !s->materials[lamp].two_sided);
+                CHECK_VEC(s->materials[lamp].emission, 17, 12, 4);
+                CHECK(s->materials[red].kind == MAT_LAMBERTIAN && s->materials[red].albedo_texture == -1);
+                CHECK_VEC(s->materials[red].albedo, 0.63, 0.065, 0.05);
+            }
+            // Every face has a material of its own: no fallback was needed.
+            CHECK(s->warning_count == 0);
+        }
+        glint_scene_free(s);
+    }
+
+    // The spider: an MTL with map_Kd images (Windows paths), two placements, four images decoded once each.
+    s = parse_in_scenes(
+        "{\"objects\": [\n"
+        "  {\"type\": \"mesh\", \"file\": \"meshes/assimp-spider/spider.obj\"},\n"
+        "  {\"type\": \"mesh\", \"file\": \"meshes/assimp-spider/spider.obj\", \"transform\": [{\"scale\": 2}]}\n"
+        "]}");
+    if (s) {
+        CHECK(s->mesh_count == 1 && s->instance_count == 2 && s->texture_count == 4);
+        if (s->mesh_count == 1) {
+            const scene_mesh *m = &s->meshes[0];
+            CHECK(m->slot_count == 4);
+            for (size_t i = 0; i < m->slot_count; i++) {
+                const material *mat = &s->materials[m->slot_material[i]];
+                CHECK(mat->kind == MAT_LAMBERTIAN && mat->albedo_texture >= 0);
+            }
+            long body = scene_find_material(s, "meshes/assimp-spider/spider.obj:HLeibTex");
+            CHECK(body >= 0);
+            if (body >= 0 && s->materials[body].albedo_texture >= 0) {
+                const texture *t = &s->textures[s->materials[body].albedo_texture];
+                CHECK(t->kind == TEX_IMAGE && t->image.width == 249 && t->image.height == 250); // SpiderTex.jpg
+            }
+        }
+        // The OBJ reader's warnings (zero-area faces) are kept in the scene, not printed.
+        CHECK(glint_scene_warning_count(s) >= 1);
+        const char *w = glint_scene_warning(s, 0);
+        CHECK(w && strstr(w, "spider.obj") && strstr(w, "warning: "));
+        CHECK(glint_scene_warning(s, glint_scene_warning_count(s)) == NULL);
+        glint_scene_free(s);
+    }
+
+    // Spot has no materials: without a "material" its faces are grey, and the scene says so in a warning.
+    s = parse_in_scenes("{\"objects\": [{\"type\": \"mesh\", \"file\": \"meshes/spot/spot_triangulated.obj\"}]}");
+    if (s) {
+        CHECK(s->mesh_count == 1 && s->material_count == 1 && s->warning_count == 1);
+        if (s->mesh_count == 1 && s->material_count == 1) {
+            CHECK(s->meshes[0].slot_count == 0 && s->meshes[0].default_material == 0);
+            CHECK(s->materials[0].kind == MAT_LAMBERTIAN && s->material_names[0] == NULL);
+            CHECK(s->meshes[0].geometry.triangle_count == 5856 && s->meshes[0].geometry.uv_count == 3225);
+        }
+        if (s->warning_count == 1)
+            CHECK(strcmp(s->warnings[0], GLINT_SOURCE_DIR "/scenes/inline.json:1:39: warning: some faces of mesh file "
+                                         "\"meshes/spot/spot_triangulated.obj\" have no material (no usemtl, or one no "
+                                         "material library defines); they are grey Lambertian unless the object gives "
+                                         "a \"material\"") == 0);
+        glint_scene_free(s);
+    }
+    s = parse_in_scenes(
+        "{\"objects\": [{\"type\": \"mesh\", \"file\": \"meshes/spot/spot_triangulated.obj\", \"material\":"
+        " {\"type\": \"lambertian\", \"albedo\": {\"type\": \"image\", \"file\": "
+        "\"meshes/spot/spot_texture.png\"}}}]}");
+    if (s) {
+        CHECK(s->warning_count == 0 && s->instance_count == 1 && s->texture_count == 1);
+        if (s->instance_count == 1)
+            CHECK(s->instances[0].material >= 0 && s->materials[s->instances[0].material].albedo_texture == 0);
+        glint_scene_free(s);
+    }
+}
+
+static glint_scene *load_scene_file(const char *name) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/scenes/%s", GLINT_SOURCE_DIR, name);
+    glint_scene *s = NULL;
+    glint_error err;
+    glint_status st = glint_scene_load(path, &s, &err);
+    CHECK(st == GLINT_OK);
+    if (st != GLINT_OK) fprintf(stderr, "  %s\n", err.message);
+    return s;
+}
+
+// The issue-5 scenes: what each holds.
+static void test_issue5_scenes(void) {
+    glint_scene *s = load_scene_file("cornell-box.json");
+    if (s) {
+        const render_settings *rs = &s->settings;
+        CHECK(rs->width == 600 && rs->height == 600 && rs->max_depth == 50 && rs->integrator == INTEGRATOR_PATH);
+        CHECK(rs->background == BACKGROUND_CONSTANT && same_vec(rs->background_color, v3s(0.0f)));
+        CHECK(rs->transform == TRANSFORM_GAMMA2);
+        CHECK(s->camera.vfov_degrees == 40.0f && same_vec(s->camera.lookfrom, v3(278, 278, -800)) &&
+              same_vec(s->camera.lookat, v3(278, 278, 0)));
+        CHECK(s->quad_count == 12 && s->sphere_count == 1);
+        if (s->quad_count == 12 && s->sphere_count == 1) {
+            const quad *lamp = &s->quads[5];
+            CHECK(s->materials[lamp->material].kind == MAT_DIFFUSE_LIGHT);
+            CHECK_VEC(s->materials[lamp->material].emission, 15, 15, 15);
+            CHECK_VEC(lamp->normal, 0, -1, 0); // the light shines down into the box
+            CHECK(s->materials[s->spheres[0].material].kind == MAT_DIELECTRIC);
+            CHECK_VEC(s->spheres[0].center, 190, 90, 190);
+        }
+        glint_scene_free(s);
+    }
+    s = load_scene_file("cornell-box-obj.json");
+    if (s) {
+        CHECK(s->mesh_count == 1 && s->instance_count == 1 && s->meshes[0].geometry.triangle_count == 36);
+        glint_scene_free(s);
+    }
+    s = load_scene_file("bunny.json");
+    if (s) {
+        CHECK(s->mesh_count == 1 && s->instance_count == 1 && s->quad_count == 1 && s->texture_count == 1);
+        if (s->mesh_count == 1) CHECK(s->meshes[0].geometry.triangle_count == 69451);
+        if (s->instance_count == 1) CHECK(s->instances[0].material == scene_find_material(s, "clay"));
+        glint_scene_free(s);
+    }
+    s = load_scene_file("spot.json");
+    if (s) {
+        CHECK(s->mesh_count == 1 && s->texture_count == 1 && s->textures[0].kind == TEX_IMAGE && s->warning_count == 0);
+        glint_scene_free(s);
+    }
+    s = load_scene_file("spider.json");
+    if (s) {
+        CHECK(s->mesh_count == 1 && s->texture_count == 4);
+        glint_scene_free(s);
+    }
+    s = load_scene_file("textures.json");
+    if (s) {
+        CHECK(s->texture_count == 5 && s->sphere_count == 5);
+        glint_scene_free(s);
+    }
+}
+
 int main(void) {
     test_defaults();
     test_render_settings();
@@ -311,5 +693,10 @@ int main(void) {
     test_lights();
     test_encoding_and_order();
     test_paper_file();
+    test_textures();
+    test_quads_and_boxes();
+    test_transform_order();
+    test_meshes();
+    test_issue5_scenes();
     return check_summary();
 }

@@ -1,5 +1,6 @@
 // test_whitted.c — the Whitted integrator: the paper's Fig. 8 against the golden image of an independent
-// implementation, and the colour mode on tiny scenes whose exact value is known.
+// implementation, and the colour mode on tiny scenes whose exact value is known (spheres, quads, textures,
+// emitters).
 #include "check.h"
 #include "glint.h"
 #include "render/film.h"
@@ -52,6 +53,17 @@ static void add_light(glint_scene *s, light_kind kind, vec3 intensity, vec3 v) {
     if (kind == LIGHT_POINT) l.position = v;
     if (kind == LIGHT_DIRECTIONAL) l.direction = v;
     if (!scene_add_light(s, l)) abort();
+}
+
+static void add_quad(glint_scene *s, vec3 q, vec3 u, vec3 v, uint32_t mat) {
+    quad qd;
+    if (!quad_make(q, u, v, mat, &qd) || !scene_add_quad(s, qd)) abort();
+}
+
+static int32_t add_texture(glint_scene *s, texture t) {
+    long i = scene_add_texture(s, &t, NULL);
+    if (i < 0) abort();
+    return (int32_t)i;
 }
 
 static glint_image *render(glint_scene *s, int threads, glint_render_stats *stats) {
@@ -493,6 +505,148 @@ static void test_deep_recursion(void) {
     }
 }
 
+
+// ---- colour mode on quads, textures and emitters -----------------------------------------------------
+
+// A quad facing the camera (the ray meets its back: u x v = +z) shades like the sphere: albedo * (ambient +
+// diffuse) with a point light at the eye; a quad across the shadow ray of a directional light leaves only
+// the ambient term; a metal quad mirrors a red sphere behind the eye.
+static void test_color_quad(void) {
+    glint_scene *s = tiny_scene(2, 2, 1.0, WHITTED_COLOR);
+    add_quad(s, v3(-1, -1, 3), v3(2, 0, 0), v3(0, 2, 0), add_phong(s, v3(0.5f, 0.25f, 1.0f), -1, 0.0f));
+    add_light(s, LIGHT_AMBIENT, v3(0.2f, 0.1f, 0.3f), v3s(0));
+    add_light(s, LIGHT_POINT, v3(0.6f, 0.5f, 0.4f), v3(0, 0, 0));
+    glint_image *img = render(s, 1, NULL);
+    if (img) {
+        vec3 p = pixel(img, AXIS_X, AXIS_Y);
+        CHECK_NEAR(p.x, 0.5 * (0.2 + 0.6), 1e-6);
+        CHECK_NEAR(p.y, 0.25 * (0.1 + 0.5), 1e-6);
+        CHECK_NEAR(p.z, 1.0 * (0.3 + 0.4), 1e-6);
+    }
+    glint_image_free(img);
+    glint_scene_free(s);
+
+    for (int blocked = 0; blocked < 2; blocked++) {
+        s = tiny_scene(2, 2, 1.0, WHITTED_COLOR);
+        uint32_t m = add_phong(s, v3(1.0f, 0.5f, 0.25f), -1, 0.0f);
+        add_quad(s, v3(-1, -1, 3), v3(0, 2, 0), v3(2, 0, 0), m); // u x v = -z: the ray meets the front
+        if (blocked) add_quad(s, v3(-0.5f, 1.5f, 0), v3(1, 0, 0), v3(0, 0, 2.9f), m); // crosses P + t (0, 1, -1)
+        add_light(s, LIGHT_AMBIENT, v3s(0.2f), v3s(0));
+        add_light(s, LIGHT_DIRECTIONAL, v3s(0.6f), v3(0, 1, -1));
+        img = render(s, 1, NULL);
+        if (img) {
+            vec3 p = pixel(img, AXIS_X, AXIS_Y);
+            double i = blocked ? 0.2 : 0.2 + 0.6 / sqrt(2.0);
+            CHECK_NEAR(p.x, 1.0 * i, 1e-6);
+            CHECK_NEAR(p.y, 0.5 * i, 1e-6);
+            CHECK_NEAR(p.z, 0.25 * i, 1e-6);
+        }
+        glint_image_free(img);
+        glint_scene_free(s);
+    }
+
+    s = tiny_scene(2, 2, 1.0, WHITTED_COLOR);
+    material metal = material_default(MAT_METAL);
+    metal.albedo = v3(0.5f, 0.5f, 0.8f);
+    add_quad(s, v3(-1, -1, 3), v3(2, 0, 0), v3(0, 2, 0), add_material(s, metal));
+    add_sphere(s, v3(0, 0, -3), 1.0f, add_phong(s, v3(1, 0, 0), -1, 0.0f));
+    add_light(s, LIGHT_AMBIENT, v3s(1.0f), v3s(0));
+    img = render(s, 1, NULL);
+    if (img) {
+        vec3 p = pixel(img, AXIS_X, AXIS_Y);
+        CHECK_NEAR(p.x, 0.5, 1e-6);
+        CHECK_NEAR(p.y, 0.0, 1e-6);
+        CHECK_NEAR(p.z, 0.0, 1e-6);
+    }
+    glint_image_free(img);
+    glint_scene_free(s);
+}
+
+// Textures give the surface colour: a solid texture on a sphere replaces its albedo (lit as in
+// test_color_lit_sphere), and a checker on a quad gives the two pixels that see different cells their own
+// colours (pixel (1, 0) sees (0, 0, 3): cells 0 + 0 + 1, odd; pixel (0, 0) sees (-1.5, 0, 3): -1 + 0 + 1, even).
+static void test_color_textures(void) {
+    glint_scene *s = tiny_scene(2, 2, 1.0, WHITTED_COLOR);
+    material m = material_default(MAT_PHONG);
+    m.albedo = v3s(0.9f);
+    m.albedo_texture = add_texture(s, texture_solid(v3(0.5f, 0.25f, 1.0f)));
+    add_sphere(s, v3(0, 0, 3), 1.0f, add_material(s, m));
+    add_light(s, LIGHT_AMBIENT, v3(0.2f, 0.1f, 0.3f), v3s(0));
+    add_light(s, LIGHT_POINT, v3(0.6f, 0.5f, 0.4f), v3(0, 0, 0));
+    glint_image *img = render(s, 1, NULL);
+    if (img) {
+        vec3 p = pixel(img, AXIS_X, AXIS_Y);
+        CHECK_NEAR(p.x, 0.5 * (0.2 + 0.6), 1e-6);
+        CHECK_NEAR(p.y, 0.25 * (0.1 + 0.5), 1e-6);
+        CHECK_NEAR(p.z, 1.0 * (0.3 + 0.4), 1e-6);
+    }
+    glint_image_free(img);
+    glint_scene_free(s);
+
+    s = tiny_scene(2, 2, 1.0, WHITTED_COLOR);
+    material lam = material_default(MAT_LAMBERTIAN);
+    const vec3 even = v3(0.1f, 0.2f, 0.3f), odd = v3(0.7f, 0.6f, 0.5f);
+    lam.albedo_texture = add_texture(s, texture_checker(2.0f, even, odd));
+    add_quad(s, v3(-4, -4, 3), v3(8, 0, 0), v3(0, 8, 0), add_material(s, lam));
+    add_light(s, LIGHT_AMBIENT, v3s(1.0f), v3s(0));
+    img = render(s, 1, NULL);
+    if (img) {
+        vec3 a = pixel(img, AXIS_X, AXIS_Y), b = pixel(img, 0, 0);
+        CHECK(a.x == odd.x && a.y == odd.y && a.z == odd.z);
+        CHECK(b.x == even.x && b.y == even.y && b.z == even.z);
+    }
+    glint_image_free(img);
+    glint_scene_free(s);
+}
+
+// An emitter returns its emission (times its emission texture) on its front side, or on both when
+// two-sided; its back side is black, not the background.
+static void test_color_emitter(void) {
+    const struct { bool front, two_sided, textured; float expect[3]; } cases[] = {
+        {true, false, false, {2, 2, 2}}, {false, false, false, {0, 0, 0}}, {false, true, false, {2, 2, 2}},
+        {true, false, true, {1, 2, 4}}};
+    for (int k = 0; k < 4; k++) {
+        glint_scene *s = tiny_scene(2, 2, 1.0, WHITTED_COLOR);
+        s->settings.background_color = v3(0.3f, 0.3f, 0.3f);
+        material m = material_default(MAT_DIFFUSE_LIGHT);
+        m.emission = v3s(2.0f);
+        m.two_sided = cases[k].two_sided;
+        if (cases[k].textured) m.emission_texture = add_texture(s, texture_solid(v3(0.5f, 1.0f, 2.0f)));
+        uint32_t mat = add_material(s, m);
+        // u x v = -z faces the camera.
+        if (cases[k].front) add_quad(s, v3(-1, -1, 3), v3(0, 2, 0), v3(2, 0, 0), mat);
+        else add_quad(s, v3(-1, -1, 3), v3(2, 0, 0), v3(0, 2, 0), mat);
+        add_light(s, LIGHT_AMBIENT, v3s(1.0f), v3s(0));
+        glint_image *img = render(s, 1, NULL);
+        if (img) {
+            vec3 p = pixel(img, AXIS_X, AXIS_Y);
+            CHECK_NEAR(p.x, cases[k].expect[0], 1e-6);
+            CHECK_NEAR(p.y, cases[k].expect[1], 1e-6);
+            CHECK_NEAR(p.z, cases[k].expect[2], 1e-6);
+        }
+        glint_image_free(img);
+        glint_scene_free(s);
+    }
+}
+
+// Paper mode is the paper's program: spheres only. A quad in front of the sphere changes no byte.
+static void test_paper_ignores_quads(void) {
+    glint_image *img[2];
+    for (int k = 0; k < 2; k++) {
+        glint_scene *s = paper_scene_in_c(32, WHITTED_PAPER);
+        if (k) add_quad(s, v3(-5, -5, 1.5f), v3(10, 0, 0), v3(0, 10, 0), add_phong(s, v3(1, 1, 1), -1, 0.0f));
+        img[k] = render(s, 1, NULL);
+        glint_scene_free(s);
+    }
+    int same = 0;
+    if (img[0] && img[1])
+        for (int y = 0; y < 32; y++)
+            for (int x = 0; x < 32; x++)
+                for (int c = 0; c < 3; c++) same += glint_image_byte(img[0], x, y, c) == glint_image_byte(img[1], x, y, c);
+    CHECK(same == 32 * 32 * 3);
+    for (int k = 0; k < 2; k++) glint_image_free(img[k]);
+}
+
 int main(void) {
     test_byte_round_trip();
     test_paper_ambient();
@@ -506,6 +660,10 @@ int main(void) {
     test_color_total_internal_reflection();
     test_color_background();
     test_deep_recursion();
+    test_color_quad();
+    test_color_textures();
+    test_color_emitter();
+    test_paper_ignores_quads();
     test_paper_in_c();
     test_color_golden();
     test_paper_golden();

@@ -61,8 +61,7 @@ static bool brute_intersect(const accel *a, const ray *r, hit *h) {
         float t;
         if (sphere_intersect(a->spheres[i].center, a->spheres[i].radius, r, r->tmin, tmax, &t)) {
             tmax = t;
-            h->t = t;
-            h->prim = (uint32_t)i;
+            bvh_sphere_hit(h, t, (uint32_t)i);
             found = true;
         }
     }

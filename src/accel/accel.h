@@ -25,16 +25,20 @@ typedef struct hit {
     float b1, b2;      ///< triangle barycentrics of vertices 1 and 2; quad (alpha, beta)
 } hit;
 
+/// Size of the structure: inner nodes (wide nodes for `bvh`), leaves, levels counting the leaves, build time.
 typedef struct accel_stats {
     uint64_t nodes, leaves, depth;
     double build_seconds;
 } accel_stats;
 
+/// The acceleration structure of a scene (opaque): immutable once built, shared by every thread.
 typedef struct accel accel;
 
 /// Builds the structure chosen in the scene's settings over its primitives. NULL on out-of-memory.
 accel *accel_build(const struct glint_scene *s, glint_error *err);
+/// Frees the structure (NULL is allowed).
 void accel_free(accel *a);
+/// Tree statistics and build time, for the statistics line.
 void accel_get_stats(const accel *a, accel_stats *out);
 
 /// Nearest hit with r->tmin < t < r->tmax; false when the ray escapes.

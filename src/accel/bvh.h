@@ -90,6 +90,15 @@ typedef struct bvh {
     accel_stats stats;
 } bvh;
 
+/// A sphere hit as the callers see it: kind, no instance, no barycentrics.
+static inline void bvh_sphere_hit(hit *h, float t, uint32_t prim) {
+    h->t = t;
+    h->prim = prim;
+    h->kind = HIT_SPHERE;
+    h->instance = HIT_NO_INSTANCE;
+    h->b1 = h->b2 = 0.0f;
+}
+
 /// Builds the binary BVH (wide = false) or the wide one over the spheres; false when out of memory.
 bool bvh_build(bvh *b, const sphere *spheres, size_t sphere_count, bool wide);
 /// Frees what bvh_build allocated.

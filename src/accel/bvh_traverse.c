@@ -144,8 +144,7 @@ static bool bin_traverse(const bvh *b, const ray *r, hit *h, bool any) {
     }
 done:
     if (best == UINT32_MAX) return false;
-    h->t = tbest;
-    h->prim = best;
+    bvh_sphere_hit(h, tbest, best);
     return true;
 }
 
@@ -224,7 +223,7 @@ typedef __m128 pk;
 /// The ray broadcast into registers, with the box rows it enters (near) and leaves (far) by.
 typedef struct simd_ray {
     __m256 inv[3], noi[3], tmin;
-    pk ox, oy, oz, dx, dy, dz, a, ptmin, ptmax;
+    pk ox, oy, oz, dx, dy, dz, a, ptmin, ptmax, tmin_nonneg;
     int near[3], far[3];
 } simd_ray;
 
@@ -260,6 +259,7 @@ static inline bool simd_setup(const ray *r, simd_ray *s) {
     s->a = PK(set1_ps)(v3_dot(r->d, r->d));
     s->ptmin = PK(set1_ps)(r->tmin);
     s->ptmax = PK(set1_ps)(r->tmax);
+    s->tmin_nonneg = PK(cmp_ps)(s->ptmin, PK(setzero_ps)(), _CMP_GE_OQ);
     return !nan;
 }
 
@@ -294,10 +294,13 @@ static inline unsigned spheres_simd(const bvh_sphere_packet *p, const simd_ray *
     pk rr = PK(mul_ps)(rad, rad);
     pk l2 = PK(add_ps)(PK(add_ps)(PK(mul_ps)(lx, lx), PK(mul_ps)(ly, ly)), PK(mul_ps)(lz, lz));
     pk disc = PK(sub_ps)(rr, l2);
-    pk ok = PK(cmp_ps)(disc, zero, _CMP_GE_OQ);
-    if (PK(movemask_ps)(ok) == 0) return 0; // the common case: the ray's line misses every sphere
     pk f2 = PK(add_ps)(PK(add_ps)(PK(mul_ps)(fx, fx), PK(mul_ps)(fy, fy)), PK(mul_ps)(fz, fz));
     pk c = PK(sub_ps)(f2, rr);
+    // From outside (c > 0) and moving away (b < 0) both roots are negative: q < 0, t1 = q / a <= 0 and
+    // t0 = c / q < 0, exact sign facts of the computed values, so no root can lie above tmin >= 0.
+    pk away = PK(and_ps)(PK(and_ps)(PK(cmp_ps)(c, zero, _CMP_GT_OQ), PK(cmp_ps)(b, zero, _CMP_LT_OQ)), s->tmin_nonneg);
+    pk ok = PK(andnot_ps)(away, PK(cmp_ps)(disc, zero, _CMP_GE_OQ));
+    if (PK(movemask_ps)(ok) == 0) return 0; // the common case: the ray misses every sphere
     pk root = PK(sqrt_ps)(PK(mul_ps)(s->a, disc));
     pk q = PK(add_ps)(b, PK(or_ps)(PK(andnot_ps)(sign, root), PK(and_ps)(sign, b))); // b + copysign(root, b)
     pk t0 = PK(div_ps)(c, q), t1 = PK(div_ps)(q, s->a);
@@ -437,8 +440,7 @@ static inline trav_state trav_start(const bvh *b, const ray *r) {
 
 static inline bool trav_result(const trav_state *st, hit *h) {
     if (st->best == UINT32_MAX) return false;
-    h->t = st->tbest;
-    h->prim = st->best;
+    bvh_sphere_hit(h, st->tbest, st->best);
     return true;
 }
 

@@ -116,6 +116,9 @@ int main(int argc, char **argv) {
         glint_scene_free(scene);
         return exit_code(st);
     }
+    // The library never prints: what it worked around in mesh files is reported here, unless --quiet.
+    for (size_t i = 0; !opt.quiet && i < glint_scene_warning_count(scene); i++)
+        fprintf(stderr, "glint: %s\n", glint_scene_warning(scene, i));
     if (atomic_load(&first_signal)) { // stopped before the render began: there is nothing to write
         glint_scene_free(scene);
         return interrupted_status();

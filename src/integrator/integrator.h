@@ -55,6 +55,13 @@ vec3 integrator_sample(const glint_scene *s, int x, int y, uint32_t sample, rng 
 vec3 whitted_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
 vec3 path_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
 
+/// The path tracer's index of a scene's emissive quads (for next-event estimation).
+typedef struct path_lights path_lights;
+/// (Re)builds s->path_lights from the scene's quads and materials; scene_prepare calls it. False when out of memory.
+bool path_prepare(glint_scene *s);
+/// Frees s->path_lights and sets it to NULL; glint_scene_free calls it.
+void path_release(glint_scene *s);
+
 /// Film point of a sample: the pixel centre for a single sample, else uniformly jittered in the pixel.
 static inline void integrator_film_point(const glint_scene *s, int x, int y, rng *r, float *fx, float *fy) {
     if (s->settings.spp == 1 && s->settings.integrator == INTEGRATOR_WHITTED) {

@@ -1,5 +1,7 @@
 // whitted.c — the paper's Whitted ray tracer (exact, in double) and its colour-correct variant.
 #include "integrator/integrator.h"
+#include "integrator/spawn.h"
+#include "material/scatter.h"
 
 #include <math.h>
 
@@ -11,6 +13,8 @@
 
 // ---------------------------------------------------------------------------------------------------
 // Paper mode: what the paper's OCaml program computes (issue 2, "Facts"), operation for operation.
+// The program knows spheres only: paper mode sees the scene's world-space spheres and ignores quads,
+// meshes, instances and textures (its colours are the materials' constant ones).
 // ---------------------------------------------------------------------------------------------------
 
 /// A point or vector in double, as the program's `point` record.
@@ -236,11 +240,15 @@ static const float SPAWN_TMIN = 0.001f; // spawned rays start at t > 0.001, as i
 static const float MIN_WEIGHT = 1e-4f;  // a branch weighing less cannot change an 8-bit pixel
 static const uint32_t NO_SPHERE = UINT32_MAX;
 
-/// A ray leaving the surface of sphere `from` (NO_SPHERE for camera rays).
+/// A ray leaving the surface of world-space sphere `from` (NO_SPHERE for camera rays and rays leaving
+/// any other surface).
 typedef struct spawned {
     ray r;
     uint32_t from;
 } spawned;
+
+/// Whether a hit is on one of the scene's world-space spheres (s->spheres[h->prim]).
+static bool hit_world_sphere(const hit *h) { return h->kind == HIT_SPHERE && h->instance == HIT_NO_INSTANCE; }
 
 // The root of sphere sp along r nearest to t, solved again in double: in float, o - centre is only known
 // to half an ulp of the centre's coordinates (2.4e-4 for the paper's radius-5000 ground), in double exactly.
@@ -277,6 +285,7 @@ static bool color_intersect(const glint_scene *s, const spawned *sr, hit *h) {
     // Each pass steps over at most one float root of `from`, which has two.
     for (int pass = 0; pass < 3; pass++) {
         if (!accel_intersect(s->accel, &r, h)) break;
+        if (!hit_world_sphere(h)) return true; // quads, triangles, instances: offset origins keep them apart
         if (h->prim != sr->from) {
             h->t = refine_t(&s->spheres[h->prim], &r, h->t);
             return true;
@@ -286,24 +295,50 @@ static bool color_intersect(const glint_scene *s, const spawned *sr, hit *h) {
     if (t_own < 0.0f) return false;
     h->t = t_own;
     h->prim = sr->from;
+    h->kind = HIT_SPHERE;
+    h->instance = HIT_NO_INSTANCE;
+    h->b1 = h->b2 = 0.0f;
     return true;
 }
 
-static spawned spawn(vec3 o, vec3 d, uint32_t from) {
+/// Where the colour mode's secondary rays leave a surface. Rays leaving a world-space sphere start exactly at
+/// the hit point and color_intersect stands in for that sphere's roots (precision the golden test needs);
+/// rays leaving anything else start at an origin offset by the surface's error bound (spawn.h).
+typedef struct color_origin {
+    spawn_point sp;
+    uint32_t from; ///< the world sphere, or NO_SPHERE
+} color_origin;
+
+static color_origin color_origin_of(const glint_scene *s, const surface *sf) {
+    color_origin out;
+    if (sf->kind == HIT_SPHERE && sf->instance == HIT_NO_INSTANCE) {
+        out.from = sf->prim;
+        out.sp.p = sf->p;
+        out.sp.n = sf->ng;
+        out.sp.offset = 0.0f;
+    } else {
+        out.from = NO_SPHERE;
+        out.sp = spawn_point_of(s, sf);
+    }
+    return out;
+}
+
+// A secondary ray leaving co along d, counting hits at t > SPAWN_TMIN.
+static spawned spawn(const color_origin *co, vec3 d) {
     spawned out;
-    out.r.o = o;
+    out.r.o = co->from == NO_SPHERE ? spawn_origin(&co->sp, d) : co->sp.p;
     out.r.d = d;
     out.r.tmin = SPAWN_TMIN;
     out.r.tmax = INFINITY;
-    out.from = from;
+    out.from = co->from;
     return out;
 }
 
 // Ambient + diffuse lighting times the surface colour, plus Phong highlights times the highlight colour;
 // light intensities are RGB. A light counts only when no surface (this one included) lies on the shadow ray
 // P + tL, t in (0.001, 1) towards a point light (L = position - P), (0.001, inf) along a directional one.
-static vec3 color_local(const glint_scene *s, const material *m, uint32_t prim, const surface *sf, vec3 view,
-                        thread_stats *ts) {
+static vec3 color_local(const glint_scene *s, const material *m, vec3 albedo, const color_origin *co,
+                        const surface *sf, vec3 view, thread_stats *ts) {
     vec3 ambient = v3s(0.0f), diffuse = v3s(0.0f), specular = v3s(0.0f);
     int shininess = m->kind == MAT_PHONG ? m->specular : 0;
     vec3 n = sf->n;
@@ -323,16 +358,16 @@ static vec3 color_local(const glint_scene *s, const material *m, uint32_t prim, 
             if (rv > 0.0f) ks = powf(rv / (v3_len(refl) * v3_len(view)), (float)shininess);
         }
         if (!(kd > 0.0f) && !(ks > 0.0f)) continue; // nothing to shadow
-        spawned sh = spawn(sf->p, l, prim);
+        spawned sh = spawn(co, l);
         if (li->kind == LIGHT_POINT) sh.r.tmax = 1.0f; // the light itself is at t = 1
         ts->shadow_rays++;
-        hit h;
+        hit h = {0, 0, HIT_SPHERE, HIT_NO_INSTANCE, 0, 0};
         if (color_intersect(s, &sh, &h)) continue;
         diffuse = v3_add(diffuse, v3_scale(li->intensity, kd));
         specular = v3_add(specular, v3_scale(li->intensity, ks));
     }
-    vec3 highlight = m->has_specular_color ? m->specular_color : m->albedo;
-    return v3_add(v3_mul(m->albedo, v3_add(ambient, diffuse)), v3_mul(highlight, specular));
+    vec3 highlight = m->has_specular_color ? m->specular_color : albedo;
+    return v3_add(v3_mul(albedo, v3_add(ambient, diffuse)), v3_mul(highlight, specular));
 }
 
 // Radiance along r times weight w, with `depth` bounces left. Mirror chains loop; at a glass surface the
@@ -343,32 +378,34 @@ static vec3 color_trace(const glint_scene *s, spawned r, int depth, vec3 w, thre
     for (;;) {
         if (v3_max_comp(w) < MIN_WEIGHT) return sum;
         ts->rays++;
-        hit h;
+        hit h = {0, 0, HIT_SPHERE, HIT_NO_INSTANCE, 0, 0};
         vec3 d = v3_unit(r.r.d);
         if (!color_intersect(s, &r, &h)) return v3_add(sum, v3_mul(w, scene_background(&s->settings, d)));
         surface sf = surface_at(s, &r.r, &h);
         const material *m = &s->materials[sf.material];
+        if (m->kind == MAT_DIFFUSE_LIGHT)
+            return v3_add(sum, v3_mul(w, mat_emitted(m, s->textures, sf.front, sf.u, sf.v, sf.p)));
+        vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, sf.p);
+        color_origin co = color_origin_of(s, &sf);
         switch (m->kind) {
-        case MAT_DIFFUSE_LIGHT:
-            if (sf.front || m->two_sided) sum = v3_add(sum, v3_mul(w, m->emission));
-            return sum;
+        case MAT_DIFFUSE_LIGHT: return sum; // handled above
         case MAT_LAMBERTIAN:
         case MAT_PHONG: {
-            vec3 local = color_local(s, m, h.prim, &sf, v3_neg(d), ts);
+            vec3 local = color_local(s, m, albedo, &co, &sf, v3_neg(d), ts);
             float rfl = m->kind == MAT_PHONG ? m->reflective : 0.0f;
             if (!(rfl > 0.0f) || depth <= 0) return v3_add(sum, v3_mul(w, local));
             // local (1 - rfl) + rfl (what the reflected ray sees)
             sum = v3_add(sum, v3_mul(w, v3_scale(local, 1.0f - rfl)));
             w = v3_scale(w, rfl);
-            r = spawn(sf.p, v3_reflect(d, sf.n), h.prim);
+            r = spawn(&co, v3_reflect(d, sf.n));
             depth--;
             continue;
         }
         case MAT_METAL:
             // A perfect mirror tinted by its albedo; fuzz belongs to the path tracer.
             if (depth <= 0) return sum;
-            w = v3_mul(w, m->albedo);
-            r = spawn(sf.p, v3_reflect(d, sf.n), h.prim);
+            w = v3_mul(w, albedo);
+            r = spawn(&co, v3_reflect(d, sf.n));
             depth--;
             continue;
         case MAT_DIELECTRIC: {
@@ -377,7 +414,7 @@ static vec3 color_trace(const glint_scene *s, spawned r, int depth, vec3 w, thre
             float eta = sf.front ? 1.0f / m->ior : m->ior;
             float cos_i = fminf(-v3_dot(d, sf.n), 1.0f);
             float sin2_t = eta * eta * (1.0f - cos_i * cos_i);
-            spawned reflected = spawn(sf.p, v3_reflect(d, sf.n), h.prim);
+            spawned reflected = spawn(&co, v3_reflect(d, sf.n));
             if (sin2_t > 1.0f) { // total internal reflection
                 r = reflected;
                 continue;
@@ -385,9 +422,9 @@ static vec3 color_trace(const glint_scene *s, spawned r, int depth, vec3 w, thre
             // Schlick with the cosine on the less dense side (the transmitted one when leaving glass).
             float cos_t = sqrtf(1.0f - sin2_t);
             float fresnel = schlick_reflectance(eta <= 1.0f ? cos_i : cos_t, eta);
-            spawned refracted = spawn(sf.p, v3_refract(d, sf.n, eta), h.prim);
+            spawned refracted = spawn(&co, v3_refract(d, sf.n, eta));
             vec3 w_refl = v3_scale(w, fresnel);
-            vec3 w_refr = v3_mul(w, v3_scale(m->albedo, 1.0f - fresnel));
+            vec3 w_refr = v3_mul(w, v3_scale(albedo, 1.0f - fresnel));
             if (v3_max_comp(w_refl) < v3_max_comp(w_refr)) {
                 sum = v3_add(sum, color_trace(s, reflected, depth, w_refl, ts));
                 r = refracted;

@@ -31,22 +31,24 @@ const char *material_kind_name(material_kind kind) {
 
 // Scattering in the path tracer (declared in material/scatter.h): one random decision per event, the
 // throughput weight computed so that its expectation is the BSDF's reflectance.
-bool mat_scatter(const material *m, vec3 d, vec3 n, bool front, rng *r, scatter_event *ev) {
+bool mat_scatter(const material *m, vec3 albedo, vec3 d, vec3 n, bool front, rng *r, scatter_event *ev) {
     ev->diffuse = false;
+    ev->transmitted = false;
     switch (m->kind) {
     case MAT_LAMBERTIAN:
         ev->dir = mat_lambertian_dir(n, sample_unit_vector(r));
-        ev->weight = m->albedo; // (albedo / pi) cos / (cos / pi)
+        ev->weight = albedo; // (albedo / pi) cos / (cos / pi)
         ev->diffuse = true;
         return true;
     case MAT_METAL:
-        ev->weight = m->albedo;
+        ev->weight = albedo;
         return mat_metal_dir(d, n, m->fuzz, sample_unit_vector(r), &ev->dir);
     case MAT_DIELECTRIC: {
         bool reflected;
         float eta = front ? 1.0f / m->ior : m->ior;
         ev->dir = mat_dielectric_dir(d, n, eta, rng_float(r), &reflected);
-        ev->weight = m->albedo; // the tint; (1,1,1) is clear glass
+        ev->transmitted = !reflected;
+        ev->weight = albedo; // the tint; (1,1,1) is clear glass
         return true;
     }
     case MAT_PHONG:
@@ -57,7 +59,7 @@ bool mat_scatter(const material *m, vec3 d, vec3 n, bool front, rng *r, scatter_
             return true;
         }
         ev->dir = mat_lambertian_dir(n, sample_unit_vector(r));
-        ev->weight = m->albedo;
+        ev->weight = albedo;
         ev->diffuse = true;
         return true;
     case MAT_DIFFUSE_LIGHT: return false;

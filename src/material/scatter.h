@@ -6,6 +6,7 @@
 #include "core/rng.h"
 #include "core/vec.h"
 #include "material/material.h"
+#include "material/texture.h"
 
 #include <stdbool.h>
 
@@ -14,7 +15,15 @@ typedef struct scatter_event {
     vec3 dir;     ///< unit direction of the new ray
     vec3 weight;  ///< throughput factor f cos / pdf of the sampled direction
     bool diffuse; ///< the ideal diffuse lobe (BRDF weight / pi) was chosen, so next-event estimation applies
+    bool transmitted; ///< the ray crossed the surface (dielectric refraction) rather than reflecting
 } scatter_event;
+
+/// The material's albedo (Lambertian/metal albedo, Phong colour, dielectric tint) at surface coordinates
+/// (u, v) and point p: the value of its albedo texture in `textures` there, or the constant `albedo`.
+static inline vec3 mat_albedo(const material *m, const texture *textures, float u, float v, vec3 p) {
+    if (m->albedo_texture < 0) return m->albedo;
+    return texture_value(&textures[m->albedo_texture], u, v, p);
+}
 
 /// The book's Lambertian direction from unit normal n and a uniform unit vector u: unit(n + u), whose
 /// density is cos/pi; n itself when n + u is (nearly) zero or, by rounding, not above the surface.
@@ -53,14 +62,17 @@ static inline vec3 mat_dielectric_dir(vec3 d, vec3 n, float eta, float xi, bool 
     return v3_unit(v3_refract(d, n, eta));
 }
 
-/// Radiance a material emits towards a ray that met it on its front (outward-normal) side or its back.
-static inline vec3 mat_emitted(const material *m, bool front) {
+/// Radiance a material emits towards a ray that met it on its front (outward-normal) side or its back, at
+/// surface coordinates (u, v) and point p: `emission`, times its emission texture's value when it has one.
+static inline vec3 mat_emitted(const material *m, const texture *textures, bool front, float u, float v, vec3 p) {
     if (m->kind != MAT_DIFFUSE_LIGHT || !(front || m->two_sided)) return v3s(0.0f);
-    return m->emission;
+    if (m->emission_texture < 0) return m->emission;
+    return v3_mul(m->emission, texture_value(&textures[m->emission_texture], u, v, p));
 }
 
-/// Samples how m scatters a ray of unit direction d at a surface with unit normal n facing against d
-/// (front: d arrived on the outward side); false when the path ends there (absorbed, or an emitter).
-bool mat_scatter(const material *m, vec3 d, vec3 n, bool front, rng *r, scatter_event *ev);
+/// Samples how m, of albedo `albedo` at this point (mat_albedo), scatters a ray of unit direction d at a
+/// surface with unit normal n facing against d (front: d arrived on the outward side); false when the path
+/// ends there (absorbed, or an emitter).
+bool mat_scatter(const material *m, vec3 albedo, vec3 d, vec3 n, bool front, rng *r, scatter_event *ev);
 
 #endif

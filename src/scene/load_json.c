@@ -5,6 +5,7 @@
 // unescapes strings. Both list values in document order, so the reader walks the cJSON tree and the
 // token index side by side (jval = node + token) and can point at any value it rejects.
 #include "scene/json_scan.h"
+#include "scene/load_obj.h"
 #include "scene/scene.h"
 
 #include <cjson/cJSON.h>
@@ -23,6 +24,8 @@ enum {
     LOAD_MAX_ITEMS = 10000000,       ///< at most this many objects, materials and lights each
     LOAD_MAX_KEYS = 16,              ///< keys a typed object may have (every key list is shorter)
     LOAD_LIST_NAMES = 10,            ///< material names listed in an "is not defined" message
+    LOAD_MAX_WARNINGS = 100,         ///< warnings kept in the scene; the rest are counted in one more
+    LOAD_MAX_NOISE_DEPTH = 32,       ///< octaves of turbulence (2^32 p is already far beyond any detail)
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -34,16 +37,38 @@ typedef struct jval {
     uint32_t tok;
 } jval;
 
-/// Name -> material index, so that resolving references stays linear in the scene size.
+/// Name -> material or texture index, so that resolving references stays linear in the scene size.
 typedef struct name_slot {
-    const char *name; ///< owned by the scene (material_names)
+    const char *name; ///< owned by the scene or the cJSON tree, both alive while the scene is read
     uint32_t index, tok;
+    uint32_t order;   ///< definition order, for listing names in messages
 } name_slot;
 
 typedef struct name_map {
     name_slot *slot;
     size_t cap, count;
 } name_map;
+
+/// The identity of a file (device and inode): two spellings of one path are the same file.
+typedef struct file_id {
+    dev_t dev;
+    ino_t ino;
+} file_id;
+
+/// A mesh file already loaded: placing it again adds an instance, not a copy.
+typedef struct mesh_entry {
+    file_id id;
+    bool face_normals; ///< the mesh's normals depend on this, so it is part of the key
+    bool needs_fallback; ///< some faces have no material of their own (the grey fallback)
+    bool warned;       ///< the missing-material warning was given
+    uint32_t mesh;
+} mesh_entry;
+
+/// An image file already decoded into a texture.
+typedef struct image_entry {
+    file_id id;
+    uint32_t texture;
+} image_entry;
 
 typedef struct loader {
     const char *name; ///< file name for messages
@@ -54,6 +79,14 @@ typedef struct loader {
     glint_error *err;
     glint_status status; ///< GLINT_ERR_INPUT, or GLINT_ERR_RENDER when memory ran out
     name_map materials;
+    name_map textures;
+    mesh_entry *meshes;
+    size_t mesh_count, mesh_cap;
+    image_entry *images;
+    size_t image_count, image_cap;
+    long fallback_material;  ///< the grey Lambertian of faces without a material, once created; else -1
+    size_t warnings_dropped; ///< warnings past LOAD_MAX_WARNINGS
+    bool warning_oom;        ///< a warning could not be stored
 } loader;
 
 static size_t offset_of(const loader *ld, uint32_t tok) { return ld->ix->tok[tok].offset; }
@@ -291,6 +324,12 @@ static const jmember *obj_get(const jobj *o, const char *key) {
 
 static bool fail_missing(loader *ld, const jobj *o, const char *key) {
     return fail_at(ld, offset_of(ld, o->self.tok), "missing required key \"%s\" in %s", key, o->what);
+}
+
+// The value to point at for a problem with `key`: the key's value if given, else the whole object.
+static size_t offset_of_member(const loader *ld, const jobj *o, const char *key) {
+    const jmember *m = obj_get(o, key);
+    return offset_of(ld, m ? m->val.tok : o->self.tok);
 }
 
 /// Index of `s` in a table whose entries begin with their name, or `count`.
@@ -537,8 +576,360 @@ static bool map_add(name_map *m, const char *name, uint32_t index, uint32_t tok)
     }
     size_t j = hash_name(name) & (m->cap - 1);
     while (m->slot[j].name) j = (j + 1) & (m->cap - 1);
-    m->slot[j] = (name_slot){name, index, tok};
+    m->slot[j] = (name_slot){name, index, tok, (uint32_t)m->count};
     m->count++;
+    return true;
+}
+
+/// Checks the key at kt as a new name for `map`: 1 to SCENE_MAX_NAME bytes, no control characters, unused.
+static bool check_new_name(loader *ld, const name_map *map, uint32_t kt, const char *name, const char *kind) {
+    char got[96];
+    size_t n = strlen(name);
+    if (n == 0 || n > SCENE_MAX_NAME)
+        return fail_at(ld, offset_of(ld, kt), "%s name %s must be 1 to %d bytes long", kind,
+                       key_source(ld, kt, got, sizeof got), SCENE_MAX_NAME);
+    for (size_t i = 0; i < n; i++)
+        if ((unsigned char)name[i] < 0x20)
+            return fail_at(ld, offset_of(ld, kt), "%s name %s must not contain control characters", kind,
+                           key_source(ld, kt, got, sizeof got));
+    const name_slot *prev = map_find(map, name);
+    if (prev) {
+        size_t line, col;
+        json_line_col(ld->text, ld->len, offset_of(ld, prev->tok), &line, &col);
+        return fail_at(ld, offset_of(ld, kt), "duplicate %s name \"%s\" (first defined at %zu:%zu)", kind, name, line,
+                       col);
+    }
+    return true;
+}
+
+/// "material "blu" is not defined (defined: red, green)": lists the first few names in definition order.
+static bool fail_undefined(loader *ld, jval v, const name_map *map, const char *kind) {
+    char names[512], got[96];
+    size_t n = 0, listed = 0;
+    names[0] = '\0';
+    for (uint32_t order = 0; order < map->count && listed < LOAD_LIST_NAMES; order++) {
+        const char *name = NULL;
+        for (size_t i = 0; i < map->cap && !name; i++)
+            if (map->slot[i].name && map->slot[i].order == order) name = map->slot[i].name;
+        if (!name) break;
+        int w = snprintf(names + n, sizeof names - n, "%s%s", listed ? ", " : "", name);
+        if (w < 0 || (size_t)w >= sizeof names - n) break;
+        n += (size_t)w;
+        listed++;
+    }
+    const char *what = describe(ld, v, got, sizeof got);
+    if (map->count == 0)
+        return fail_at(ld, offset_of(ld, v.tok), "%s %s is not defined (no named %ss are defined)", kind, what, kind);
+    if (listed < map->count)
+        return fail_at(ld, offset_of(ld, v.tok), "%s %s is not defined (defined: %s and %zu more)", kind, what, names,
+                       map->count - listed);
+    return fail_at(ld, offset_of(ld, v.tok), "%s %s is not defined (defined: %s)", kind, what, names);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Files the scene refers to (meshes, images): paths relative to the scene file's directory
+
+// The length of the directory part of the scene's name ("scenes/" of "scenes/a.json"; 0 for "a.json").
+static size_t dir_length(const char *name) {
+    const char *slash = strrchr(name, '/');
+    return slash ? (size_t)(slash - name) + 1 : 0;
+}
+
+/// `file` as a path usable from the current directory: absolute paths as they are, others joined to the
+/// scene file's directory. NULL when out of memory.
+static char *resolve_path(const loader *ld, const char *file) {
+    size_t d = file[0] == '/' ? 0 : dir_length(ld->name), n = strlen(file);
+    char *p = malloc(d + n + 1);
+    if (!p) return NULL;
+    memcpy(p, ld->name, d);
+    memcpy(p + d, file, n + 1);
+    return p;
+}
+
+// " (resolved/path)" when the path opened differs from the one written, else "".
+static const char *resolved_note(const char *written, const char *path, char *buf, size_t size) {
+    if (strcmp(written, path) == 0) return "";
+    snprintf(buf, size, " (%.400s)", path);
+    return buf;
+}
+
+// Why `path` cannot be read as a file: 0 when it is a regular file (*st then holds its identity), an errno
+// value, or -1 for a special file (device, FIFO, socket), which could block or never end.
+static int file_problem(const char *path, struct stat *st) {
+    if (stat(path, st) != 0) return errno ? errno : ENOENT;
+    if (S_ISDIR(st->st_mode)) return EISDIR;
+    return S_ISREG(st->st_mode) ? 0 : -1;
+}
+
+static const char *file_problem_text(int e) { return e > 0 ? strerror(e) : "not a regular file"; }
+
+/// Reads the required path `key` of o, resolves it (*path, malloc'd) and checks that it names a regular
+/// file (*id). `kind` ("mesh", "image") names the file in messages: `image file "a.png": cannot open: reason`.
+static bool read_file_path(loader *ld, const jobj *o, const char *key, const char *kind, char **path, file_id *id,
+                           jval *where) {
+    const jmember *m;
+    char got[96], note[420];
+    *path = NULL;
+    if (!get_member(ld, o, key, true, &m)) return false;
+    jval v = *where = m->val;
+    if (!cJSON_IsString(v.item) || v.item->valuestring[0] == '\0')
+        return fail_at(ld, offset_of(ld, v.tok),
+                       "\"%s\" must be a non-empty string (a path relative to the scene file), got %s", key,
+                       describe(ld, v, got, sizeof got));
+    const char *written = v.item->valuestring;
+    char *p = resolve_path(ld, written);
+    if (!p) return fail_oom(ld);
+    struct stat st;
+    int e = file_problem(p, &st);
+    if (e != 0) {
+        fail_at(ld, offset_of(ld, v.tok), "%s file %s%s: cannot open: %s", kind, describe(ld, v, got, sizeof got),
+                resolved_note(written, p, note, sizeof note), file_problem_text(e));
+        free(p);
+        return false;
+    }
+    *path = p;
+    *id = (file_id){st.st_dev, st.st_ino};
+    return true;
+}
+
+// The message of a library that starts with the path it was given, without that "path: " prefix.
+static const char *strip_path(const char *message, const char *path) {
+    size_t n = strlen(path);
+    return strncmp(message, path, n) == 0 && message[n] == ':' && message[n + 1] == ' ' ? message + n + 2 : message;
+}
+
+static bool reserve(void **arr, size_t *cap, size_t n, size_t size) {
+    if (n <= *cap) return true;
+    size_t c = *cap ? *cap * 2 : 8;
+    if (c < n) c = n;
+    if (c > SIZE_MAX / size) return false;
+    void *p = realloc(*arr, c * size);
+    if (!p) return false;
+    *arr = p;
+    *cap = c;
+    return true;
+}
+
+/// The scene texture of image file `path` (id), decoded on first use; `where` is blamed for failures, and
+/// `prefix` (may be "") opens their message.
+static bool load_image(loader *ld, size_t where, const char *prefix, const char *written, const char *path,
+                       file_id id, uint32_t *index) {
+    for (size_t i = 0; i < ld->image_count; i++)
+        if (ld->images[i].id.dev == id.dev && ld->images[i].id.ino == id.ino) {
+            *index = ld->images[i].texture;
+            return true;
+        }
+    if (ld->scene->texture_count >= LOAD_MAX_ITEMS)
+        return fail_at(ld, where, "too many textures (the limit is %d)", LOAD_MAX_ITEMS);
+    texture t;
+    glint_error err;
+    if (texture_image_load(path, &t, &err) != GLINT_OK) {
+        char note[420];
+        return fail_at(ld, where, "%simage file \"%.300s\"%s: %s", prefix, written,
+                       resolved_note(written, path, note, sizeof note), strip_path(err.message, path));
+    }
+    long i = scene_add_texture(ld->scene, &t, NULL);
+    if (i < 0 || !reserve((void **)&ld->images, &ld->image_cap, ld->image_count + 1, sizeof *ld->images))
+        return fail_oom(ld);
+    ld->images[ld->image_count++] = (image_entry){id, (uint32_t)i};
+    *index = (uint32_t)i;
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Warnings: collected in the scene (the library prints nothing); the command line shows them
+
+static void add_warning(loader *ld, const char *message) {
+    if (ld->scene->warning_count >= LOAD_MAX_WARNINGS) {
+        ld->warnings_dropped++;
+        return;
+    }
+    if (!scene_add_warning(ld->scene, message)) ld->warning_oom = true;
+}
+
+// The OBJ reader's callback.
+static void collect_warning(const char *message, void *user) { add_warning(user, message); }
+
+LOAD_PRINTF(3, 4) static void warn_at(loader *ld, size_t offset, const char *fmt, ...) {
+    char msg[1024];
+    size_t line, col;
+    json_line_col(ld->text, ld->len, offset, &line, &col);
+    int n = snprintf(msg, sizeof msg, "%s:%zu:%zu: warning: ", ld->name, line, col);
+    if (n >= 0 && (size_t)n < sizeof msg) {
+        va_list ap;
+        va_start(ap, fmt);
+        vsnprintf(msg + n, sizeof msg - (size_t)n, fmt, ap);
+        va_end(ap);
+    }
+    add_warning(ld, msg);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Textures: add a row to texture_types (name, keys, reader) for a new kind.
+
+static const char *const solid_keys[] = {"type", "color", NULL};
+static const char *const checker_keys[] = {"type", "scale", "even", "odd", NULL};
+static const char *const noise_keys[] = {"type", "scale", "color", "seed", NULL};
+static const char *const turbulence_keys[] = {"type", "scale", "depth", "color", "seed", NULL};
+static const char *const image_keys[] = {"type", "file", NULL};
+
+/// Adds the texture a texture object describes (or finds the one already loaded from the same image);
+/// `name` is NULL for inline textures.
+typedef bool (*texture_reader)(loader *ld, const jobj *o, int variant, const char *name, uint32_t *index);
+
+static bool add_texture(loader *ld, const jobj *o, texture *t, const char *name, uint32_t *index) {
+    if (ld->scene->texture_count >= LOAD_MAX_ITEMS) {
+        texture_free(t);
+        return fail_at(ld, offset_of(ld, o->self.tok), "too many textures (the limit is %d)", LOAD_MAX_ITEMS);
+    }
+    long i = scene_add_texture(ld->scene, t, name);
+    if (i < 0) return fail_oom(ld);
+    *index = (uint32_t)i;
+    return true;
+}
+
+static bool read_solid(loader *ld, const jobj *o, int variant, const char *name, uint32_t *index) {
+    (void)variant;
+    vec3 c;
+    if (!read_color(ld, o, "color", true, &NUM_NONNEG, &c)) return false;
+    texture t = texture_solid(c);
+    return add_texture(ld, o, &t, name, index);
+}
+
+static bool read_checker(loader *ld, const jobj *o, int variant, const char *name, uint32_t *index) {
+    (void)variant;
+    float scale = 1.0f;
+    vec3 even = v3s(1.0f), odd = v3s(0.0f);
+    if (!read_float(ld, o, "scale", false, &NUM_POSITIVE, &scale) ||
+        !read_color(ld, o, "even", false, &NUM_NONNEG, &even) || !read_color(ld, o, "odd", false, &NUM_NONNEG, &odd))
+        return false;
+    // The checker divides by the scale: a subnormal one would overflow 1/scale.
+    if (!isfinite(1.0f / scale)) {
+        const jmember *m = obj_get(o, "scale");
+        char got[96];
+        return fail_at(ld, offset_of(ld, m->val.tok), "\"scale\" must be at least %g, got %s", (double)FLT_MIN,
+                       describe(ld, m->val, got, sizeof got));
+    }
+    texture t = texture_checker(scale, even, odd);
+    return add_texture(ld, o, &t, name, index);
+}
+
+static bool read_noise(loader *ld, const jobj *o, int variant, const char *name, uint32_t *index) {
+    float scale = 1.0f;
+    vec3 color = v3s(1.0f);
+    long long depth = 7, seed = 0;
+    if (!read_float(ld, o, "scale", false, &NUM_POSITIVE, &scale) ||
+        !read_int(ld, o, "depth", false, 1, LOAD_MAX_NOISE_DEPTH, &depth) ||
+        !read_color(ld, o, "color", false, &NUM_NONNEG, &color) ||
+        !read_int(ld, o, "seed", false, 0, 9007199254740992LL, &seed))
+        return false;
+    texture t;
+    if (!texture_noise((noise_kind)variant, scale, (int)depth, color, (uint64_t)seed, &t)) return fail_oom(ld);
+    return add_texture(ld, o, &t, name, index);
+}
+
+static bool read_image(loader *ld, const jobj *o, int variant, const char *name, uint32_t *index) {
+    (void)variant;
+    char *path;
+    file_id id;
+    jval where;
+    if (!read_file_path(ld, o, "file", "image", &path, &id, &where)) return false;
+    size_t before = ld->scene->texture_count;
+    bool ok = load_image(ld, offset_of(ld, where.tok), "", where.item->valuestring, path, id, index);
+    free(path);
+    // A newly decoded image takes the name it was first defined under (an image given twice loads once).
+    if (ok && name && ld->scene->texture_count > before && !ld->scene->texture_names[*index]) {
+        size_t n = strlen(name) + 1;
+        char *copy = malloc(n);
+        if (!copy) return fail_oom(ld);
+        memcpy(copy, name, n);
+        ld->scene->texture_names[*index] = copy;
+    }
+    return ok;
+}
+
+static const struct texture_type {
+    const char *name;
+    const char *const *keys;
+    texture_reader read;
+    int variant; ///< noise: its noise_kind
+} texture_types[] = {
+    {"solid", solid_keys, read_solid, 0},
+    {"checker", checker_keys, read_checker, 0},
+    {"noise", noise_keys, read_noise, NOISE_PLAIN},
+    {"turbulence", turbulence_keys, read_noise, NOISE_TURBULENCE},
+    {"marble", turbulence_keys, read_noise, NOISE_MARBLE},
+    {"image", image_keys, read_image, 0},
+};
+#define TEXTURE_TYPES (sizeof texture_types / sizeof texture_types[0])
+
+/// Reads a texture object and adds it to the scene (named or anonymous); *index is its number.
+static bool read_texture(loader *ld, jval v, const char *what, const char *name, uint32_t *index) {
+    size_t t;
+    if (!open_typed(ld, v, what, texture_types, TEXTURE_TYPES, sizeof texture_types[0], &t)) return false;
+    jobj o;
+    return obj_open(ld, v, what, texture_types[t].keys, &o) &&
+           texture_types[t].read(ld, &o, texture_types[t].variant, name, index);
+}
+
+static bool read_textures(loader *ld, jval v) {
+    char got[96], what[64 + SCENE_MAX_NAME];
+    if (!cJSON_IsObject(v.item))
+        return fail_at(ld, offset_of(ld, v.tok), "\"textures\" must be a JSON object mapping names to textures, got %s",
+                       describe(ld, v, got, sizeof got));
+    jiter it = iter_begin(ld, v);
+    uint32_t kt = 0;
+    jval val;
+    int r;
+    while ((r = iter_step(ld, &it, &kt, &val)) > 0) {
+        // The key string lives in the cJSON tree for the whole parse: the map may point at it.
+        const char *name = val.item->string;
+        if (!check_new_name(ld, &ld->textures, kt, name, "texture")) return false;
+        snprintf(what, sizeof what, "texture \"%s\"", name);
+        uint32_t index;
+        if (!read_texture(ld, val, what, name, &index)) return false;
+        if (!map_add(&ld->textures, name, index, kt)) return fail_oom(ld);
+    }
+    return r == 0;
+}
+
+// The largest colour component a texture can give (images are in [0, 1]).
+static float texture_peak(const texture *t) {
+    vec3 c = t->kind == TEX_CHECKER ? v3_max(t->even, t->odd) : t->kind == TEX_IMAGE ? v3s(1.0f) : t->color;
+    return fmaxf(c.x, fmaxf(c.y, c.z));
+}
+
+/// A material colour parameter: a number or [r, g, b] (into *color), or a texture, by name or inline (into
+/// *tex). Textures used where components must be at most 1 (albedo) must not exceed 1 either.
+static bool read_material_color(loader *ld, const jobj *o, const char *key, const numspec *sp, vec3 *color,
+                                int32_t *tex) {
+    const jmember *m = obj_get(o, key);
+    if (!m) return true;
+    jval v = m->val;
+    char got[96];
+    if (cJSON_IsNumber(v.item) || (cJSON_IsArray(v.item) && cJSON_GetArraySize(v.item) == 3))
+        return check_color(ld, v, key, sp, color);
+    uint32_t index;
+    if (cJSON_IsString(v.item)) {
+        const name_slot *s = map_find(&ld->textures, v.item->valuestring);
+        if (!s) return fail_undefined(ld, v, &ld->textures, "texture");
+        index = s->index;
+    } else if (cJSON_IsObject(v.item)) {
+        char what[96 + SCENE_MAX_NAME];
+        snprintf(what, sizeof what, "the texture \"%s\" of %s", key, o->what);
+        if (!read_texture(ld, v, what, NULL, &index)) return false;
+    } else {
+        return fail_at(ld, offset_of(ld, v.tok),
+                       "\"%s\" must be %s, an array of 3 such numbers [r, g, b], a texture name or a texture object, "
+                       "got %s",
+                       key, sp->desc, describe(ld, v, got, sizeof got));
+    }
+    float peak = texture_peak(&ld->scene->textures[index]);
+    if (peak > sp->hi)
+        return fail_at(ld, offset_of(ld, v.tok),
+                       "\"%s\" must stay in [0, %g], but this texture has colour components up to %g", key, sp->hi,
+                       (double)peak);
+    *tex = (int32_t)index;
     return true;
 }
 
@@ -551,23 +942,24 @@ static const char *const dielectric_keys[] = {"type", "ior", "tint", NULL};
 static const char *const phong_keys[] = {"type", "color", "specular", "reflective", "specular_color", NULL};
 static const char *const diffuse_light_keys[] = {"type", "emission", "two_sided", NULL};
 
+// Every colour parameter but Phong's specular_color may be a texture (read_material_color).
 static bool read_lambertian(loader *ld, const jobj *o, material *m) {
-    return read_color(ld, o, "albedo", false, &NUM_UNIT, &m->albedo);
+    return read_material_color(ld, o, "albedo", &NUM_UNIT, &m->albedo, &m->albedo_texture);
 }
 
 static bool read_metal(loader *ld, const jobj *o, material *m) {
-    return read_color(ld, o, "albedo", false, &NUM_UNIT, &m->albedo) &&
+    return read_material_color(ld, o, "albedo", &NUM_UNIT, &m->albedo, &m->albedo_texture) &&
            read_float(ld, o, "fuzz", false, &NUM_UNIT, &m->fuzz);
 }
 
 static bool read_dielectric(loader *ld, const jobj *o, material *m) {
     return read_float(ld, o, "ior", false, &NUM_POSITIVE, &m->ior) &&
-           read_color(ld, o, "tint", false, &NUM_UNIT, &m->albedo);
+           read_material_color(ld, o, "tint", &NUM_UNIT, &m->albedo, &m->albedo_texture);
 }
 
 static bool read_phong(loader *ld, const jobj *o, material *m) {
     long long specular = m->specular;
-    if (!read_color(ld, o, "color", false, &NUM_UNIT, &m->albedo) ||
+    if (!read_material_color(ld, o, "color", &NUM_UNIT, &m->albedo, &m->albedo_texture) ||
         !read_int(ld, o, "specular", false, -1, INT_MAX, &specular) ||
         !read_float(ld, o, "reflective", false, &NUM_UNIT, &m->reflective) ||
         !read_color(ld, o, "specular_color", false, &NUM_UNIT, &m->specular_color))
@@ -577,8 +969,9 @@ static bool read_phong(loader *ld, const jobj *o, material *m) {
     return true;
 }
 
+// A texture as "emission" scales the default emission 1: the texture's colour is the emitted radiance.
 static bool read_diffuse_light(loader *ld, const jobj *o, material *m) {
-    return read_color(ld, o, "emission", false, &NUM_NONNEG, &m->emission) &&
+    return read_material_color(ld, o, "emission", &NUM_NONNEG, &m->emission, &m->emission_texture) &&
            read_bool(ld, o, "two_sided", &m->two_sided);
 }
 
@@ -626,21 +1019,7 @@ static bool read_materials(loader *ld, jval v) {
     int r;
     while ((r = iter_step(ld, &it, &kt, &val)) > 0) {
         const char *name = val.item->string;
-        size_t n = strlen(name);
-        if (n == 0 || n > SCENE_MAX_NAME)
-            return fail_at(ld, offset_of(ld, kt), "material name %s must be 1 to %d bytes long",
-                           key_source(ld, kt, got, sizeof got), SCENE_MAX_NAME);
-        for (size_t i = 0; i < n; i++)
-            if ((unsigned char)name[i] < 0x20)
-                return fail_at(ld, offset_of(ld, kt), "material name %s must not contain control characters",
-                               key_source(ld, kt, got, sizeof got));
-        const name_slot *prev = map_find(&ld->materials, name);
-        if (prev) {
-            size_t line, col;
-            json_line_col(ld->text, ld->len, offset_of(ld, prev->tok), &line, &col);
-            return fail_at(ld, offset_of(ld, kt), "duplicate material name \"%s\" (first defined at %zu:%zu)", name,
-                           line, col);
-        }
+        if (!check_new_name(ld, &ld->materials, kt, name, "material")) return false;
         snprintf(what, sizeof what, "material \"%s\"", name);
         uint32_t index;
         if (!read_material(ld, val, what, name, &index)) return false;
@@ -669,38 +1048,408 @@ static bool read_material_ref(loader *ld, const jobj *o, const char *owner, uint
         *index = s->index;
         return true;
     }
-    // List the defined names (the first few) so that a typo is easy to spot.
-    char names[512];
-    size_t n = 0, listed = 0, named = ld->materials.count;
-    names[0] = '\0';
-    for (size_t i = 0; i < ld->scene->material_count && listed < LOAD_LIST_NAMES; i++) {
-        const char *name = ld->scene->material_names[i];
-        if (!name) continue;
-        int w = snprintf(names + n, sizeof names - n, "%s%s", listed ? ", " : "", name);
-        if (w < 0 || (size_t)w >= sizeof names - n) break;
-        n += (size_t)w;
-        listed++;
+    return fail_undefined(ld, v, &ld->materials, "material");
+}
+
+// ---------------------------------------------------------------------------------------------
+// Transforms: an array of operations, the first applied first (Mitsuba's order; pbrt's is the reverse)
+
+static const char *const transform_op_keys[] = {"translate", "rotate", "scale", "matrix", NULL};
+static const char *const rotate_keys[] = {"axis", "degrees", NULL};
+
+// Determinant of the linear (upper-left 3x3) part, in double.
+static double linear_det(const mat4 *a) {
+    const float(*m)[4] = a->m;
+    return (double)m[0][0] * ((double)m[1][1] * m[2][2] - (double)m[1][2] * m[2][1]) -
+           (double)m[0][1] * ((double)m[1][0] * m[2][2] - (double)m[1][2] * m[2][0]) +
+           (double)m[0][2] * ((double)m[1][0] * m[2][1] - (double)m[1][1] * m[2][0]);
+}
+
+// {"rotate": {"axis": [x, y, z], "degrees": a}}: right-handed, counter-clockwise looking down the axis.
+static bool read_rotate(loader *ld, jval v, const char *what, mat4 *out) {
+    jobj o;
+    vec3 axis;
+    float degrees;
+    if (!obj_open(ld, v, what, rotate_keys, &o) || !read_vec3(ld, &o, "axis", true, &NUM_FINITE, &axis) ||
+        !read_float(ld, &o, "degrees", true, &NUM_FINITE, &degrees))
+        return false;
+    if (axis.x == 0.0f && axis.y == 0.0f && axis.z == 0.0f) {
+        const jmember *m = obj_get(&o, "axis");
+        char got[96];
+        return fail_at(ld, offset_of(ld, m->val.tok), "\"axis\" must be a non-zero vector, got %s",
+                       describe(ld, m->val, got, sizeof got));
     }
-    if (named == 0)
-        return fail_at(ld, offset_of(ld, v.tok), "material %s is not defined (no named materials are defined)",
+    *out = mat4_rotate(axis, degrees);
+    return true;
+}
+
+// {"scale": s} or {"scale": [x, y, z]}: every factor non-zero (a zero would flatten the object).
+static bool read_scale(loader *ld, jval v, mat4 *out) {
+    double d[3];
+    if (cJSON_IsNumber(v.item)) {
+        if (!check_number(ld, v, "scale", -1, &NUM_NONZERO_FINITE, &d[0])) return false;
+        d[1] = d[2] = d[0];
+    } else if (cJSON_IsArray(v.item) && cJSON_GetArraySize(v.item) == 3) {
+        if (!check_numbers(ld, v, "scale", 3, "3 numbers", &NUM_NONZERO_FINITE, d)) return false;
+    } else {
+        char got[96];
+        return fail_at(ld, offset_of(ld, v.tok),
+                       "\"scale\" must be a finite non-zero number or an array of 3 such numbers [x, y, z], got %s",
                        describe(ld, v, got, sizeof got));
-    if (listed < named)
-        return fail_at(ld, offset_of(ld, v.tok), "material %s is not defined (defined: %s and %zu more)",
-                       describe(ld, v, got, sizeof got), names, named - listed);
-    return fail_at(ld, offset_of(ld, v.tok), "material %s is not defined (defined: %s)",
-                   describe(ld, v, got, sizeof got), names);
+    }
+    *out = mat4_scale(v3((float)d[0], (float)d[1], (float)d[2]));
+    return true;
+}
+
+// {"matrix": [16 numbers, row by row]}: affine (last row 0 0 0 1) and invertible.
+static bool read_matrix(loader *ld, jval v, mat4 *out) {
+    double d[16];
+    if (!check_numbers(ld, v, "matrix", 16, "16 numbers (a 4x4 matrix, row by row)", &NUM_FINITE, d)) return false;
+    for (int i = 0; i < 16; i++) out->m[i / 4][i % 4] = (float)d[i];
+    if (!(d[12] == 0.0 && d[13] == 0.0 && d[14] == 0.0 && d[15] == 1.0))
+        return fail_at(ld, offset_of(ld, v.tok),
+                       "\"matrix\" must be affine: its last row must be [0, 0, 0, 1], got [%g, %g, %g, %g]", d[12],
+                       d[13], d[14], d[15]);
+    mat4 inv;
+    if (!mat4_invert(out, &inv))
+        return fail_at(ld, offset_of(ld, v.tok),
+                       "\"matrix\" is singular (determinant %g); expected an invertible matrix", linear_det(out));
+    return true;
+}
+
+/// Reads the optional "transform" of o into *xf (object to world); *given is false without one.
+static bool read_transform(loader *ld, const jobj *o, transform *xf, bool *given) {
+    const jmember *m = obj_get(o, "transform");
+    *xf = transform_identity();
+    *given = m != NULL;
+    if (!m) return true;
+    jval v = m->val;
+    char got[96];
+    if (!cJSON_IsArray(v.item))
+        return fail_at(ld, offset_of(ld, v.tok),
+                       "\"transform\" must be an array of operations ({\"translate\": ...}, {\"rotate\": ...}, "
+                       "{\"scale\": ...} or {\"matrix\": ...}), got %s",
+                       describe(ld, v, got, sizeof got));
+    mat4 acc = mat4_identity();
+    jiter it = iter_begin(ld, v);
+    jval e;
+    int r;
+    for (size_t i = 0; (r = iter_step(ld, &it, NULL, &e)) > 0; i++) {
+        char what[48];
+        snprintf(what, sizeof what, "transform[%zu]", i);
+        jobj op;
+        if (!obj_open(ld, e, what, transform_op_keys, &op)) return false;
+        if (op.count != 1)
+            return fail_at(ld, offset_of(ld, e.tok),
+                           "%s must hold exactly one operation (translate, rotate, scale or matrix), got %zu; put "
+                           "each in its own element, they apply in array order",
+                           what, op.count);
+        const jmember *opm = &op.m[0];
+        mat4 step;
+        if (strcmp(opm->key, "translate") == 0) {
+            vec3 t;
+            if (!check_vec3(ld, opm->val, "translate", &NUM_FINITE, &t)) return false;
+            step = mat4_translate(t);
+        } else if (strcmp(opm->key, "rotate") == 0) {
+            char rot_what[96];
+            snprintf(rot_what, sizeof rot_what, "\"rotate\" of %s", what);
+            if (!read_rotate(ld, opm->val, rot_what, &step)) return false;
+        } else if (strcmp(opm->key, "scale") == 0) {
+            if (!read_scale(ld, opm->val, &step)) return false;
+        } else if (!read_matrix(ld, opm->val, &step)) {
+            return false;
+        }
+        // Each operation acts on the result of the ones before it: M = step * M.
+        acc = mat4_mul(&step, &acc);
+        if (!mat4_is_affine(&acc))
+            return fail_at(ld, offset_of(ld, e.tok), "%s makes the transform overflow single precision", what);
+    }
+    if (r < 0) return false;
+    if (!transform_make(&acc, xf))
+        return fail_at(ld, offset_of(ld, v.tok),
+                       "\"transform\" is singular or too close to it to invert in single precision (determinant "
+                       "%g)",
+                       linear_det(&acc));
+    return true;
+}
+
+// Whether the linear part of m is a rotation (or a mirror) times a uniform scale; *s is that scale.
+static bool similarity_scale(const mat4 *m, double *s) {
+    double c[3][3];
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++) c[j][i] = m->m[i][j];
+    double n[3], d[3];
+    for (int j = 0; j < 3; j++) n[j] = c[j][0] * c[j][0] + c[j][1] * c[j][1] + c[j][2] * c[j][2];
+    for (int j = 0; j < 3; j++) {
+        const double *a = c[j], *b = c[(j + 1) % 3];
+        d[j] = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    }
+    // Columns of equal length, pairwise orthogonal, up to the float rounding of a composed rotation.
+    double tol = 1e-5 * n[0];
+    for (int j = 0; j < 3; j++)
+        if (fabs(n[j] - n[0]) > tol || fabs(d[j]) > tol) return false;
+    *s = sqrt((n[0] + n[1] + n[2]) / 3.0);
+    return true;
 }
 
 // ---------------------------------------------------------------------------------------------
 // Objects: add a row to object_types (name, keys, reader) for a new shape.
 
-static const char *const sphere_keys[] = {"type", "center", "radius", "material", NULL};
+static const char *const sphere_keys[] = {"type", "center", "radius", "material", "transform", NULL};
+static const char *const quad_keys[] = {"type", "q", "u", "v", "material", "transform", NULL};
+static const char *const box_keys[] = {"type", "min", "max", "material", "transform", NULL};
+static const char *const mesh_keys[] = {"type", "file", "material", "transform", "face_normals", NULL};
 
+// A sphere under a similarity is another sphere; under any other transform it becomes an instance.
 static bool read_sphere(loader *ld, const jobj *o, const char *what) {
     sphere s = {0};
-    return read_vec3(ld, o, "center", true, &NUM_FINITE, &s.center) &&
-           read_float(ld, o, "radius", true, &NUM_NONZERO_FINITE, &s.radius) &&
-           read_material_ref(ld, o, what, &s.material) && (scene_add_sphere(ld->scene, s) || fail_oom(ld));
+    transform xf;
+    bool moved;
+    if (!read_vec3(ld, o, "center", true, &NUM_FINITE, &s.center) ||
+        !read_float(ld, o, "radius", true, &NUM_NONZERO_FINITE, &s.radius) ||
+        !read_material_ref(ld, o, what, &s.material) || !read_transform(ld, o, &xf, &moved))
+        return false;
+    if (!moved) return scene_add_sphere(ld->scene, s) || fail_oom(ld);
+    double scale;
+    if (similarity_scale(&xf.m, &scale)) {
+        sphere w = s;
+        w.center = mat4_apply_point(&xf.m, s.center);
+        w.radius = (float)(s.radius * scale);
+        if (!v3_is_finite(w.center) || !isfinite(w.radius) || w.radius == 0.0f)
+            return fail_at(ld, offset_of_member(ld, o, "transform"),
+                           "the transformed sphere is not representable in single precision");
+        return scene_add_sphere(ld->scene, w) || fail_oom(ld);
+    }
+    long i = scene_add_instance_sphere(ld->scene, s);
+    if (i < 0) return fail_oom(ld);
+    instance in = {INSTANCE_SPHERE, (uint32_t)i, xf, (int32_t)s.material};
+    return scene_add_instance(ld->scene, in) || fail_oom(ld);
+}
+
+/// The quad q under m: its corners transformed as points (so corners shared by quads stay shared, and a box
+/// stays watertight), with u and v swapped under a mirror so that the front stays the front.
+static bool transform_quad(const quad *q, const mat4 *m, quad *out) {
+    vec3 p[4];
+    for (int k = 0; k < 4; k++) p[k] = mat4_apply_point(m, q->p[k]);
+    if (linear_det(m) < 0.0) {
+        vec3 tmp = p[1];
+        p[1] = p[3];
+        p[3] = tmp;
+    }
+    if (!quad_make(p[0], v3_sub(p[1], p[0]), v3_sub(p[3], p[0]), q->material, out)) return false;
+    for (int k = 0; k < 4; k++) out->p[k] = p[k];
+    return true;
+}
+
+// Adds quads (count of them) under xf if `moved`, pointing at "transform" when the result degenerates.
+static bool add_quads(loader *ld, const jobj *o, const quad *q, int count, const transform *xf, bool moved) {
+    for (int i = 0; i < count; i++) {
+        quad w = q[i];
+        if (moved && !transform_quad(&q[i], &xf->m, &w))
+            return fail_at(ld, offset_of_member(ld, o, "transform"),
+                           "the transformed shape has no area or is not representable in single precision");
+        if (!scene_add_quad(ld->scene, w)) return fail_oom(ld);
+    }
+    return true;
+}
+
+static bool read_quad(loader *ld, const jobj *o, const char *what) {
+    vec3 q, u, v;
+    uint32_t mat;
+    transform xf;
+    bool moved;
+    if (!read_vec3(ld, o, "q", true, &NUM_FINITE, &q) || !read_vec3(ld, o, "u", true, &NUM_FINITE, &u) ||
+        !read_vec3(ld, o, "v", true, &NUM_FINITE, &v) || !read_material_ref(ld, o, what, &mat) ||
+        !read_transform(ld, o, &xf, &moved))
+        return false;
+    quad qd;
+    if (!quad_make(q, u, v, mat, &qd)) {
+        vec3 n = v3_cross(u, v);
+        if (v3_is_finite(n) && n.x == 0.0f && n.y == 0.0f && n.z == 0.0f)
+            return fail_at(ld, offset_of_member(ld, o, "v"),
+                           "\"u\" and \"v\" must be non-zero and not parallel (the quad has no area)");
+        return fail_at(ld, offset_of_member(ld, o, "v"), "the quad is too large: its area overflows single precision");
+    }
+    return add_quads(ld, o, &qd, 1, &xf, moved);
+}
+
+static bool read_box(loader *ld, const jobj *o, const char *what) {
+    vec3 lo, hi;
+    uint32_t mat;
+    transform xf;
+    bool moved;
+    if (!read_vec3(ld, o, "min", true, &NUM_FINITE, &lo) || !read_vec3(ld, o, "max", true, &NUM_FINITE, &hi))
+        return false;
+    for (int k = 0; k < 3; k++) {
+        float a = v3_comp(lo, k), b = v3_comp(hi, k);
+        if (!(a < b))
+            return fail_at(ld, offset_of_member(ld, o, "max"),
+                           "\"max\" must be greater than \"min\" in every coordinate, but \"max\"[%d] = %g <= "
+                           "\"min\"[%d] = %g",
+                           k, (double)b, k, (double)a);
+    }
+    if (!read_material_ref(ld, o, what, &mat) || !read_transform(ld, o, &xf, &moved)) return false;
+    quad faces[6];
+    if (!quad_box(lo, hi, mat, faces))
+        return fail_at(ld, offset_of_member(ld, o, "max"), "the box is too large: its faces' areas overflow single "
+                                                           "precision");
+    return add_quads(ld, o, faces, 6, &xf, moved);
+}
+
+// Whether the file name ends in ".obj", in any case.
+static bool has_obj_extension(const char *path) {
+    size_t n = strlen(path);
+    if (n < 4) return false;
+    const char *e = path + n - 4;
+    return e[0] == '.' && (e[1] | 0x20) == 'o' && (e[2] | 0x20) == 'b' && (e[3] | 0x20) == 'j';
+}
+
+// The shared grey Lambertian of faces that have no material of their own.
+static bool fallback_material(loader *ld, uint32_t *index) {
+    if (ld->fallback_material < 0) {
+        material m = material_default(MAT_LAMBERTIAN);
+        if ((ld->fallback_material = scene_add_material(ld->scene, &m, NULL)) < 0) return fail_oom(ld);
+    }
+    *index = (uint32_t)ld->fallback_material;
+    return true;
+}
+
+/// Turns the material slots of a loaded OBJ into scene materials ("file:name", map_Kd as an image texture)
+/// and fills the scene mesh's slot table; *needs_fallback tells whether some faces have no material.
+static bool map_obj_materials(loader *ld, jval file, const obj_model *model, scene_mesh *sm, bool *needs_fallback) {
+    const char *written = file.item->valuestring;
+    size_t where = offset_of(ld, file.tok);
+    *needs_fallback = false;
+    for (size_t i = 0; i < model->mesh.triangle_count && !*needs_fallback; i++)
+        if (model->mesh.triangles[i].material < 0) *needs_fallback = true;
+    if (model->material_count && !(sm->slot_material = calloc(model->material_count, sizeof *sm->slot_material)))
+        return fail_oom(ld);
+    sm->slot_count = model->material_count;
+    for (size_t i = 0; i < model->material_count; i++) {
+        const obj_material *om = &model->materials[i];
+        if (!om->defined) {
+            *needs_fallback = true;
+            if (!fallback_material(ld, &sm->slot_material[i])) return false;
+            continue;
+        }
+        material m = om->mat;
+        m.albedo_texture = m.emission_texture = -1;
+        // map_Kd is a diffuse colour: it replaces the albedo of Lambertian materials only (a metal's albedo is Ks).
+        if (om->diffuse_map && m.kind == MAT_LAMBERTIAN) {
+            // The OBJ reader has resolved the path and warned about (and dropped) missing files.
+            struct stat st;
+            int e = file_problem(om->diffuse_map, &st);
+            char prefix[512];
+            snprintf(prefix, sizeof prefix, "mesh file \"%.200s\": material \"%.100s\": ", written, om->name);
+            if (e)
+                return fail_at(ld, where, "%simage file \"%.300s\": cannot open: %s", prefix, om->diffuse_map,
+                               file_problem_text(e));
+            uint32_t t;
+            if (!load_image(ld, where, prefix, om->diffuse_map, om->diffuse_map, (file_id){st.st_dev, st.st_ino}, &t))
+                return false;
+            m.albedo_texture = (int32_t)t;
+        }
+        if (ld->scene->material_count >= LOAD_MAX_ITEMS)
+            return fail_at(ld, where, "too many materials (the limit is %d)", LOAD_MAX_ITEMS);
+        size_t n = strlen(written) + strlen(om->name) + 2;
+        char *name = malloc(n);
+        if (!name) return fail_oom(ld);
+        snprintf(name, n, "%s:%s", written, om->name);
+        long k = scene_add_material(ld->scene, &m, name);
+        free(name);
+        if (k < 0) return fail_oom(ld);
+        sm->slot_material[i] = (uint32_t)k;
+    }
+    if (*needs_fallback || sm->slot_count == 0) return fallback_material(ld, &sm->default_material);
+    sm->default_material = sm->slot_material[0];
+    return true;
+}
+
+/// Loads an OBJ file into a new scene mesh; *entry records it in the cache.
+static bool load_mesh(loader *ld, jval file, const char *path, file_id id, bool face_normals, mesh_entry *entry) {
+    obj_model model;
+    glint_error err;
+    obj_options opt = {collect_warning, ld, false};
+    char got[96], note[420];
+    if (obj_load(path, &opt, &model, &err) != GLINT_OK)
+        return fail_at(ld, offset_of(ld, file.tok), "mesh file %s%s: %s", describe(ld, file, got, sizeof got),
+                       resolved_note(file.item->valuestring, path, note, sizeof note), err.message);
+    if (ld->warning_oom) {
+        obj_model_free(&model);
+        return fail_oom(ld);
+    }
+    scene_mesh sm = {0};
+    bool ok = true;
+    if (face_normals) {
+        // Flat shading: every triangle uses its geometric normal.
+        for (size_t i = 0; i < model.mesh.triangle_count; i++)
+            model.mesh.triangles[i].n[0] = model.mesh.triangles[i].n[1] = model.mesh.triangles[i].n[2] = -1;
+    } else {
+        ok = mesh_compute_normals(&model.mesh) || fail_oom(ld);
+    }
+    ok = ok && map_obj_materials(ld, file, &model, &sm, &entry->needs_fallback);
+    // The scene takes the geometry; the model keeps (and frees) its material slots.
+    sm.geometry = model.mesh;
+    memset(&model.mesh, 0, sizeof model.mesh);
+    obj_model_free(&model);
+    if (ok && !(sm.path = malloc(strlen(path) + 1))) ok = fail_oom(ld);
+    if (!ok) {
+        mesh_free(&sm.geometry);
+        free(sm.slot_material);
+        free(sm.path);
+        return false;
+    }
+    memcpy(sm.path, path, strlen(path) + 1);
+    long i = scene_add_mesh(ld->scene, &sm);
+    if (i < 0) return fail_oom(ld);
+    *entry = (mesh_entry){id, face_normals, entry->needs_fallback, false, (uint32_t)i};
+    return true;
+}
+
+// A mesh from a file, placed with its own transform; every mesh object is an instance of its file's mesh,
+// which is loaded once however often it is placed.
+static bool read_mesh(loader *ld, const jobj *o, const char *what) {
+    char *path;
+    file_id id;
+    jval file;
+    bool face_normals = false, moved;
+    transform xf;
+    uint32_t mat = 0;
+    const bool override = obj_get(o, "material") != NULL;
+    if (!read_file_path(ld, o, "file", "mesh", &path, &id, &file)) return false;
+    bool ok = true;
+    char got[96], note[420];
+    if (!has_obj_extension(path))
+        ok = fail_at(
+            ld, offset_of(ld, file.tok), "mesh file %s%s: unsupported format; expected a Wavefront OBJ file (.obj)",
+            describe(ld, file, got, sizeof got), resolved_note(file.item->valuestring, path, note, sizeof note));
+    ok = ok && read_bool(ld, o, "face_normals", &face_normals) && (!override || read_material_ref(ld, o, what, &mat)) &&
+         read_transform(ld, o, &xf, &moved);
+    mesh_entry *entry = NULL;
+    for (size_t i = 0; ok && i < ld->mesh_count && !entry; i++)
+        if (ld->meshes[i].id.dev == id.dev && ld->meshes[i].id.ino == id.ino &&
+            ld->meshes[i].face_normals == face_normals)
+            entry = &ld->meshes[i];
+    if (ok && !entry) {
+        if (!reserve((void **)&ld->meshes, &ld->mesh_cap, ld->mesh_count + 1, sizeof *ld->meshes)) {
+            ok = fail_oom(ld);
+        } else {
+            entry = &ld->meshes[ld->mesh_count];
+            ok = load_mesh(ld, file, path, id, face_normals, entry);
+            if (ok) ld->mesh_count++;
+        }
+    }
+    free(path);
+    if (!ok) return false;
+    if (!override && entry->needs_fallback && !entry->warned) {
+        entry->warned = true;
+        warn_at(ld, offset_of(ld, file.tok),
+                "some faces of mesh file %s have no material (no usemtl, or one no material library defines); they "
+                "are grey Lambertian unless the object gives a \"material\"",
+                describe(ld, file, got, sizeof got));
+    }
+    instance in = {INSTANCE_MESH, entry->mesh, xf, override ? (int32_t)mat : -1};
+    return scene_add_instance(ld->scene, in) || fail_oom(ld);
 }
 
 typedef bool (*object_reader)(loader *ld, const jobj *o, const char *what);
@@ -711,6 +1460,9 @@ static const struct object_type {
     object_reader read;
 } object_types[] = {
     {"sphere", sphere_keys, read_sphere},
+    {"quad", quad_keys, read_quad},
+    {"box", box_keys, read_box},
+    {"mesh", mesh_keys, read_mesh},
 };
 #define OBJECT_TYPES (sizeof object_types / sizeof object_types[0])
 
@@ -809,12 +1561,6 @@ static const struct camera_type {
     {"viewport", CAMERA_VIEWPORT, viewport_keys},
     {"lookat", CAMERA_LOOKAT, lookat_keys},
 };
-
-// The value to point at for a problem with `key`: the key's value if given, else the whole object.
-static size_t offset_of_member(const loader *ld, const jobj *o, const char *key) {
-    const jmember *m = obj_get(o, key);
-    return offset_of(ld, m ? m->val.tok : o->self.tok);
-}
 
 static bool read_lookat(loader *ld, const jobj *o, camera *c) {
     if (!read_vec3(ld, o, "lookfrom", false, &NUM_FINITE, &c->lookfrom) ||
@@ -992,7 +1738,7 @@ static bool read_render(loader *ld, jval v) {
 // ---------------------------------------------------------------------------------------------
 // The scene
 
-static const char *const scene_keys[] = {"render", "camera", "materials", "objects", "lights", NULL};
+static const char *const scene_keys[] = {"render", "camera", "textures", "materials", "objects", "lights", NULL};
 
 static bool read_scene(loader *ld, jval root) {
     jobj o;
@@ -1003,13 +1749,21 @@ static bool read_scene(loader *ld, jval root) {
     }
     if (!obj_open(ld, root, "the scene", scene_keys, &o)) return false;
     const jmember *m;
-    // Materials before objects, so that objects can refer to them whatever the key order in the file.
+    // Textures before materials before objects, so that each can refer to the one before it whatever the
+    // key order in the file.
     if ((m = obj_get(&o, "render")) && !read_render(ld, m->val)) return false;
     if ((m = obj_get(&o, "camera")) && !read_camera(ld, m->val)) return false;
+    if ((m = obj_get(&o, "textures")) && !read_textures(ld, m->val)) return false;
     if ((m = obj_get(&o, "materials")) && !read_materials(ld, m->val)) return false;
     if ((m = obj_get(&o, "objects")) && !read_objects(ld, m->val)) return false;
     if ((m = obj_get(&o, "lights")) && !read_lights(ld, m->val)) return false;
-    return true;
+    if (ld->warnings_dropped) {
+        char msg[256];
+        snprintf(msg, sizeof msg, "%s: warning: %zu more warnings not listed", ld->name, ld->warnings_dropped);
+        ld->warnings_dropped = 0;
+        if (!scene_add_warning(ld->scene, msg)) ld->warning_oom = true;
+    }
+    return !ld->warning_oom || fail_oom(ld);
 }
 
 glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err) {
@@ -1044,7 +1798,15 @@ glint_status glint_scene_parse(const char *name, const char *text, size_t length
     size_t bom = length >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(text + bom, length - bom, &end, 0);
-    loader ld = {name, text, length, &ix, NULL, err, GLINT_ERR_INPUT, {NULL, 0, 0}};
+    loader ld;
+    memset(&ld, 0, sizeof ld);
+    ld.name = name;
+    ld.text = text;
+    ld.len = length;
+    ld.ix = &ix;
+    ld.err = err;
+    ld.status = GLINT_ERR_INPUT;
+    ld.fallback_material = -1;
     bool ok = false;
     if (!root) {
         // The scanner accepted the text, so this is cJSON running out of memory (or a cJSON bug).
@@ -1061,6 +1823,9 @@ glint_status glint_scene_parse(const char *name, const char *text, size_t length
         ok = read_scene(&ld, (jval){root, 0});
     }
     free(ld.materials.slot);
+    free(ld.textures.slot);
+    free(ld.meshes);
+    free(ld.images);
     cJSON_Delete(root);
     json_index_free(&ix);
     if (!ok) {

@@ -1,6 +1,7 @@
 // scene.c — building, overriding, preparing and freeing a scene.
 #include "scene/scene.h"
 #include "accel/accel.h"
+#include "integrator/integrator.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -80,9 +81,93 @@ bool scene_add_light(glint_scene *s, light l) {
     return true;
 }
 
+bool scene_add_quad(glint_scene *s, quad q) {
+    quad *arr = grow(s->quads, s->quad_count, sizeof *arr);
+    if (!arr) return false;
+    s->quads = arr;
+    s->quads[s->quad_count++] = q;
+    return true;
+}
+
+long scene_add_texture(glint_scene *s, texture *t, const char *name) {
+    texture *arr = grow(s->textures, s->texture_count, sizeof *arr);
+    if (arr) s->textures = arr;
+    char **names = arr ? grow(s->texture_names, s->texture_count, sizeof *names) : NULL;
+    if (names) s->texture_names = names;
+    char *copy = NULL;
+    if (!names || (name && !(copy = dup_string(name)))) {
+        texture_free(t);
+        return -1;
+    }
+    s->textures[s->texture_count] = *t;
+    s->texture_names[s->texture_count] = copy;
+    return (long)s->texture_count++;
+}
+
+long scene_find_texture(const glint_scene *s, const char *name) {
+    for (size_t i = 0; i < s->texture_count; i++)
+        if (s->texture_names[i] && strcmp(s->texture_names[i], name) == 0) return (long)i;
+    return -1;
+}
+
+// Frees what a scene mesh owns.
+static void scene_mesh_free(scene_mesh *m) {
+    mesh_free(&m->geometry);
+    free(m->slot_material);
+    free(m->path);
+}
+
+long scene_add_mesh(glint_scene *s, scene_mesh *m) {
+    scene_mesh *arr = grow(s->meshes, s->mesh_count, sizeof *arr);
+    if (!arr) {
+        scene_mesh_free(m);
+        return -1;
+    }
+    s->meshes = arr;
+    s->meshes[s->mesh_count] = *m;
+    return (long)s->mesh_count++;
+}
+
+long scene_add_instance_sphere(glint_scene *s, sphere sp) {
+    sphere *arr = grow(s->instance_spheres, s->instance_sphere_count, sizeof *arr);
+    if (!arr) return -1;
+    s->instance_spheres = arr;
+    s->instance_spheres[s->instance_sphere_count] = sp;
+    return (long)s->instance_sphere_count++;
+}
+
+bool scene_add_instance(glint_scene *s, instance in) {
+    instance *arr = grow(s->instances, s->instance_count, sizeof *arr);
+    if (!arr) return false;
+    s->instances = arr;
+    s->instances[s->instance_count++] = in;
+    return true;
+}
+
+bool scene_add_warning(glint_scene *s, const char *message) {
+    char **arr = grow(s->warnings, s->warning_count, sizeof *arr);
+    if (!arr) return false;
+    s->warnings = arr;
+    char *copy = dup_string(message);
+    if (!copy) return false;
+    s->warnings[s->warning_count++] = copy;
+    return true;
+}
+
+size_t glint_scene_warning_count(const glint_scene *s) { return s ? s->warning_count : 0; }
+
+const char *glint_scene_warning(const glint_scene *s, size_t i) {
+    return s && i < s->warning_count ? s->warnings[i] : NULL;
+}
+
 glint_status scene_prepare(glint_scene *s, glint_error *err) {
     camera_prepare(&s->camera, s->settings.width, s->settings.height);
     if (s->accel) return GLINT_OK;
+    // The path tracer's index of emissive quads depends only on the geometry: built once, with the accel.
+    if (!path_prepare(s)) {
+        snprintf(err->message, sizeof err->message, "%s: out of memory while indexing the emissive surfaces", s->path);
+        return GLINT_ERR_RENDER;
+    }
     s->accel = accel_build(s, err);
     return s->accel ? GLINT_OK : GLINT_ERR_RENDER;
 }
@@ -137,11 +222,25 @@ void glint_scene_size(const glint_scene *s, int *width, int *height) {
 void glint_scene_free(glint_scene *s) {
     if (!s) return;
     if (s->accel) accel_free(s->accel);
+    path_release(s);
     for (size_t i = 0; i < s->material_count; i++) free(s->material_names[i]);
     free(s->material_names);
     free(s->materials);
     free(s->spheres);
     free(s->lights);
+    free(s->quads);
+    for (size_t i = 0; i < s->texture_count; i++) {
+        texture_free(&s->textures[i]);
+        free(s->texture_names[i]);
+    }
+    free(s->textures);
+    free(s->texture_names);
+    for (size_t i = 0; i < s->mesh_count; i++) scene_mesh_free(&s->meshes[i]);
+    free(s->meshes);
+    free(s->instance_spheres);
+    free(s->instances);
+    for (size_t i = 0; i < s->warning_count; i++) free(s->warnings[i]);
+    free(s->warnings);
     free(s->path);
     free(s);
 }

@@ -34,6 +34,7 @@ typedef struct render_settings {
     vec3 sky_horizon, sky_zenith; ///< sky: lerp(horizon, zenith, 0.5 * (dir.y + 1))
     output_transform transform;
     accel_kind accel;
+    bool no_light_sampling;       ///< path tracer: no next-event estimation towards emissive quads (tests; not in the file format)
 } render_settings;
 
 /// Hard limits on sizes, so that a scene file cannot ask for absurd amounts of memory or time.
@@ -45,6 +46,7 @@ enum {
 };
 
 struct accel; // defined in accel/accel.h
+struct path_lights; // defined in integrator/path.c
 
 /// What an instance places: a mesh (its triangles) or a single sphere, in object space.
 typedef enum instance_kind { INSTANCE_MESH, INSTANCE_SPHERE } instance_kind;
@@ -96,7 +98,11 @@ struct glint_scene {
     instance *instances;
     size_t instance_count;
 
+    char **warnings;         ///< problems the loader worked around ("file:line: warning: ..."); never printed by the library
+    size_t warning_count;
+
     struct accel *accel;   ///< built by scene_prepare
+    struct path_lights *path_lights; ///< emissive quads indexed for next-event estimation: path_prepare, path_release
 };
 
 /// Builds what rendering needs (the acceleration structure); idempotent.
@@ -110,6 +116,20 @@ long scene_find_material(const glint_scene *s, const char *name);
 bool scene_add_sphere(glint_scene *s, sphere sp);
 /// Appends a light; false when out of memory.
 bool scene_add_light(glint_scene *s, light l);
+/// Appends a quad; false when out of memory.
+bool scene_add_quad(glint_scene *s, quad q);
+/// Appends a texture, taking what it owns (freed on failure too); its index, or -1 when out of memory.
+long scene_add_texture(glint_scene *s, texture *t, const char *name);
+/// Index of the named texture, or -1.
+long scene_find_texture(const glint_scene *s, const char *name);
+/// Appends a mesh, taking its arrays and path (freed on failure too); its index, or -1 when out of memory.
+long scene_add_mesh(glint_scene *s, scene_mesh *m);
+/// Appends an object-space sphere for an INSTANCE_SPHERE instance; its index, or -1 when out of memory.
+long scene_add_instance_sphere(glint_scene *s, sphere sp);
+/// Appends an instance; false when out of memory.
+bool scene_add_instance(glint_scene *s, instance in);
+/// Appends a copy of a warning message; false when out of memory.
+bool scene_add_warning(glint_scene *s, const char *message);
 /// An empty scene with every render setting at its documented default.
 glint_scene *scene_new(const char *path);
 
