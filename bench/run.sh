@@ -12,7 +12,7 @@
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-QUICK=0 RUNS= ONLY=rtiow,howard,paper,scaling EMBREE=1 GLINT=
+QUICK=0 RUNS='' ONLY=rtiow,howard,paper,scaling EMBREE=1 GLINT=''
 while [ $# -gt 0 ]; do
     case "$1" in
     --quick) QUICK=1 ;;
@@ -201,6 +201,8 @@ if want scaling; then
 fi
 
 mkdir -p "$ROOT/bench/results"
-RESULT=$ROOT/bench/results/$(date -u +%Y-%m-%d)-$COMMIT$([ $QUICK = 1 ] && echo -quick).md
+SUFFIX=''
+[ $QUICK = 0 ] || SUFFIX=-quick # (not a $(... && ...) in the assignment: its failure would end the script under set -e)
+RESULT=$ROOT/bench/results/$(date -u +%Y-%m-%d)-$COMMIT$SUFFIX.md
 cp "$TABLE" "$RESULT"
 echo "saved $RESULT" >&2

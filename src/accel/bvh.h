@@ -5,7 +5,11 @@
 
 #include "accel/accel.h"
 #include "core/vec.h"
+#include "geometry/mesh.h"
 #include "geometry/sphere.h"
+#include "geometry/transform.h"
+#include "geometry/triangle.h"
+#include "scene/scene.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -27,8 +31,9 @@
 /// Depth limit of the binary build; deeper subtrees become (multi-packet) leaves, which bounds the stacks.
 #define BVH_MAX_DEPTH 64
 
-/// Kinds of primitive a BVH can hold; a leaf packet holds primitives of one kind.
-typedef enum prim_kind { PRIM_SPHERE = 0 } prim_kind;
+/// Kinds of primitive a BVH can hold; a leaf packet holds primitives of one kind. The world BVH holds
+/// spheres, quads and instances; the BVH of a mesh (shared by its instances) holds its triangles.
+typedef enum prim_kind { PRIM_SPHERE = 0, PRIM_QUAD = 1, PRIM_TRIANGLE = 2, PRIM_INSTANCE = 3 } prim_kind;
 
 /// A primitive of the scene: its kind and its index in the scene's array of that kind.
 typedef struct prim_ref {
@@ -66,16 +71,44 @@ typedef struct bvh_sphere_packet {
     uint32_t prim[BVH_PACKET];
 } bvh_sphere_packet;
 
+/// A packet of up to BVH_PACKET primitives of another kind, tested one by one: their indices.
+typedef struct bvh_index_packet {
+    bvh_packet_header h;
+    uint32_t prim[BVH_PACKET];
+} bvh_index_packet;
+
 /// 32-byte unit of the leaf packet arena: every packet and every lane array in it is aligned for AVX.
 typedef struct bvh_slot {
     _Alignas(32) float f[8];
 } bvh_slot;
 
-/// Everything the traversals need; built once, then read-only.
-typedef struct bvh {
-    // primitives of the scene, by kind
+/// What a BVH is built over: world-level spheres, quads and instances (with the BVH of every mesh the
+/// instances place), or the triangles of one mesh. Unused arrays are NULL with count 0.
+typedef struct bvh_input {
     const sphere *spheres;
     size_t sphere_count;
+    const quad *quads;
+    size_t quad_count;
+    const mesh *mesh; ///< its triangles
+    const instance *instances;
+    size_t instance_count;
+    const struct bvh *blas;        ///< blas[i]: the BVH of scene mesh i, for INSTANCE_MESH instances
+    const scene_mesh *meshes;      ///< the scene's meshes (brute force tests their triangles directly)
+    const sphere *instance_spheres; ///< object-space spheres of INSTANCE_SPHERE instances
+} bvh_input;
+
+/// Everything the traversals need; built once, then read-only.
+typedef struct bvh {
+    // primitives, by kind (see bvh_input)
+    const sphere *spheres;
+    size_t sphere_count;
+    const quad *quads;
+    const mesh *mesh;
+    const instance *instances;
+    const struct bvh *blas;
+    const sphere *instance_spheres;
+    size_t prim_count;
+    bool spheres_only;  ///< nothing but spheres: the traversal without the code for other kinds runs
     // binary BVH (ACCEL_BVH2); nodes[0] is the root
     bvh2_node *nodes2;
     size_t node2_count;
@@ -87,20 +120,27 @@ typedef struct bvh {
     bvh_slot *slots;
     size_t slot_count;
     uint32_t root;
+    bounds3 bounds; ///< of everything in the BVH (empty when it holds nothing)
     accel_stats stats;
 } bvh;
 
-/// A sphere hit as the callers see it: kind, no instance, no barycentrics.
-static inline void bvh_sphere_hit(hit *h, float t, uint32_t prim) {
-    h->t = t;
-    h->prim = prim;
-    h->kind = HIT_SPHERE;
-    h->instance = HIT_NO_INSTANCE;
-    h->b1 = h->b2 = 0.0f;
+/// Whether candidate hit a wins over b: nearer, or as near and first in (kind, instance, prim) order, so
+/// that every structure (and brute force) returns the same primitive when several are hit at the same t.
+static inline bool bvh_better(const hit *a, const hit *b) {
+    if (a->t != b->t) return a->t < b->t;
+    if (a->kind != b->kind) return a->kind < b->kind;
+    if (a->instance != b->instance) return a->instance < b->instance;
+    return a->prim < b->prim;
 }
 
-/// Builds the binary BVH (wide = false) or the wide one over the spheres; false when out of memory.
-bool bvh_build(bvh *b, const sphere *spheres, size_t sphere_count, bool wide);
+/// The "no hit yet" record for a ray: t = tmax and a key that every real hit at tmax beats.
+static inline hit bvh_no_hit(const ray *r) {
+    hit h = {r->tmax, UINT32_MAX, UINT32_MAX, UINT32_MAX, 0.0f, 0.0f};
+    return h;
+}
+
+/// Builds the binary BVH (wide = false) or the wide one; false when out of memory (b is then empty).
+bool bvh_build(bvh *b, const bvh_input *in, bool wide);
 /// Frees what bvh_build allocated.
 void bvh_release(bvh *b);
 
@@ -112,6 +152,10 @@ bool bvh2_occluded(const bvh *b, const ray *r);
 bool bvh_intersect(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH, SIMD when compiled in, else scalar.
 bool bvh_occluded(const bvh *b, const ray *r);
+/// Closest hit among the primitives of in by testing every one (the reference for the BVHs).
+bool bvh_brute_intersect(const bvh_input *in, const ray *r, hit *h);
+/// Any hit among the primitives of in by testing every one.
+bool bvh_brute_occluded(const bvh_input *in, const ray *r);
 /// Closest hits of two independent rays in the wide BVH, their traversals interleaved step by step.
 void bvh_intersect2(const bvh *b, const ray *r0, const ray *r1, hit *h0, hit *h1, bool *f0, bool *f1);
 /// Closest hit in the wide BVH by the portable scalar path (always compiled, for tests).

@@ -227,39 +227,76 @@ static float node2_half_area(const bvh2_node *n) {
     return box_half_area(&b);
 }
 
-// Writes the packets of a binary leaf into the arena; returns the leaf reference.
+static int ref_order(const void *a, const void *b) {
+    const prim_ref *x = a, *y = b;
+    if (x->kind != y->kind) return x->kind < y->kind ? -1 : 1;
+    return (x->index > y->index) - (x->index < y->index);
+}
+
+static size_t packet_slots(uint32_t kind) {
+    return (kind == PRIM_SPHERE ? sizeof(bvh_sphere_packet) : sizeof(bvh_index_packet)) / sizeof(bvh_slot);
+}
+
+// Slots the packets of a binary leaf take: primitives of one kind per packet, BVH_PACKET at most. Sorts
+// the leaf's references by (kind, index), which groups the kinds and orders the lanes.
+static size_t leaf_slots(bvh *b, const bvh2_node *leaf) {
+    prim_ref *refs = &b->refs[leaf->offset];
+    qsort(refs, leaf->count, sizeof *refs, ref_order);
+    size_t slots = 0;
+    for (size_t i = 0; i < leaf->count;) {
+        size_t j = i;
+        while (j < leaf->count && j - i < BVH_PACKET && refs[j].kind == refs[i].kind) j++;
+        slots += packet_slots(refs[i].kind);
+        i = j;
+    }
+    return slots;
+}
+
+// Writes the packets of a binary leaf (its references sorted by leaf_slots) into the arena; returns the
+// leaf reference.
 static uint32_t emit_leaf(collapser *cl, const bvh2_node *leaf) {
     bvh *b = cl->b;
-    const size_t packet_slots = sizeof(bvh_sphere_packet) / sizeof(bvh_slot);
-    size_t n = leaf->count, packets = (n + BVH_PACKET - 1) / BVH_PACKET;
+    const prim_ref *refs = &b->refs[leaf->offset];
     uint32_t first = (uint32_t)b->slot_count;
-    b->slot_count += packets * packet_slots;
+    bvh_packet_header *last = NULL;
     cl->leaves++;
-    for (size_t p = 0; p < packets; p++) {
-        bvh_sphere_packet *pk = (bvh_sphere_packet *)(void *)&b->slots[first + p * packet_slots];
-        memset(pk, 0, sizeof *pk);
-        pk->h.kind = PRIM_SPHERE;
-        pk->h.slots = (uint32_t)packet_slots;
-        pk->h.last = p + 1 == packets;
-        for (int k = 0; k < BVH_PACKET; k++) {
-            size_t i = p * BVH_PACKET + (size_t)k;
-            if (i < n) {
-                const prim_ref *ref = &b->refs[leaf->offset + i];
-                const sphere *s = &b->spheres[ref->index];
-                pk->cx[k] = s->center.x;
-                pk->cy[k] = s->center.y;
-                pk->cz[k] = s->center.z;
-                pk->radius[k] = s->radius;
-                pk->prim[k] = ref->index;
-                pk->h.count++;
-            } else {
-                // A NaN centre makes the discriminant NaN, which fails the ordered test: never a hit.
-                pk->cx[k] = pk->cy[k] = pk->cz[k] = NAN;
-                pk->radius[k] = 0.0f;
-                pk->prim[k] = UINT32_MAX;
+    for (size_t i = 0; i < leaf->count;) {
+        uint32_t kind = refs[i].kind;
+        size_t n = 0;
+        while (i + n < leaf->count && n < BVH_PACKET && refs[i + n].kind == kind) n++;
+        bvh_slot *slot = &b->slots[b->slot_count];
+        size_t nslots = packet_slots(kind);
+        b->slot_count += nslots;
+        memset(slot, 0, nslots * sizeof *slot);
+        bvh_packet_header *h = (bvh_packet_header *)(void *)slot;
+        h->kind = kind;
+        h->count = (uint32_t)n;
+        h->slots = (uint32_t)nslots;
+        last = h;
+        if (kind == PRIM_SPHERE) {
+            bvh_sphere_packet *pk = (bvh_sphere_packet *)(void *)slot;
+            for (size_t k = 0; k < BVH_PACKET; k++) {
+                if (k < n) {
+                    const sphere *sp = &b->spheres[refs[i + k].index];
+                    pk->cx[k] = sp->center.x;
+                    pk->cy[k] = sp->center.y;
+                    pk->cz[k] = sp->center.z;
+                    pk->radius[k] = sp->radius;
+                    pk->prim[k] = refs[i + k].index;
+                } else {
+                    // A NaN centre makes the discriminant NaN, which fails the ordered test: never a hit.
+                    pk->cx[k] = pk->cy[k] = pk->cz[k] = NAN;
+                    pk->radius[k] = 0.0f;
+                    pk->prim[k] = UINT32_MAX;
+                }
             }
+        } else {
+            bvh_index_packet *pk = (bvh_index_packet *)(void *)slot;
+            for (size_t k = 0; k < n; k++) pk->prim[k] = refs[i + k].index;
         }
+        i += n;
     }
+    if (last) last->last = 1;
     return BVH_LEAF | first;
 }
 
@@ -310,29 +347,91 @@ static uint32_t collapse(collapser *cl, uint32_t id, uint64_t depth) {
     return wid;
 }
 
-bool bvh_build(bvh *b, const sphere *spheres, size_t sphere_count, bool wide) {
-    memset(b, 0, sizeof *b);
-    b->spheres = spheres;
-    b->sphere_count = sphere_count;
-    b->root = BVH_EMPTY;
-    size_t n = sphere_count;
-    if (n == 0) return true;
-    if (n >= BVH_LEAF / 2) return false;
+// Pads a box so that it stays conservative after the float rounding of the slab test.
+static box3 box_padded(bounds3 bb) {
+    float m = max2(max2(max2(fabsf(bb.lo.x), fabsf(bb.hi.x)), max2(fabsf(bb.lo.y), fabsf(bb.hi.y))),
+                   max2(fabsf(bb.lo.z), fabsf(bb.hi.z)));
+    float pad = m * 0x1p-19f + 0x1p-100f;
+    box3 b = box_empty();
+    b.lo[0] = bb.lo.x - pad;
+    b.lo[1] = bb.lo.y - pad;
+    b.lo[2] = bb.lo.z - pad;
+    b.hi[0] = bb.hi.x + pad;
+    b.hi[1] = bb.hi.y + pad;
+    b.hi[2] = bb.hi.z + pad;
+    return b;
+}
 
-    build_prim *prims = malloc(n * sizeof *prims);
+// Object-space bounds of what an instance places.
+static bounds3 instance_object_bounds(const bvh_input *in, const instance *inst) {
+    if (inst->kind == INSTANCE_SPHERE) {
+        const sphere *sp = &in->instance_spheres[inst->index];
+        float r = fabsf(sp->radius);
+        return (bounds3){v3_sub(sp->center, v3s(r)), v3_add(sp->center, v3s(r))};
+    }
+    return in->blas[inst->index].bounds;
+}
+
+// The build input of every primitive: kind, index, padded box, centroid.
+static size_t gather_prims(const bvh_input *in, build_prim *prims) {
+    size_t n = 0;
+    for (size_t i = 0; i < in->sphere_count; i++) {
+        prims[n].box = sphere_box(&in->spheres[i]);
+        prims[n].ref = (prim_ref){PRIM_SPHERE, (uint32_t)i};
+        n++;
+    }
+    for (size_t i = 0; i < in->quad_count; i++) {
+        prims[n].box = box_padded(quad_bounds(&in->quads[i]));
+        prims[n].ref = (prim_ref){PRIM_QUAD, (uint32_t)i};
+        n++;
+    }
+    for (size_t i = 0; in->mesh && i < in->mesh->triangle_count; i++) {
+        prims[n].box = box_padded(mesh_triangle_bounds(in->mesh, i));
+        prims[n].ref = (prim_ref){PRIM_TRIANGLE, (uint32_t)i};
+        n++;
+    }
+    for (size_t i = 0; i < in->instance_count; i++) {
+        bounds3 ob = instance_object_bounds(in, &in->instances[i]);
+        if (bounds3_is_empty(ob)) continue; // an instance of an empty mesh: nothing to hit
+        prims[n].box = box_padded(mat4_apply_bounds(&in->instances[i].xf.m, ob));
+        prims[n].ref = (prim_ref){PRIM_INSTANCE, (uint32_t)i};
+        n++;
+    }
+    for (size_t i = 0; i < n; i++)
+        for (int a = 0; a < 3; a++) prims[i].c[a] = 0.5f * prims[i].box.lo[a] + 0.5f * prims[i].box.hi[a];
+    return n;
+}
+
+bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
+    memset(b, 0, sizeof *b);
+    b->spheres = in->spheres;
+    b->sphere_count = in->sphere_count;
+    b->quads = in->quads;
+    b->mesh = in->mesh;
+    b->instances = in->instances;
+    b->blas = in->blas;
+    b->instance_spheres = in->instance_spheres;
+    b->spheres_only = in->quad_count == 0 && !in->mesh && in->instance_count == 0;
+    b->root = BVH_EMPTY;
+    b->bounds = bounds3_empty();
+    size_t cap = in->sphere_count + in->quad_count + (in->mesh ? in->mesh->triangle_count : 0) + in->instance_count;
+    if (cap == 0) return true;
+    if (cap >= BVH_LEAF / 2) return false;
+
+    build_prim *prims = malloc(cap * sizeof *prims);
+    if (!prims) return false;
+    size_t n = gather_prims(in, prims);
+    b->prim_count = n;
+    if (n == 0) {
+        free(prims);
+        return true;
+    }
     b->nodes2 = malloc((2 * n - 1) * sizeof *b->nodes2);
     b->refs = malloc(n * sizeof *b->refs);
-    if (!prims || !b->nodes2 || !b->refs) {
+    if (!b->nodes2 || !b->refs) {
         free(prims);
         bvh_release(b);
         return false;
-    }
-    for (size_t i = 0; i < n; i++) {
-        prims[i].box = sphere_box(&spheres[i]);
-        prims[i].c[0] = spheres[i].center.x;
-        prims[i].c[1] = spheres[i].center.y;
-        prims[i].c[2] = spheres[i].center.z;
-        prims[i].ref = (prim_ref){PRIM_SPHERE, (uint32_t)i};
     }
     int shift = wide ? (BVH_PACKET == 8 ? 3 : 2) : 0;
     builder bd = {.prims = prims, .nodes = b->nodes2, .block_shift = shift, .block_mask = ((size_t)1 << shift) - 1,
@@ -342,6 +441,8 @@ bool bvh_build(bvh *b, const sphere *spheres, size_t sphere_count, bool wide) {
     b->ref_count = n;
     for (size_t i = 0; i < n; i++) b->refs[i] = prims[i].ref;
     free(prims);
+    b->bounds = (bounds3){v3(b->nodes2[0].box[0], b->nodes2[0].box[1], b->nodes2[0].box[2]),
+                          v3(b->nodes2[0].box[3], b->nodes2[0].box[4], b->nodes2[0].box[5])};
     b->stats.nodes = bd.node_count - bd.leaves;
     b->stats.leaves = bd.leaves;
     b->stats.depth = bd.depth;
@@ -349,9 +450,8 @@ bool bvh_build(bvh *b, const sphere *spheres, size_t sphere_count, bool wide) {
 
     // Size the wide arrays from the binary tree: at most one wide node per binary inner node.
     size_t inner = bd.node_count - bd.leaves, slots = 0;
-    const size_t packet_slots = sizeof(bvh_sphere_packet) / sizeof(bvh_slot);
     for (size_t i = 0; i < bd.node_count; i++)
-        slots += (b->nodes2[i].count + BVH_PACKET - 1) / BVH_PACKET * packet_slots;
+        if (b->nodes2[i].count > 0) slots += leaf_slots(b, &b->nodes2[i]);
     b->wnodes = inner ? aligned_alloc(_Alignof(bvh_wnode), inner * sizeof *b->wnodes) : NULL;
     b->slots = aligned_alloc(_Alignof(bvh_slot), slots * sizeof *b->slots);
     if ((inner && !b->wnodes) || !b->slots || slots >= BVH_LEAF) {

@@ -22,11 +22,6 @@ typedef struct stack_entry {
 
 enum { WIDE_STACK = BVH_MAX_DEPTH * (BVH_WIDTH - 1) + 1, BIN_STACK = BVH_MAX_DEPTH + 1 };
 
-/// A leaf candidate is better than the best so far: nearer, or as near and of lower index (as brute force).
-static inline bool better(float t, uint32_t prim, float tbest, uint32_t best) {
-    return t < tbest || (t == tbest && prim < best);
-}
-
 // A ray with a NaN coordinate hits nothing (as in sphere_intersect); rejecting it up front also keeps
 // NaN out of the box tests, where min/max would turn it into "every box is hit".
 static inline bool ray_is_nan(const ray *r) {
@@ -74,6 +69,93 @@ static inline float max_sse(float a, float b) { return a > b ? a : b; }
 static inline float min_sse(float a, float b) { return a < b ? a : b; }
 
 /* ------------------------------------------------------------------------------------------------ */
+/* Primitives tested one at a time                                                                    */
+
+/// Per-ray constants of the watertight triangle test, made the first time a quad or triangle needs them.
+typedef struct tri_cache {
+    bool ready;
+    tri_ray tr;
+} tri_cache;
+
+static inline const tri_ray *tri_for(tri_cache *c, const ray *r) {
+    if (!c->ready) {
+        c->tr = tri_ray_make(r);
+        c->ready = true;
+    }
+    return &c->tr;
+}
+
+// Keeps candidate c if it beats *best (bvh_better); true when it did.
+static inline bool offer(hit *best, hit c) {
+    if (!bvh_better(&c, best)) return false;
+    *best = c;
+    return true;
+}
+
+/// How instances are entered: the structure of the BLAS and which traversal path runs it.
+typedef enum trav_mode { MODE_WIDE_SIMD, MODE_WIDE_SCALAR, MODE_BINARY } trav_mode;
+
+static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode);
+
+// An instance: the ray taken to object space (direction not normalised, so t keeps its meaning), then the
+// mesh's BVH or the object-space sphere. True when it hit (any-hit queries stop there).
+static bool instance_hit(const bvh *b, uint32_t index, const ray *r, hit *best, bool any, trav_mode mode) {
+    const instance *in = &b->instances[index];
+    ray o = mat4_apply_ray(&in->xf.inv, r);
+    if (in->kind == INSTANCE_SPHERE) {
+        const sphere *sp = &b->instance_spheres[in->index];
+        float t;
+        if (!sphere_intersect(sp->center, sp->radius, &o, o.tmin, o.tmax, &t)) return false;
+        offer(best, (hit){t, in->index, HIT_SPHERE, index, 0.0f, 0.0f});
+        return true;
+    }
+    return blas_traverse(&b->blas[in->index], &o, best, index, any, mode);
+}
+
+// One primitive that is not tested in SIMD: a quad, a triangle of b's mesh, an instance (or a sphere in
+// the binary BVH). `inst_id` is the instance whose mesh b is, or HIT_NO_INSTANCE. True when it hit.
+static inline bool prim_hit(const bvh *b, uint32_t kind, uint32_t index, const ray *r, tri_cache *tc, hit *best,
+                            uint32_t inst_id, bool any, trav_mode mode) {
+    switch ((prim_kind)kind) {
+    case PRIM_SPHERE: {
+        const sphere *s = &b->spheres[index];
+        float t;
+        if (!sphere_intersect(s->center, s->radius, r, r->tmin, r->tmax, &t)) return false;
+        offer(best, (hit){t, index, HIT_SPHERE, inst_id, 0.0f, 0.0f});
+        return true;
+    }
+    case PRIM_QUAD: {
+        quad_hit qh;
+        if (!quad_intersect(&b->quads[index], tri_for(tc, r), r->tmin, r->tmax, &qh)) return false;
+        offer(best, (hit){qh.t, index, HIT_QUAD, inst_id, qh.alpha, qh.beta});
+        return true;
+    }
+    case PRIM_TRIANGLE: {
+        tri_hit th;
+        if (!mesh_intersect_triangle(b->mesh, index, tri_for(tc, r), r->tmin, r->tmax, &th)) return false;
+        offer(best, (hit){th.t, index, HIT_TRIANGLE, inst_id, th.b1, th.b2});
+        return true;
+    }
+    case PRIM_INSTANCE: return instance_hit(b, index, r, best, any, mode);
+    }
+    return false;
+}
+
+// A packet of primitives tested one at a time (quads, triangles, instances), out of line so that the
+// sphere path stays small enough to inline. Takes and returns the best hit by value: its address must
+// not escape the traversal, or it could not stay in registers there. *hit_any says whether any was hit.
+static __attribute__((noinline)) hit packet_hit(const bvh *b, const bvh_index_packet *p, const ray *r, tri_cache *tc,
+                                                hit best, uint32_t inst_id, bool any, trav_mode mode, bool *hit_any) {
+    *hit_any = false;
+    for (uint32_t k = 0; k < p->h.count; k++) {
+        if (!prim_hit(b, p->h.kind, p->prim[k], r, tc, &best, inst_id, any, mode)) continue;
+        *hit_any = true;
+        if (any) break;
+    }
+    return best;
+}
+
+/* ------------------------------------------------------------------------------------------------ */
 /* Binary BVH (scalar)                                                                                */
 
 // Entry distance of the ray into a binary node's box, or +inf when it misses within (tmin, tlimit].
@@ -87,31 +169,20 @@ static inline float box2_enter(const bvh2_node *n, const trav_ray *tr, float tli
     return tn <= tf ? tn : INFINITY;
 }
 
-// Nearest root of one primitive in the ray's own interval (tmin, tmax), by its kind.
-static inline bool prim_hit(const bvh *b, prim_ref ref, const ray *r, float *t) {
-    switch ((prim_kind)ref.kind) {
-    case PRIM_SPHERE: {
-        const sphere *s = &b->spheres[ref.index];
-        return sphere_intersect(s->center, s->radius, r, r->tmin, r->tmax, t);
-    }
-    }
-    return false;
-}
-
-static bool bin_traverse(const bvh *b, const ray *r, hit *h, bool any) {
+static bool bin_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any) {
     if (!b->nodes2 || ray_is_nan(r)) return false;
     trav_ray tr = trav_setup(r);
-    float tbest = r->tmax;
-    uint32_t best = UINT32_MAX;
+    tri_cache tc = {.ready = false};
     stack_entry stack[BIN_STACK];
     int sp = 0;
-    if (box2_enter(&b->nodes2[0], &tr, tbest) == INFINITY) return false;
+    bool found = false;
+    if (box2_enter(&b->nodes2[0], &tr, best->t) == INFINITY) return false;
     uint32_t id = 0;
     for (;;) {
         const bvh2_node *n = &b->nodes2[id];
         if (n->count == 0) {
             uint32_t c0 = id + 1, c1 = n->offset;
-            float t0 = box2_enter(&b->nodes2[c0], &tr, tbest), t1 = box2_enter(&b->nodes2[c1], &tr, tbest);
+            float t0 = box2_enter(&b->nodes2[c0], &tr, best->t), t1 = box2_enter(&b->nodes2[c1], &tr, best->t);
             if (t0 != INFINITY && t1 != INFINITY) {
                 if (t1 < t0) {
                     uint32_t tmp = c0; c0 = c1; c1 = tmp;
@@ -126,33 +197,30 @@ static bool bin_traverse(const bvh *b, const ray *r, hit *h, bool any) {
         } else {
             for (uint32_t i = 0; i < n->count; i++) {
                 prim_ref ref = b->refs[n->offset + i];
-                float t;
-                if (!prim_hit(b, ref, r, &t)) continue;
+                if (!prim_hit(b, ref.kind, ref.index, r, &tc, best, inst_id, any, MODE_BINARY)) continue;
+                found = true;
                 if (any) return true;
-                if (better(t, ref.index, tbest, best)) {
-                    tbest = t;
-                    best = ref.index;
-                }
             }
         }
         // Pop the nearest pending subtree that can still hold a nearer hit.
         for (;;) {
-            if (sp == 0) goto done;
+            if (sp == 0) return found;
             stack_entry e = stack[--sp];
-            if (e.t <= tbest) { id = e.ref; break; }
+            if (e.t <= best->t) { id = e.ref; break; }
         }
     }
-done:
-    if (best == UINT32_MAX) return false;
-    bvh_sphere_hit(h, tbest, best);
+}
+
+bool bvh2_intersect(const bvh *b, const ray *r, hit *h) {
+    hit best = bvh_no_hit(r);
+    if (!bin_run(b, r, &best, HIT_NO_INSTANCE, false)) return false;
+    *h = best;
     return true;
 }
 
-bool bvh2_intersect(const bvh *b, const ray *r, hit *h) { return bin_traverse(b, r, h, false); }
-
 bool bvh2_occluded(const bvh *b, const ray *r) {
-    hit h;
-    return bin_traverse(b, r, &h, true);
+    hit best = bvh_no_hit(r);
+    return bin_run(b, r, &best, HIT_NO_INSTANCE, true);
 }
 
 /* ------------------------------------------------------------------------------------------------ */
@@ -179,28 +247,33 @@ static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr,
     return mask;
 }
 
-// Tests one leaf's packets; closest hit updates (*tbest, *best), any-hit returns true at once.
-static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, bool any, float *tbest, uint32_t *best) {
+// Tests one leaf's packets one primitive at a time. True when something was hit.
+static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cache *tc, hit *best, uint32_t inst_id,
+                               bool any, bool generic) {
     const bvh_slot *slot = &b->slots[ref & ~BVH_LEAF];
+    bool found = false;
     for (;;) {
         const bvh_packet_header *hd = (const bvh_packet_header *)(const void *)slot;
-        switch ((prim_kind)hd->kind) {
-        case PRIM_SPHERE: {
+        if (hd->kind == PRIM_SPHERE) {
             const bvh_sphere_packet *p = (const bvh_sphere_packet *)(const void *)slot;
             for (uint32_t k = 0; k < hd->count; k++) {
                 float t;
                 if (!sphere_intersect(v3(p->cx[k], p->cy[k], p->cz[k]), p->radius[k], r, r->tmin, r->tmax, &t))
                     continue;
+                found = true;
                 if (any) return true;
-                if (better(t, p->prim[k], *tbest, *best)) {
-                    *tbest = t;
-                    *best = p->prim[k];
-                }
+                offer(best, (hit){t, p->prim[k], HIT_SPHERE, inst_id, 0.0f, 0.0f});
             }
-            break;
+        } else if (generic) {
+            bool h;
+            *best = packet_hit(b, (const bvh_index_packet *)(const void *)slot, r, tc, *best, inst_id, any,
+                               MODE_WIDE_SCALAR, &h);
+            if (h) {
+                found = true;
+                if (any) return true;
+            }
         }
-        }
-        if (hd->last) return false;
+        if (hd->last) return found;
         slot += hd->slots;
     }
 }
@@ -313,32 +386,39 @@ static inline unsigned spheres_simd(const bvh_sphere_packet *p, const simd_ray *
     return (unsigned)PK(movemask_ps)(PK(and_ps)(ok, PK(or_ps)(in0, in1)));
 }
 
-static inline bool leaf_simd(const bvh *b, uint32_t ref, const simd_ray *s, bool any, float *tbest, uint32_t *best) {
+// Tests one leaf: spheres in SIMD packets, everything else one at a time. True when something was hit.
+static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32_t ref, const ray *r,
+                                                            const simd_ray *s, tri_cache *tc, hit *best,
+                                                            uint32_t inst_id, bool any, bool generic) {
     const bvh_slot *slot = &b->slots[ref & ~BVH_LEAF];
+    bool found = false;
     for (;;) {
         const bvh_packet_header *hd = (const bvh_packet_header *)(const void *)slot;
-        switch ((prim_kind)hd->kind) {
-        case PRIM_SPHERE: {
+        if (hd->kind == PRIM_SPHERE) {
             const bvh_sphere_packet *p = (const bvh_sphere_packet *)(const void *)slot;
             pk tv;
             unsigned mask = spheres_simd(p, s, &tv);
             if (mask) {
+                found = true;
                 if (any) return true;
                 _Alignas(32) float t[BVH_PACKET];
                 PK(store_ps)(t, tv);
                 do {
                     int k = __builtin_ctz(mask);
                     mask &= mask - 1;
-                    if (better(t[k], p->prim[k], *tbest, *best)) {
-                        *tbest = t[k];
-                        *best = p->prim[k];
-                    }
+                    if (t[k] <= best->t) offer(best, (hit){t[k], p->prim[k], HIT_SPHERE, inst_id, 0.0f, 0.0f});
                 } while (mask);
             }
-            break;
+        } else if (generic) {
+            bool h;
+            *best = packet_hit(b, (const bvh_index_packet *)(const void *)slot, r, tc, *best, inst_id, any,
+                               MODE_WIDE_SIMD, &h);
+            if (h) {
+                found = true;
+                if (any) return true;
+            }
         }
-        }
-        if (hd->last) return false;
+        if (hd->last) return found;
         slot += hd->slots;
     }
 }
@@ -349,39 +429,39 @@ typedef struct simd_ray simd_ray; // never defined: the SIMD path is not compile
 /* ------------------------------------------------------------------------------------------------ */
 /* Wide traversal, shared by both paths (`simd` is a compile-time constant after inlining)           */
 
-/// Where one ray's traversal stands: the next node or leaf, the stack depth and the best hit so far.
-typedef struct trav_state {
-    uint32_t ref, best;
+/// Where one ray's traversal stands: the next node or leaf and the depth of its stack.
+typedef struct walk {
+    uint32_t ref;
     int sp;
-    float tbest;
-} trav_state;
+} walk;
 
 enum { STEP_MORE, STEP_DONE, STEP_FOUND };
 
-// One step of a traversal: visits st->ref (a node: choose the children to visit; a leaf: test it), then
+// One step of a traversal: visits w->ref (a node: choose the children to visit; a leaf: test it), then
 // picks the next reference. STEP_DONE when nothing is left, STEP_FOUND when an any-hit query found one.
-// The scalar path reads tr, the SIMD path sr.
+// The scalar path reads tr, the SIMD path sr; *found records whether anything was hit.
 static inline __attribute__((always_inline)) int wide_step(const bvh *b, const ray *r, const trav_ray *tr,
-                                                          const simd_ray *sr, stack_entry *stack, trav_state *st,
-                                                          bool any, bool simd) {
+                                                          const simd_ray *sr, tri_cache *tc, stack_entry *stack,
+                                                          walk *w, hit *best, uint32_t inst_id, bool *found,
+                                                          bool any, bool simd, bool generic) {
 #if !BVH_SIMD
     (void)sr;
     (void)simd;
 #endif
-    uint32_t ref = st->ref;
+    uint32_t ref = w->ref;
     if (!(ref & BVH_LEAF)) {
         const bvh_wnode *n = &b->wnodes[ref];
         float tnear[BVH_WIDTH];
         unsigned mask;
 #if BVH_SIMD
-        if (simd) mask = wnode_test_simd(n, sr, st->tbest, tnear);
+        if (simd) mask = wnode_test_simd(n, sr, best->t, tnear);
         else
 #endif
-            mask = wnode_test_scalar(n, tr, st->tbest, tnear);
+            mask = wnode_test_scalar(n, tr, best->t, tnear);
         if (mask != 0) {
             unsigned rest = mask & (mask - 1);
             if (rest == 0) {
-                st->ref = n->child[__builtin_ctz(mask)];
+                w->ref = n->child[__builtin_ctz(mask)];
                 return STEP_MORE;
             }
             if (!any && (rest & (rest - 1)) == 0) {
@@ -389,14 +469,14 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
                 int i0 = __builtin_ctz(mask), i1 = __builtin_ctz(rest);
                 bool swap = tnear[i1] < tnear[i0];
                 uint32_t c0 = n->child[i0], c1 = n->child[i1];
-                stack[st->sp].ref = swap ? c0 : c1;
-                stack[st->sp].t = swap ? tnear[i0] : tnear[i1];
-                st->sp++;
-                st->ref = swap ? c1 : c0;
+                stack[w->sp].ref = swap ? c0 : c1;
+                stack[w->sp].t = swap ? tnear[i0] : tnear[i1];
+                w->sp++;
+                w->ref = swap ? c1 : c0;
                 return STEP_MORE;
             }
             // Push every child entered, sorted so that the nearest is on top, and descend into it.
-            int base = st->sp, sp = st->sp;
+            int base = w->sp, sp = w->sp;
             do {
                 int i = __builtin_ctz(mask);
                 mask &= mask - 1;
@@ -409,44 +489,38 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
                     }
                 stack[j] = e;
             } while (mask);
-            st->ref = stack[--sp].ref;
-            st->sp = sp;
+            w->ref = stack[--sp].ref;
+            w->sp = sp;
             return STEP_MORE;
         }
     } else {
-        bool found;
+        bool hit_here;
 #if BVH_SIMD
-        if (simd) found = leaf_simd(b, ref, sr, any, &st->tbest, &st->best);
+        if (simd) hit_here = leaf_simd(b, ref, r, sr, tc, best, inst_id, any, generic);
         else
 #endif
-            found = leaf_scalar(b, ref, r, any, &st->tbest, &st->best);
-        if (found) return STEP_FOUND;
+            hit_here = leaf_scalar(b, ref, r, tc, best, inst_id, any, generic);
+        if (hit_here) {
+            *found = true;
+            if (any) return STEP_FOUND;
+        }
     }
     // Pop the nearest pending subtree that can still hold a nearer hit.
-    while (st->sp > 0) {
-        stack_entry e = stack[--st->sp];
-        if (e.t <= st->tbest) {
-            st->ref = e.ref;
+    while (w->sp > 0) {
+        stack_entry e = stack[--w->sp];
+        if (e.t <= best->t) {
+            w->ref = e.ref;
             return STEP_MORE;
         }
     }
     return STEP_DONE;
 }
 
-static inline trav_state trav_start(const bvh *b, const ray *r) {
-    trav_state st = {b->root, UINT32_MAX, 0, r->tmax};
-    return st;
-}
-
-static inline bool trav_result(const trav_state *st, hit *h) {
-    if (st->best == UINT32_MAX) return false;
-    bvh_sphere_hit(h, st->tbest, st->best);
-    return true;
-}
-
-// One ray from the root to the end.
-static inline __attribute__((always_inline)) bool wide_traverse(const bvh *b, const ray *r, hit *h, bool any,
-                                                                bool simd) {
+// One ray through a wide BVH from its root, improving *best; true when anything was hit. With `generic`
+// false the BVH holds only spheres: the code for other kinds, with its out-of-line calls (around which
+// every vector register would have to be saved), is left out.
+static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id,
+                                                           bool any, bool simd, bool generic) {
     if (b->root == BVH_EMPTY) return false;
     trav_ray tr;
 #if BVH_SIMD
@@ -459,33 +533,66 @@ static inline __attribute__((always_inline)) bool wide_traverse(const bvh *b, co
         if (ray_is_nan(r)) return false;
         tr = trav_setup(r);
     }
+    tri_cache tc = {.ready = false};
     stack_entry stack[WIDE_STACK];
-    trav_state st = trav_start(b, r);
-    int s;
+    walk w = {b->root, 0};
+    bool found = false;
 #if BVH_SIMD
-    while ((s = wide_step(b, r, &tr, &sr, stack, &st, any, simd)) == STEP_MORE) {
+    while (wide_step(b, r, &tr, &sr, &tc, stack, &w, best, inst_id, &found, any, simd, generic) == STEP_MORE) {
     }
 #else
-    while ((s = wide_step(b, r, &tr, NULL, stack, &st, any, simd)) == STEP_MORE) {
+    while (wide_step(b, r, &tr, NULL, &tc, stack, &w, best, inst_id, &found, any, simd, generic) == STEP_MORE) {
     }
 #endif
-    if (s == STEP_FOUND) return true;
-    return trav_result(&st, h);
+    return found;
 }
 
-bool bvh_intersect_scalar(const bvh *b, const ray *r, hit *h) { return wide_traverse(b, r, h, false, false); }
+static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode) {
+    switch (mode) {
+#if BVH_SIMD
+    case MODE_WIDE_SIMD: return wide_run(blas, r, best, inst_id, any, true, true);
+#else
+    case MODE_WIDE_SIMD: return wide_run(blas, r, best, inst_id, any, false, true);
+#endif
+    case MODE_WIDE_SCALAR: return wide_run(blas, r, best, inst_id, any, false, true);
+    case MODE_BINARY: return bin_run(blas, r, best, inst_id, any);
+    }
+    return false;
+}
+
+// The closest-hit and any-hit entry points, one function per combination so that each is compiled
+// for exactly its case (the sphere-only ones contain no call at all).
+static inline __attribute__((always_inline)) bool wide_query(const bvh *b, const ray *r, hit *h, bool any, bool simd,
+                                                             bool generic) {
+    hit best = bvh_no_hit(r);
+    if (!wide_run(b, r, &best, HIT_NO_INSTANCE, any, simd, generic)) return false;
+    if (!any) *h = best;
+    return true;
+}
+
+static bool closest_spheres(const bvh *b, const ray *r, hit *h) { return wide_query(b, r, h, false, BVH_SIMD, false); }
+static bool closest_generic(const bvh *b, const ray *r, hit *h) { return wide_query(b, r, h, false, BVH_SIMD, true); }
+static bool any_spheres(const bvh *b, const ray *r) {
+    hit h;
+    return wide_query(b, r, &h, true, BVH_SIMD, false);
+}
+static bool any_generic(const bvh *b, const ray *r) {
+    hit h;
+    return wide_query(b, r, &h, true, BVH_SIMD, true);
+}
+
+bool bvh_intersect_scalar(const bvh *b, const ray *r, hit *h) { return wide_query(b, r, h, false, false, true); }
 
 bool bvh_occluded_scalar(const bvh *b, const ray *r) {
     hit h;
-    return wide_traverse(b, r, &h, true, false);
+    return wide_query(b, r, &h, true, false, true);
 }
 
-bool bvh_intersect(const bvh *b, const ray *r, hit *h) { return wide_traverse(b, r, h, false, BVH_SIMD); }
-
-bool bvh_occluded(const bvh *b, const ray *r) {
-    hit h;
-    return wide_traverse(b, r, &h, true, BVH_SIMD);
+bool bvh_intersect(const bvh *b, const ray *r, hit *h) {
+    return b->spheres_only ? closest_spheres(b, r, h) : closest_generic(b, r, h);
 }
+
+bool bvh_occluded(const bvh *b, const ray *r) { return b->spheres_only ? any_spheres(b, r) : any_generic(b, r); }
 
 void bvh_intersect2(const bvh *b, const ray *r0, const ray *r1, hit *h0, hit *h1, bool *f0, bool *f1) {
 #if BVH_SIMD
@@ -500,19 +607,83 @@ void bvh_intersect2(const bvh *b, const ray *r0, const ray *r1, hit *h0, hit *h1
         return;
     }
     stack_entry stack0[WIDE_STACK], stack1[WIDE_STACK];
-    trav_state st0 = trav_start(b, r0), st1 = trav_start(b, r1);
+    tri_cache tc0 = {.ready = false}, tc1 = {.ready = false};
+    hit best0 = bvh_no_hit(r0), best1 = bvh_no_hit(r1);
+    walk w0 = {b->root, 0}, w1 = {b->root, 0};
+    bool found0 = false, found1 = false;
     // Alternate single steps of the two rays: two independent dependency chains in flight at once.
     int s0 = STEP_MORE, s1 = STEP_MORE;
     while (s0 == STEP_MORE && s1 == STEP_MORE) {
-        s0 = wide_step(b, r0, NULL, &sr0, stack0, &st0, false, true);
-        s1 = wide_step(b, r1, NULL, &sr1, stack1, &st1, false, true);
+        s0 = wide_step(b, r0, NULL, &sr0, &tc0, stack0, &w0, &best0, HIT_NO_INSTANCE, &found0, false, true, true);
+        s1 = wide_step(b, r1, NULL, &sr1, &tc1, stack1, &w1, &best1, HIT_NO_INSTANCE, &found1, false, true, true);
     }
-    while (s0 == STEP_MORE) s0 = wide_step(b, r0, NULL, &sr0, stack0, &st0, false, true);
-    while (s1 == STEP_MORE) s1 = wide_step(b, r1, NULL, &sr1, stack1, &st1, false, true);
-    *f0 = trav_result(&st0, h0);
-    *f1 = trav_result(&st1, h1);
+    while (s0 == STEP_MORE)
+        s0 = wide_step(b, r0, NULL, &sr0, &tc0, stack0, &w0, &best0, HIT_NO_INSTANCE, &found0, false, true, true);
+    while (s1 == STEP_MORE)
+        s1 = wide_step(b, r1, NULL, &sr1, &tc1, stack1, &w1, &best1, HIT_NO_INSTANCE, &found1, false, true, true);
+    if ((*f0 = found0)) *h0 = best0;
+    if ((*f1 = found1)) *h1 = best1;
 #else
     *f0 = bvh_intersect(b, r0, h0);
     *f1 = bvh_intersect(b, r1, h1);
 #endif
+}
+
+/* ------------------------------------------------------------------------------------------------ */
+/* Brute force                                                                                        */
+
+// Every primitive of in, in the same order of precedence as the BVHs (bvh_better).
+static bool brute_run(const bvh_input *in, const ray *r, hit *best, bool any) {
+    if (ray_is_nan(r)) return false;
+    tri_cache tc = {.ready = false};
+    bool found = false;
+    for (size_t i = 0; i < in->sphere_count; i++) {
+        float t;
+        if (!sphere_intersect(in->spheres[i].center, in->spheres[i].radius, r, r->tmin, r->tmax, &t)) continue;
+        if (any) return true;
+        found = true;
+        offer(best, (hit){t, (uint32_t)i, HIT_SPHERE, HIT_NO_INSTANCE, 0.0f, 0.0f});
+    }
+    for (size_t i = 0; i < in->quad_count; i++) {
+        quad_hit qh;
+        if (!quad_intersect(&in->quads[i], tri_for(&tc, r), r->tmin, r->tmax, &qh)) continue;
+        if (any) return true;
+        found = true;
+        offer(best, (hit){qh.t, (uint32_t)i, HIT_QUAD, HIT_NO_INSTANCE, qh.alpha, qh.beta});
+    }
+    for (size_t i = 0; i < in->instance_count; i++) {
+        const instance *inst = &in->instances[i];
+        ray o = mat4_apply_ray(&inst->xf.inv, r);
+        if (inst->kind == INSTANCE_SPHERE) {
+            const sphere *sp = &in->instance_spheres[inst->index];
+            float t;
+            if (!sphere_intersect(sp->center, sp->radius, &o, o.tmin, o.tmax, &t)) continue;
+            if (any) return true;
+            found = true;
+            offer(best, (hit){t, inst->index, HIT_SPHERE, (uint32_t)i, 0.0f, 0.0f});
+            continue;
+        }
+        const mesh *m = &in->meshes[inst->index].geometry;
+        tri_ray otr = tri_ray_make(&o);
+        for (size_t k = 0; k < m->triangle_count; k++) {
+            tri_hit th;
+            if (!mesh_intersect_triangle(m, k, &otr, o.tmin, o.tmax, &th)) continue;
+            if (any) return true;
+            found = true;
+            offer(best, (hit){th.t, (uint32_t)k, HIT_TRIANGLE, (uint32_t)i, th.b1, th.b2});
+        }
+    }
+    return found;
+}
+
+bool bvh_brute_intersect(const bvh_input *in, const ray *r, hit *h) {
+    hit best = bvh_no_hit(r);
+    if (!brute_run(in, r, &best, false)) return false;
+    *h = best;
+    return true;
+}
+
+bool bvh_brute_occluded(const bvh_input *in, const ray *r) {
+    hit best = bvh_no_hit(r);
+    return brute_run(in, r, &best, true);
 }

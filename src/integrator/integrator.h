@@ -31,8 +31,12 @@ typedef struct surface {
     uint32_t prim, instance;
 } surface;
 
+/// Shading data of a hit on anything but a world-space sphere (quads, triangles, instances).
+surface surface_at_general(const glint_scene *s, const ray *r, const hit *h);
+
 /// Shading data of a closest hit found by accel_intersect for ray r.
 static inline surface surface_at(const glint_scene *s, const ray *r, const hit *h) {
+    if (h->kind != HIT_SPHERE || h->instance != HIT_NO_INSTANCE) return surface_at_general(s, r, h);
     surface out;
     const sphere *sp = &s->spheres[h->prim];
     out.p = ray_at(r, h->t);
@@ -41,7 +45,11 @@ static inline surface surface_at(const glint_scene *s, const ray *r, const hit *
     out.n = out.front ? outward : v3_neg(outward);
     out.ng = out.n;
     out.material = sp->material;
-    sphere_uv(sp->radius < 0.0f ? v3_neg(outward) : outward, &out.u, &out.v);
+    // Texture coordinates cost an acos and an atan2: only for materials that look them up.
+    const material *m = &s->materials[sp->material];
+    out.u = out.v = 0.0f;
+    if (m->albedo_texture >= 0 || m->emission_texture >= 0)
+        sphere_uv(sp->radius < 0.0f ? v3_neg(outward) : outward, &out.u, &out.v);
     out.error = 0.0f;
     out.kind = HIT_SPHERE;
     out.prim = h->prim;
