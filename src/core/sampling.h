@@ -5,6 +5,9 @@
 #include "core/rng.h"
 #include "core/vec.h"
 
+#include <stdint.h>
+#include <string.h>
+
 /// Uniform point in the unit disk, by rejection (the book's method).
 static inline void sample_unit_disk(rng *r, float *x, float *y) {
     for (;;) {
@@ -20,6 +23,64 @@ static inline vec3 sample_unit_vector(rng *r) {
         float l2 = v3_len2(p);
         if (l2 > 1e-30f && l2 <= 1.0f) return v3_scale(p, 1.0f / sqrtf(l2));
     }
+}
+
+/// a * b + c, fused where the target has FMA hardware (fmaf is a slow library call elsewhere).
+static inline float sampling_mad(float a, float b, float c) {
+#if defined(__FMA__) || defined(FP_FAST_FMAF)
+    return fmaf(a, b, c);
+#else
+    return a * b + c;
+#endif
+}
+
+/// cos and sin of the angle 2 pi u, for u in [0, 1) (an angle in turns), to about 1 ulp and without a branch
+/// or a library call: the nearest quarter turn q is split off exactly (4u - q is exact for any float u in
+/// [0, 1)), the remaining angle in [-pi/4, pi/4] goes through the minimax polynomials of Cephes' sinf and
+/// cosf, and the quarter turns rotate the result.
+static inline void sincos_turn(float u, float *c, float *s) {
+    float x = 4.0f * u;
+    float q = floorf(x + 0.5f);
+    float t = (x - q) * 1.57079632679490f, z = t * t;
+    float sn = sampling_mad(sampling_mad(sampling_mad(-1.9515295891e-4f, z, 8.3321608736e-3f), z, -1.6666654611e-1f),
+                            z * t, t);
+    float cs = sampling_mad(
+        sampling_mad(sampling_mad(sampling_mad(2.443315711809948e-5f, z, -1.388731625493765e-3f), z,
+                                  4.166664568298827e-2f),
+                     z, -0.5f),
+        z, 1.0f);
+    // Quarter turn k maps (cos, sin) to (cs, sn), (-sn, cs), (-cs, -sn), (sn, -cs) for k = 0, 1, 2, 3 (and 4 =
+    // 0). On the bits, with masks: k is random, so compiled branches would be mispredicted half the time.
+    uint32_t k = (uint32_t)(int)q, swap = 0u - (k & 1u), bc, bs;
+    memcpy(&bc, &cs, sizeof bc);
+    memcpy(&bs, &sn, sizeof bs);
+    uint32_t rc = ((bs & swap) | (bc & ~swap)) ^ (((k + 1u) & 2u) << 30);
+    uint32_t rs = ((bc & swap) | (bs & ~swap)) ^ ((k & 2u) << 30);
+    memcpy(c, &rc, sizeof rc);
+    memcpy(s, &rs, sizeof rs);
+}
+
+/// Uniform direction on the unit sphere from exactly two random numbers, without rejection: z = 1 - 2 u1 is
+/// uniform in (-1, 1] (Archimedes: so is the height of a uniform point on the sphere), the azimuth is 2 pi u2,
+/// and the radius of the circle at height z is sqrt(1 - z^2) = 2 sqrt(u1 (1 - u1)), free of cancellation.
+static inline vec3 sample_sphere_uniform(rng *r) {
+    float u1 = rng_float(r), u2 = rng_float(r);
+    float c, s;
+    sincos_turn(u2, &c, &s);
+    float rad = 2.0f * sqrtf(u1 * (1.0f - u1));
+    return v3(rad * c, rad * s, 1.0f - 2.0f * u1);
+}
+
+/// Uniform point in the unit disk from exactly two random numbers, without rejection: radius sqrt(u1) (the
+/// area inside radius rho grows as rho^2), angle 2 pi u2. The point can lie on the circle itself only by
+/// rounding.
+static inline void sample_disk_polar(rng *r, float *x, float *y) {
+    float u1 = rng_float(r), u2 = rng_float(r);
+    float c, s;
+    sincos_turn(u2, &c, &s);
+    float rad = sqrtf(u1);
+    *x = rad * c;
+    *y = rad * s;
 }
 
 /// Direction in the hemisphere around unit normal n with density cos(theta)/pi (Malley's method: a

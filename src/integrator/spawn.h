@@ -38,10 +38,44 @@ static inline vec3 spawn_sphere_reproject(const sphere *sp, vec3 p) {
     return v3((float)(sp->center.x + q[0] * k), (float)(sp->center.y + q[1] * k), (float)(sp->center.z + q[2] * k));
 }
 
+/// Largest coordinate magnitude of the primitive a surface point lies on, in world units: what the float
+/// error of intersecting it (and its neighbours) again scales with. A 2000-wide floor hit near the origin
+/// has a small hit point but corners of 1000, and a nearby origin's position relative to those corners is
+/// only known to their precision. Instanced primitives are intersected in object space: their object-space
+/// magnitude times the transform's largest row sum (its infinity norm, bounding how it stretches lengths).
+static inline float spawn_primitive_magnitude(const glint_scene *s, const surface *sf) {
+    if (sf->instance == HIT_NO_INSTANCE) {
+        if (sf->kind != HIT_QUAD) return 0.0f;
+        const quad *q = &s->quads[sf->prim];
+        float m = spawn_max_abs(q->p[0]), k;
+        for (int i = 1; i < 4; i++) m = (k = spawn_max_abs(q->p[i])) > m ? k : m;
+        return m;
+    }
+    const instance *in = &s->instances[sf->instance];
+    float obj, k;
+    if (in->kind == INSTANCE_SPHERE) {
+        const sphere *sp = &s->instance_spheres[in->index];
+        obj = spawn_max_abs(sp->center) + fabsf(sp->radius);
+    } else {
+        const mesh *m = &s->meshes[in->index].geometry;
+        vec3 p0, p1, p2;
+        mesh_triangle_positions(m, sf->prim, &p0, &p1, &p2);
+        obj = spawn_max_abs(p0);
+        obj = (k = spawn_max_abs(p1)) > obj ? k : obj;
+        obj = (k = spawn_max_abs(p2)) > obj ? k : obj;
+    }
+    float norm = 0.0f;
+    for (int i = 0; i < 3; i++) {
+        const float *row = in->xf.m.m[i];
+        norm = (k = fabsf(row[0]) + fabsf(row[1]) + fabsf(row[2])) > norm ? k : norm;
+    }
+    return obj * norm;
+}
+
 /// Where rays leave surface sf. A world-space sphere's point is re-projected onto it in double and offset by
 /// SPAWN_OFFSET_REL (max|p_i| + |r|). Any other surface (quad, triangle, instanced sphere) keeps its point
-/// and is offset by its own error bound sf->error (which scales with its vertices' magnitudes and its
-/// instance's transform), and at least by SPAWN_OFFSET_REL max|p_i| for the rounding of p itself.
+/// and is offset by its error bound sf->error (the rounding of p, from surface_at) plus SPAWN_OFFSET_REL
+/// times the larger of max|p_i| and the primitive's own magnitude (spawn_primitive_magnitude).
 static inline spawn_point spawn_point_of(const glint_scene *s, const surface *sf) {
     spawn_point out;
     out.n = sf->ng;
@@ -52,8 +86,8 @@ static inline spawn_point spawn_point_of(const glint_scene *s, const surface *sf
         return out;
     }
     out.p = sf->p;
-    float own = SPAWN_OFFSET_REL * spawn_max_abs(sf->p);
-    out.offset = (sf->error > own ? sf->error : own) + 1e-30f;
+    float mag = spawn_max_abs(sf->p), prim = spawn_primitive_magnitude(s, sf);
+    out.offset = sf->error + SPAWN_OFFSET_REL * (prim > mag ? prim : mag) + 1e-30f;
     return out;
 }
 

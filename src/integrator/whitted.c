@@ -361,7 +361,7 @@ static vec3 color_local(const glint_scene *s, const material *m, vec3 albedo, co
         spawned sh = spawn(co, l);
         if (li->kind == LIGHT_POINT) sh.r.tmax = 1.0f; // the light itself is at t = 1
         ts->shadow_rays++;
-        hit h = {0, 0, HIT_SPHERE, HIT_NO_INSTANCE, 0, 0};
+        hit h;
         if (color_intersect(s, &sh, &h)) continue;
         diffuse = v3_add(diffuse, v3_scale(li->intensity, kd));
         specular = v3_add(specular, v3_scale(li->intensity, ks));
@@ -378,7 +378,7 @@ static vec3 color_trace(const glint_scene *s, spawned r, int depth, vec3 w, thre
     for (;;) {
         if (v3_max_comp(w) < MIN_WEIGHT) return sum;
         ts->rays++;
-        hit h = {0, 0, HIT_SPHERE, HIT_NO_INSTANCE, 0, 0};
+        hit h;
         vec3 d = v3_unit(r.r.d);
         if (!color_intersect(s, &r, &h)) return v3_add(sum, v3_mul(w, scene_background(&s->settings, d)));
         surface sf = surface_at(s, &r.r, &h);
