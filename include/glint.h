@@ -47,6 +47,7 @@ typedef struct glint_render_options {
 /// Counters of one render, filled by glint_render.
 typedef struct glint_render_stats {
     double wall_seconds, build_seconds;
+    double render_seconds; ///< the render loop alone: wall_seconds less scene preparation (BVH build)
     uint64_t samples, rays, shadow_rays, discarded_samples;
     uint64_t bvh_nodes, bvh_leaves, bvh_depth;
     int threads;

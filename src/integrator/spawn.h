@@ -28,14 +28,16 @@ static inline float spawn_max_abs(vec3 p) {
     return ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
 }
 
-/// The point p moved onto sphere sp in double precision, so that its only error is the final rounding to
-/// float: c + (p - c) |r| / |p - c| (pbrt's re-projection).
+/// The point p moved onto sphere sp: c + (p - c) |r| / |p - c| (pbrt's re-projection), in float. Its error
+/// is a few ulps of |r| (the direction of p - c and its length, each good to about 2^-23) plus the rounding
+/// of the sum, about 2^-24 max|p_i|: within SPAWN_OFFSET_REL (max|p_i| + |r|). On the book's final scene it
+/// is as robust as the same formula in double (no re-hit down to a quarter of the offset, re-hits at an
+/// eighth, for both), and it spares a double square root and division on every bounce (docs/benchmarks.md).
 static inline vec3 spawn_sphere_reproject(const sphere *sp, vec3 p) {
-    double q[3] = {(double)p.x - sp->center.x, (double)p.y - sp->center.y, (double)p.z - sp->center.z};
-    double len = sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
-    if (!(len > 0.0)) return p;
-    double k = fabs((double)sp->radius) / len;
-    return v3((float)(sp->center.x + q[0] * k), (float)(sp->center.y + q[1] * k), (float)(sp->center.z + q[2] * k));
+    vec3 q = v3_sub(p, sp->center);
+    float len = sqrtf(v3_len2(q));
+    if (!(len > 0.0f)) return p;
+    return v3_fma(sp->center, q, fabsf(sp->radius) / len);
 }
 
 /// Largest coordinate magnitude of the primitive a surface point lies on, in world units: what the float

@@ -36,13 +36,13 @@ bool mat_scatter(const material *m, vec3 albedo, vec3 d, vec3 n, bool front, rng
     ev->transmitted = false;
     switch (m->kind) {
     case MAT_LAMBERTIAN:
-        ev->dir = mat_lambertian_dir(n, sample_unit_vector(r));
+        ev->dir = mat_lambertian_dir(n, sample_sphere_uniform(r));
         ev->weight = albedo; // (albedo / pi) cos / (cos / pi)
         ev->diffuse = true;
         return true;
     case MAT_METAL:
         ev->weight = albedo;
-        return mat_metal_dir(d, n, m->fuzz, sample_unit_vector(r), &ev->dir);
+        return mat_metal_dir(d, n, m->fuzz, sample_sphere_uniform(r), &ev->dir);
     case MAT_DIELECTRIC: {
         bool reflected;
         float eta = front ? 1.0f / m->ior : m->ior;
@@ -58,7 +58,7 @@ bool mat_scatter(const material *m, vec3 albedo, vec3 d, vec3 n, bool front, rng
             ev->weight = v3s(1.0f);
             return true;
         }
-        ev->dir = mat_lambertian_dir(n, sample_unit_vector(r));
+        ev->dir = mat_lambertian_dir(n, sample_sphere_uniform(r));
         ev->weight = albedo;
         ev->diffuse = true;
         return true;

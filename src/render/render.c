@@ -39,6 +39,7 @@ typedef struct render_job {
     int tiles_x, tile_count, pass_count;
     int pass_start[MAX_PASSES + 1];
     uint64_t total_samples;        ///< width * height * spp
+    uint64_t stream;               ///< rng_seed_stream(seed), shared by every sample's generator
     atomic_int next_item;
     atomic_int *tile_passes;       ///< passes completed by each tile; pass p of a tile waits for p
     atomic_int waiters;            ///< workers blocked in wait_for_tile
@@ -99,9 +100,11 @@ static bool render_pixel(const render_job *job, int x, int y, int k0, int k1, th
     if (k0 > 0) memcpy(sum, &job->sums[pixel * 3u], sizeof sum);
     int k = k0;
     bool stopped = false;
+    // rng_for_sample(seed, pixel, k), its per-render and per-pixel parts computed once.
+    uint64_t key = rng_pixel_key(rs->seed, (uint64_t)pixel);
     for (; k < k1; k++) {
         if (stop_is_requested()) { stopped = true; break; }
-        rng r = rng_for_sample(rs->seed, (uint64_t)pixel, (uint64_t)k);
+        rng r = rng_for_key(job->stream, key, (uint64_t)k);
         vec3 c = integrator_sample(s, x, y, (uint32_t)k, &r, ts);
         ts->samples++;
         atomic_store_explicit(progress, ts->samples, memory_order_relaxed);
@@ -247,6 +250,7 @@ static bool job_init(render_job *job, const glint_scene *s, glint_image *img) {
     job->tile_count = job->tiles_x * ((rs->height + TILE_SIZE - 1) / TILE_SIZE);
     job->pass_count = plan_passes(rs->spp, job->pass_start);
     job->total_samples = (uint64_t)rs->width * (uint64_t)rs->height * (uint64_t)rs->spp;
+    job->stream = rng_seed_stream(rs->seed);
     atomic_init(&job->next_item, 0);
     atomic_init(&job->waiters, 0);
     atomic_init(&job->stopping, 0);
@@ -330,7 +334,9 @@ glint_status glint_render(glint_scene *s, const glint_render_options *opt, glint
         stats->bvh_leaves = as.leaves;
         stats->bvh_depth = as.depth;
         stats->build_seconds = as.build_seconds > 0 ? as.build_seconds : t_built - t0;
-        stats->wall_seconds = now_seconds() - t0;
+        double t_end = now_seconds();
+        stats->wall_seconds = t_end - t0;
+        stats->render_seconds = t_end - t_built;
         stats->threads = started + 1;
     }
     free(workers);

@@ -84,4 +84,11 @@ rc=$?
 check "malformed scene on stdin exits 2" test "$rc" -eq 2
 check "malformed scene on stdin: no image" test ! -e "$TMP/stdin-broken.png"
 
+# Loader warnings (problems worked around in mesh files) are printed by the program, not the library.
+run -o "$TMP/warn.ppm" "$DATA/warn.json"
+check "mesh warnings: exit 0" test "$rc" -eq 0
+check "mesh warnings: printed with file and line" grep -qx "glint: $DATA/warn.obj:6: warning: face has zero area; skipped" "$TMP/err"
+run --quiet -o "$TMP/warn.ppm" "$DATA/warn.json"
+check "mesh warnings: silenced by --quiet" test ! -s "$TMP/err"
+
 summary
