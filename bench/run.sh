@@ -5,14 +5,14 @@
 # usage: bash bench/run.sh [--quick] [--runs N] [--only LIST] [--no-embree] [--glint PATH]
 #   --quick      fewer samples and runs (the Howard scenes at 10 spp instead of 100, 3 runs)
 #   --runs N     runs per measurement; the table shows medians (default 5, quick 3)
-#   --only LIST  comma-separated sections: rtiow, howard, paper, scaling (default: all)
+#   --only LIST  comma-separated sections: rtiow, howard, paper, scaling, mesh (default: all)
 #   --no-embree  skip the Embree-based yardstick even when ../shared/tools/embree-probe exists
 #   --glint PATH measure this binary instead of building one
 # Environment: CMAKE_BUILD_PARALLEL_LEVEL for the build; GLINT_BENCH_BUILD for the build directory.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-QUICK=0 RUNS='' ONLY=rtiow,howard,paper,scaling EMBREE=1 GLINT=''
+QUICK=0 RUNS='' ONLY=rtiow,howard,paper,scaling,mesh EMBREE=1 GLINT=''
 while [ $# -gt 0 ]; do
     case "$1" in
     --quick) QUICK=1 ;;
@@ -199,6 +199,57 @@ if want scaling; then
     done
     emit ""
 fi
+
+# --- 5. a mesh of over a million triangles -----------------------------------------------------------
+# The Stanford bunny subdivided 4:1 twice by bench/subdivide.c (1,111,216 triangles), generated into
+# bench/work/ (git-ignored) rather than committed, and regenerated when the tool or the bunny changes;
+# the original bunny (69,451 triangles) is measured the same way for comparison. glint's statistics line
+# gives the render time (BVH build included) and the build time; the OBJ load (reading the file, smooth
+# normals) is the process's wall time minus that render time.
+mesh_bench() {
+    local dir=$ROOT/bench/work src=$ROOT/scenes/meshes/stanford-bunny/stanford-bunny.obj
+    local obj=$ROOT/bench/work/bunny-1m.obj
+    mkdir -p "$dir"
+    if [ ! -s "$obj" ] || [ "$ROOT/bench/subdivide.c" -nt "$obj" ] || [ "$src" -nt "$obj" ]; then
+        echo "generating $obj ..." >&2
+        ${CC:-cc} -O2 -std=c17 -D_POSIX_C_SOURCE=200809L -o "$WORK/subdivide" "$ROOT/bench/subdivide.c" || exit 1
+        "$WORK/subdivide" "$src" "$obj.tmp" 2 || exit 1
+        mv "$obj.tmp" "$obj"
+    fi
+    emit "## A mesh of over a million triangles: the bunny subdivided twice, 320x240, 16 spp, depth 8"
+    emit ""
+    emit "| mesh | triangles | threads | OBJ load s | BVH build s | render s | Mrays/s | peak RSS MB |"
+    emit "|---|---:|---:|---:|---:|---:|---:|---:|"
+    local name file tris
+    for name in bunny bunny-1m; do
+        if [ $name = bunny ]; then file=$src tris=69451; else file=$obj tris=$(sed -n '1s/.* \([0-9]*\) triangles$/\1/p' "$obj"); fi
+        # bunny.json's view, with a plain ground (no texture lookups) so that the time goes to the mesh
+        cat >"$dir/$name.json" <<JSON
+{"render": {"width": 320, "height": 240, "spp": 16, "max_depth": 8, "integrator": "path", "background": "sky", "output": "gamma2"},
+ "camera": {"type": "lookat", "lookfrom": [0.6, 1.6, 4.2], "lookat": [-0.1, 0.75, 0], "vfov": 30},
+ "materials": {"ground": {"type": "lambertian", "albedo": 0.5}, "clay": {"type": "lambertian", "albedo": [0.75, 0.6, 0.45]}},
+ "objects": [
+  {"type": "quad", "q": [-50, 0, 50], "u": [100, 0, 0], "v": [0, 0, -100], "material": "ground"},
+  {"type": "mesh", "file": "$file", "material": "clay", "transform": [{"scale": 10}, {"translate": [0.17, -0.33, 0]}]}
+ ]}
+JSON
+        for t in 1 $([ "$NPROC" -gt 1 ] && echo "$NPROC"); do
+            : >"$WORK/m$t"; : >"$WORK/mt$t"
+            for _ in $(seq "$RUNS"); do
+                local t0 t1
+                t0=$(date +%s.%N)
+                glint_run "$WORK/m$t" "$dir/$name.json" --threads "$t"
+                t1=$(date +%s.%N)
+                awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.3f\n", b - a }' >>"$WORK/mt$t"
+            done
+            # columns: process wall, render wall (build included), Mrays/s, build ms, peak KB
+            paste -d ' ' "$WORK/mt$t" "$WORK/m$t" | awk '{ printf "%.3f %.3f %.3f\n", $1 - $2, $4 / 1000, $2 - $4 / 1000 }' >"$WORK/ml$t"
+            emit "| $name | $tris | $t | $(col "$WORK/ml$t" 1) | $(col "$WORK/ml$t" 2) | $(col "$WORK/ml$t" 3) | $(col "$WORK/m$t" 2) | $(awk -v k="$(col "$WORK/m$t" 4)" 'BEGIN { printf "%.1f", k / 1024 }') |"
+        done
+    done
+    emit ""
+}
+if want mesh; then mesh_bench; fi
 
 mkdir -p "$ROOT/bench/results"
 SUFFIX=''
