@@ -1,6 +1,7 @@
 // test_image_write.c — every image format written through glint_image_write and read back; the
 // temporary-file-and-rename contract: failures leave neither a half image nor a temporary file behind.
 #include "check.h"
+#include "test_util.h"
 #include "render/film.h"
 
 #include <png.h>
@@ -17,17 +18,9 @@
 
 enum { W = 37, H = 19 }; // odd sizes, so rows and orientation errors show
 
-static char dir[512];
-
-static const char *path_in_dir(const char *name) {
-    static char buf[1024];
-    snprintf(buf, sizeof buf, "%s/%s", dir, name);
-    return buf;
-}
-
 // Number of entries in the test directory (without . and ..): catches any leftover temporary file.
 static int dir_entries(void) {
-    DIR *d = opendir(dir);
+    DIR *d = opendir(tmpdir);
     if (!d) return -1;
     int n = 0;
     for (struct dirent *e; (e = readdir(d));)
@@ -78,9 +71,9 @@ static size_t parse_header(const uint8_t *buf, size_t size, const char *magic, i
 static void test_ppm_binary(void) {
     glint_image *img = test_image(TRANSFORM_GAMMA2);
     glint_error err;
-    CHECK(glint_image_write(img, path_in_dir("a.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
+    CHECK(glint_image_write(img, tmp_path("a.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
     size_t size;
-    uint8_t *buf = read_file(path_in_dir("a.ppm"), &size);
+    uint8_t *buf = read_file(tmp_path("a.ppm"), &size);
     CHECK(buf != NULL);
     int w = 0, h = 0;
     char maxval[16];
@@ -106,8 +99,8 @@ static void test_ppm_binary(void) {
 static void test_ppm_ascii(void) {
     glint_image *img = test_image(TRANSFORM_LINEAR);
     glint_error err;
-    CHECK(glint_image_write(img, path_in_dir("b.ppm"), GLINT_FORMAT_PPM_ASCII, &err) == GLINT_OK);
-    FILE *f = fopen(path_in_dir("b.ppm"), "r");
+    CHECK(glint_image_write(img, tmp_path("b.ppm"), GLINT_FORMAT_PPM_ASCII, &err) == GLINT_OK);
+    FILE *f = fopen(tmp_path("b.ppm"), "r");
     CHECK(f != NULL);
     if (!f) return;
     char magic[4] = "";
@@ -134,9 +127,9 @@ static void test_pfm(void) {
     glint_image *img = test_image(TRANSFORM_SRGB);
     img->rgb[((size_t)(H - 1) * W) * 3] = 1e30f; // values beyond 1 survive in a float format
     glint_error err;
-    CHECK(glint_image_write(img, path_in_dir("c.pfm"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
+    CHECK(glint_image_write(img, tmp_path("c.pfm"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
     size_t size;
-    uint8_t *buf = read_file(path_in_dir("c.pfm"), &size);
+    uint8_t *buf = read_file(tmp_path("c.pfm"), &size);
     int w = 0, h = 0;
     char scale[16] = "";
     size_t off = buf ? parse_header(buf, size, "PF", &w, &h, scale, sizeof scale) : 0;
@@ -162,12 +155,12 @@ static void test_pfm(void) {
 static void test_png(void) {
     glint_image *img = test_image(TRANSFORM_SRGB);
     glint_error err;
-    CHECK(glint_image_write(img, path_in_dir("d.png"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
-    CHECK(glint_image_write(img, path_in_dir("e.PNG"), GLINT_FORMAT_AUTO, &err) == GLINT_OK); // any case
+    CHECK(glint_image_write(img, tmp_path("d.png"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
+    CHECK(glint_image_write(img, tmp_path("e.PNG"), GLINT_FORMAT_AUTO, &err) == GLINT_OK); // any case
     png_image pi;
     memset(&pi, 0, sizeof pi);
     pi.version = PNG_IMAGE_VERSION;
-    CHECK(png_image_begin_read_from_file(&pi, path_in_dir("d.png")) != 0);
+    CHECK(png_image_begin_read_from_file(&pi, tmp_path("d.png")) != 0);
     CHECK(pi.width == W && pi.height == H);
     CHECK((pi.format & PNG_FORMAT_FLAG_COLOR) && !(pi.format & PNG_FORMAT_FLAG_ALPHA));
     pi.format = PNG_FORMAT_RGB;
@@ -182,9 +175,9 @@ static void test_png(void) {
     CHECK(mismatches == 0);
     free(pixels);
     // Rewriting replaces the file in one step; the signature is PNG's.
-    CHECK(glint_image_write(img, path_in_dir("d.png"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
+    CHECK(glint_image_write(img, tmp_path("d.png"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
     size_t size;
-    uint8_t *buf = read_file(path_in_dir("d.png"), &size);
+    uint8_t *buf = read_file(tmp_path("d.png"), &size);
     CHECK(buf && size > 8 && memcmp(buf, "\x89PNG\r\n\x1a\n", 8) == 0);
     free(buf);
     glint_image_free(img);
@@ -194,9 +187,9 @@ static void test_mode(void) {
     glint_image *img = film_new(2, 2, TRANSFORM_LINEAR);
     mode_t mask = umask(022);
     glint_error err;
-    CHECK(glint_image_write(img, path_in_dir("mode.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
+    CHECK(glint_image_write(img, tmp_path("mode.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
     struct stat sb;
-    CHECK(stat(path_in_dir("mode.ppm"), &sb) == 0 && (sb.st_mode & 0777) == 0644); // not mkstemp's 0600
+    CHECK(stat(tmp_path("mode.ppm"), &sb) == 0 && (sb.st_mode & 0777) == 0644); // not mkstemp's 0600
     umask(mask);
     glint_image_free(img);
 }
@@ -207,40 +200,40 @@ static void test_errors(void) {
     int before = dir_entries();
     char expected[1200];
 
-    CHECK(glint_image_write(img, path_in_dir("x.jpg"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);
+    CHECK(glint_image_write(img, tmp_path("x.jpg"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);
     snprintf(expected, sizeof expected,
              "%s: unknown image format '.jpg', expected .png, .ppm or .pfm (or - for PPM on standard output)",
-             path_in_dir("x.jpg"));
+             tmp_path("x.jpg"));
     CHECK(strcmp(err.message, expected) == 0);
-    CHECK(glint_image_check_path(path_in_dir("x.jpg"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);
-    CHECK(glint_image_write(img, path_in_dir("noext"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);
+    CHECK(glint_image_check_path(tmp_path("x.jpg"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);
+    CHECK(glint_image_write(img, tmp_path("noext"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);
     CHECK(strstr(err.message, "no file extension") != NULL);
-    CHECK(glint_image_write(img, path_in_dir(".png"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);
+    CHECK(glint_image_write(img, tmp_path(".png"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);
 
-    CHECK(glint_image_write(img, path_in_dir("missing/x.png"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_RENDER);
-    snprintf(expected, sizeof expected, "%s: cannot write: No such file or directory", path_in_dir("missing/x.png"));
+    CHECK(glint_image_write(img, tmp_path("missing/x.png"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_RENDER);
+    snprintf(expected, sizeof expected, "%s: cannot write: No such file or directory", tmp_path("missing/x.png"));
     CHECK(strcmp(err.message, expected) == 0);
-    CHECK(glint_image_check_path(path_in_dir("missing/x.png"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_RENDER);
+    CHECK(glint_image_check_path(tmp_path("missing/x.png"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_RENDER);
     CHECK(strcmp(err.message, expected) == 0);
-    CHECK(glint_image_check_path(path_in_dir("ok.png"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
+    CHECK(glint_image_check_path(tmp_path("ok.png"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
     CHECK(glint_image_check_path("-", GLINT_FORMAT_AUTO, &err) == GLINT_OK);
     CHECK(dir_entries() == before); // the checks created nothing
 
     // A directory where the image should go: the temporary file is written, the rename fails, and the
     // temporary file must be gone again.
-    CHECK(mkdir(path_in_dir("taken.ppm"), 0755) == 0);
-    CHECK(mkdir(path_in_dir("taken.ppm/inside"), 0755) == 0);
+    CHECK(mkdir(tmp_path("taken.ppm"), 0755) == 0);
+    CHECK(mkdir(tmp_path("taken.ppm/inside"), 0755) == 0);
     before = dir_entries();
-    CHECK(glint_image_check_path(path_in_dir("taken.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_RENDER);
+    CHECK(glint_image_check_path(tmp_path("taken.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_RENDER);
     CHECK(strstr(err.message, "cannot write: Is a directory") != NULL);
-    CHECK(glint_image_write(img, path_in_dir("taken.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_RENDER);
+    CHECK(glint_image_write(img, tmp_path("taken.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_RENDER);
     CHECK(strstr(err.message, "taken.ppm: cannot write: ") != NULL);
     CHECK(dir_entries() == before);
-    rmdir(path_in_dir("taken.ppm/inside"));
-    rmdir(path_in_dir("taken.ppm"));
+    rmdir(tmp_path("taken.ppm/inside"));
+    rmdir(tmp_path("taken.ppm"));
 
     // A write that fails half-way (the file-size limit): no half image, no temporary file, the old image kept.
-    CHECK(glint_image_write(img, path_in_dir("full.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
+    CHECK(glint_image_write(img, tmp_path("full.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
     before = dir_entries();
     struct rlimit old, small;
     getrlimit(RLIMIT_FSIZE, &old);
@@ -250,36 +243,21 @@ static void test_errors(void) {
     CHECK(setrlimit(RLIMIT_FSIZE, &small) == 0);
     const glint_format formats[] = {GLINT_FORMAT_PPM, GLINT_FORMAT_PPM_ASCII, GLINT_FORMAT_PFM, GLINT_FORMAT_PNG};
     for (size_t i = 0; i < sizeof formats / sizeof formats[0]; i++) {
-        CHECK(glint_image_write(img, path_in_dir("full.ppm"), formats[i], &err) == GLINT_ERR_RENDER);
+        CHECK(glint_image_write(img, tmp_path("full.ppm"), formats[i], &err) == GLINT_ERR_RENDER);
         CHECK(strstr(err.message, "full.ppm: cannot write: File too large") != NULL);
     }
     setrlimit(RLIMIT_FSIZE, &old);
     signal(SIGXFSZ, SIG_DFL);
     CHECK(dir_entries() == before);
     size_t size;
-    uint8_t *buf = read_file(path_in_dir("full.ppm"), &size);
+    uint8_t *buf = read_file(tmp_path("full.ppm"), &size);
     CHECK(buf && size == strlen("P6\n37 19\n255\n") + (size_t)W * H * 3);
     free(buf);
     glint_image_free(img);
 }
 
-// Removes the test directory's files (one level) and the directory.
-static void cleanup(void) {
-    DIR *d = opendir(dir);
-    if (!d) return;
-    for (struct dirent *e; (e = readdir(d));)
-        if (strcmp(e->d_name, ".") != 0 && strcmp(e->d_name, "..") != 0) unlink(path_in_dir(e->d_name));
-    closedir(d);
-    rmdir(dir);
-}
-
 int main(void) {
-    const char *tmp = getenv("TMPDIR");
-    snprintf(dir, sizeof dir, "%s/glint-image-test-XXXXXX", tmp && *tmp ? tmp : "/tmp");
-    if (!mkdtemp(dir)) {
-        perror("mkdtemp");
-        return 1;
-    }
+    if (!tmpdir_make("glint-image-test")) return 1;
     test_ppm_binary();
     test_ppm_ascii();
     test_pfm();
@@ -287,6 +265,6 @@ int main(void) {
     test_mode();
     test_errors();
     CHECK(dir_entries() == 7); // a.ppm b.ppm c.pfm d.png e.PNG mode.ppm full.ppm, and nothing else
-    cleanup();
+    tmpdir_remove();
     return check_summary();
 }

@@ -6,6 +6,7 @@
 // ellipsoid. Scenes are JSON text parsed with glint_scene_parse, meshes small OBJ files in a temporary
 // directory; images are 48x32 at 4 spp, path-traced and colour-Whitted, with every acceleration structure.
 #include "check.h"
+#include "test_util.h"
 #include "camera/camera.h"
 #include "core/rng.h"
 #include "integrator/integrator.h"
@@ -17,8 +18,6 @@
 #include <string.h>
 #include <unistd.h>
 
-static char tmpdir[256];
-
 static const char *const accels[] = {"bvh", "bvh2", "none"};
 enum { ACCEL_KINDS = 3 };
 
@@ -29,14 +28,7 @@ static const char *const integrator_name[] = {"path", "whitted"};
 
 // ---- files ----------------------------------------------------------------------------------------------
 
-static const char *tmp_path(const char *name) {
-    static char buf[4][512];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
-    return buf[k];
-}
-
+// Unlike tmp_write, each of opening and closing is a check of its own.
 static void write_text(const char *name, const char *text) {
     FILE *f = fopen(tmp_path(name), "wb");
     CHECK(f != NULL);
@@ -44,9 +36,6 @@ static void write_text(const char *name, const char *text) {
     fputs(text, f);
     CHECK(fclose(f) == 0);
 }
-
-static const char *const written[] = {"gem.mtl", "gem.obj", "gem-copy.obj", "gem-copy2.obj", "gem-moved.obj",
-                                      "box.obj"};
 
 // The gem: an octahedron of "radius" 0.5 (every coordinate 0 or +-0.5, exact in float), counter-clockwise
 // faces seen from outside, two MTL materials (a diffuse upper half, a metal lower half), smooth normals
@@ -420,12 +409,7 @@ static void test_ellipsoid_silhouette(void) {
 }
 
 int main(void) {
-    const char *t = getenv("TMPDIR");
-    snprintf(tmpdir, sizeof tmpdir, "%s/glint-test-instances-XXXXXX", t && *t ? t : "/tmp");
-    if (!mkdtemp(tmpdir)) {
-        perror("mkdtemp");
-        return 1;
-    }
+    if (!tmpdir_make("glint-test-instances")) return 1;
     write_files();
     test_shared_and_separate_meshes();
     test_identity_transform();
@@ -433,7 +417,6 @@ int main(void) {
     test_translation_against_moved_vertices();
     test_similarity_spheres();
     test_ellipsoid_silhouette();
-    for (size_t i = 0; i < sizeof written / sizeof written[0]; i++) unlink(tmp_path(written[i]));
-    rmdir(tmpdir);
+    tmpdir_remove();
     return check_summary();
 }

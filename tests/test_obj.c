@@ -2,6 +2,7 @@
 // files), edge cases from tinyobjloader and assimp, a table of malformed inputs with their exact messages,
 // a table of warnings, the MTL -> material mapping, triangulation of concave faces, and the number parser.
 #include "check.h"
+#include "test_util.h"
 #include "core/rng.h"
 #include "scene/load_obj.h"
 
@@ -11,8 +12,6 @@
 #include <unistd.h>
 
 #define DATA GLINT_SOURCE_DIR "/tests/data/obj/"
-
-static char tmpdir[64];
 
 // ---- helpers --------------------------------------------------------------------------------------------
 
@@ -27,26 +26,14 @@ static void collect(const char *m, void *user) {
     w->count++;
 }
 
-static const char *tmp_path(const char *name) {
-    static char buf[8][256];
-    static int k;
-    k = (k + 1) % 8;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
-    return buf[k];
-}
-
-static void write_text(const char *name, const char *text) {
-    FILE *f = fopen(tmp_path(name), "wb");
-    if (!f) return;
-    fputs(text, f);
-    fclose(f);
-}
+static void write_text(const char *name, const char *text) { (void)tmp_write(tmp_path(name), text, strlen(text)); }
 
 // `pattern` with every '@' replaced by the temporary directory.
 static const char *expand(const char *pattern) {
     static char buf[2048];
     size_t k = 0;
-    for (const char *p = pattern; *p && k + 80 < sizeof buf; p++) {
+    // The directory may be as long as tmpdir holds (TMPDIR is the user's): leave room for it.
+    for (const char *p = pattern; *p && k + sizeof tmpdir + 80 < sizeof buf; p++) {
         if (*p == '@') k += (size_t)snprintf(buf + k, sizeof buf - k, "%s", tmpdir);
         else buf[k++] = *p;
     }
@@ -699,11 +686,7 @@ static void test_numbers_match_strtof(void) {
 }
 
 int main(void) {
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/glint-test-obj-XXXXXX");
-    if (!mkdtemp(tmpdir)) {
-        perror("mkdtemp");
-        return 1;
-    }
+    if (!tmpdir_make("glint-test-obj")) return 1;
     test_cornell_original();
     test_spot();
     test_spider();
@@ -718,9 +701,6 @@ int main(void) {
     test_materials_in_obj();
     test_comments_and_blanks();
     test_numbers_match_strtof();
-    static const char *const files[] = {"bad.obj", "bad.mtl", "w.obj", "w.mtl", "tex.png", "win.mtl", "win.obj",
-                                        "one.mtl", "two.mtl", "my lib.mtl", "m.obj"};
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) unlink(tmp_path(files[i]));
-    rmdir(tmpdir);
+    tmpdir_remove();
     return check_summary();
 }

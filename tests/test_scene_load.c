@@ -283,16 +283,22 @@ static void test_encoding_and_order(void) {
     glint_scene_free(s);
 }
 
-// The paper's scene file, as the README renders it.
-static void test_paper_file(void) {
+// Loads scenes/<name>, checking that it loads; NULL (and the message printed) when it does not.
+static glint_scene *load_scene_file(const char *name) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/scenes/%s", GLINT_SOURCE_DIR, name);
     glint_scene *s = NULL;
     glint_error err;
-    glint_status st = glint_scene_load(GLINT_SOURCE_DIR "/scenes/paper.json", &s, &err);
+    glint_status st = glint_scene_load(path, &s, &err);
     CHECK(st == GLINT_OK);
-    if (st != GLINT_OK) {
-        fprintf(stderr, "  %s\n", err.message);
-        return;
-    }
+    if (st != GLINT_OK) fprintf(stderr, "  %s\n", err.message);
+    return s;
+}
+
+// The paper's scene file, as the README renders it.
+static void test_paper_file(void) {
+    glint_scene *s = load_scene_file("paper.json");
+    if (!s) return;
     CHECK(s->settings.width == 768 && s->settings.height == 768);
     CHECK(s->settings.integrator == INTEGRATOR_WHITTED && s->settings.whitted_mode == WHITTED_PAPER);
     CHECK(s->camera.kind == CAMERA_VIEWPORT);
@@ -622,17 +628,6 @@ static void test_meshes(void) {
             CHECK(s->instances[0].material >= 0 && s->materials[s->instances[0].material].albedo_texture == 0);
         glint_scene_free(s);
     }
-}
-
-static glint_scene *load_scene_file(const char *name) {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/scenes/%s", GLINT_SOURCE_DIR, name);
-    glint_scene *s = NULL;
-    glint_error err;
-    glint_status st = glint_scene_load(path, &s, &err);
-    CHECK(st == GLINT_OK);
-    if (st != GLINT_OK) fprintf(stderr, "  %s\n", err.message);
-    return s;
 }
 
 // The issue-5 scenes: what each holds.

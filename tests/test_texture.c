@@ -1,6 +1,7 @@
 // test_texture.c — solid, checker, Perlin noise and image textures; PNG and JPEG (baseline and progressive)
 // files written here with libpng/libjpeg and read back; sRGB decoding; bilinear filtering and wrapping.
 #include "check.h"
+#include "test_util.h"
 #include "core/rng.h"
 #include "io/image_read.h"
 #include "material/texture.h"
@@ -12,16 +13,6 @@
 
 #include <jpeglib.h>
 #include <png.h>
-
-static char tmpdir[64];
-
-static const char *tmp_path(const char *name) {
-    static char buf[4][128];
-    static int k;
-    k = (k + 1) % 4;
-    snprintf(buf[k], sizeof buf[k], "%s/%s", tmpdir, name);
-    return buf[k];
-}
 
 // The 8-bit sRGB code nearest to a linear value, to compare lossy JPEG results in the file's own units.
 static int to_srgb8(float linear) {
@@ -314,12 +305,7 @@ static void test_real_files(void) {
     }
 }
 
-static void write_bytes(const char *path, const void *data, size_t n) {
-    FILE *f = fopen(path, "wb");
-    if (!f) return;
-    fwrite(data, 1, n, f);
-    fclose(f);
-}
+static void write_bytes(const char *path, const void *data, size_t n) { (void)tmp_write(path, data, n); }
 
 static void check_error(const char *path, const char *expected_suffix) {
     image_rgb img = {7, 7, NULL};
@@ -376,11 +362,7 @@ static void test_errors(void) {
 }
 
 int main(void) {
-    snprintf(tmpdir, sizeof tmpdir, "/tmp/glint-test-texture-XXXXXX");
-    if (!mkdtemp(tmpdir)) {
-        perror("mkdtemp");
-        return 1;
-    }
+    if (!tmpdir_make("glint-test-texture")) return 1;
     test_srgb();
     test_solid_and_checker();
     test_noise();
@@ -389,9 +371,6 @@ int main(void) {
     test_jpeg();
     test_real_files();
     test_errors();
-    static const char *const files[] = {"rgb.png", "ga.png", "linear16.png", "baseline.jpg", "progressive.jpg",
-                                        "text.png", "empty.jpg", "cut.png", "bad.jpg", "huge.jpg"};
-    for (size_t i = 0; i < sizeof files / sizeof files[0]; i++) unlink(tmp_path(files[i]));
-    rmdir(tmpdir);
+    tmpdir_remove();
     return check_summary();
 }

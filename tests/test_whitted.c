@@ -147,6 +147,26 @@ static glint_scene *paper_scene_in_c(int size, whitted_mode mode) {
     return s;
 }
 
+// Renders paper_scene_in_c(size, mode) and compares it with the golden image at `path` (checked to be
+// size x size): the fractions of channels within +-1 and exact; false when there is nothing to compare.
+static bool paper_in_c_against_golden(const char *path, int size, whitted_mode mode, double *near, double *exact) {
+    int gw = 0, gh = 0;
+    unsigned char *golden = read_p6(path, &gw, &gh);
+    CHECK(golden != NULL && gw == size && gh == size);
+    if (!golden || gw != size || gh != size) {
+        free(golden);
+        return false;
+    }
+    glint_scene *s = paper_scene_in_c(size, mode);
+    glint_image *img = render(s, 2, NULL);
+    bool rendered = img != NULL;
+    if (rendered) *near = compare_golden(img, golden, gw, gh, exact);
+    glint_image_free(img);
+    glint_scene_free(s);
+    free(golden);
+    return rendered;
+}
+
 static void test_paper_golden(void) {
     int gw = 0, gh = 0;
     unsigned char *golden = read_p6(GLINT_SOURCE_DIR "/tests/golden/paper.ppm", &gw, &gh);
@@ -184,47 +204,23 @@ static void test_paper_golden(void) {
 // implementation of the same model ("Computer Graphics from Scratch"): they may differ only where float
 // and double disagree about a grazing ray.
 static void test_color_golden(void) {
-    int gw = 0, gh = 0;
-    unsigned char *golden = read_p6(GLINT_SOURCE_DIR "/tests/golden/paper-color-256.ppm", &gw, &gh);
-    CHECK(golden != NULL && gw == 256 && gh == 256);
-    if (!golden || gw != 256 || gh != 256) {
-        free(golden);
+    double near, exact;
+    if (!paper_in_c_against_golden(GLINT_SOURCE_DIR "/tests/golden/paper-color-256.ppm", 256, WHITTED_COLOR, &near,
+                                   &exact))
         return;
-    }
-    glint_scene *s = paper_scene_in_c(256, WHITTED_COLOR);
-    glint_image *img = render(s, 2, NULL);
-    if (img) {
-        double exact, near = compare_golden(img, golden, gw, gh, &exact);
-        printf("colour mode vs reference: %.4f%% of channels exact, %.4f%% within +-1\n", 100.0 * exact,
-               100.0 * near);
-        CHECK(near >= 0.999);
-        CHECK(exact >= 0.99);
-    }
-    glint_image_free(img);
-    glint_scene_free(s);
-    free(golden);
+    printf("colour mode vs reference: %.4f%% of channels exact, %.4f%% within +-1\n", 100.0 * exact, 100.0 * near);
+    CHECK(near >= 0.999);
+    CHECK(exact >= 0.99);
 }
 
 // The paper mode through the scene API alone, so that a loader problem and an integrator problem are told
 // apart: the same image as the golden one.
 static void test_paper_in_c(void) {
-    int gw = 0, gh = 0;
-    unsigned char *golden = read_p6(GLINT_SOURCE_DIR "/tests/golden/paper.ppm", &gw, &gh);
-    CHECK(golden != NULL && gw == 768 && gh == 768);
-    if (!golden || gw != 768 || gh != 768) {
-        free(golden);
+    double near, exact;
+    if (!paper_in_c_against_golden(GLINT_SOURCE_DIR "/tests/golden/paper.ppm", 768, WHITTED_PAPER, &near, &exact))
         return;
-    }
-    glint_scene *s = paper_scene_in_c(768, WHITTED_PAPER);
-    glint_image *img = render(s, 2, NULL);
-    if (img) {
-        double exact, near = compare_golden(img, golden, gw, gh, &exact);
-        CHECK(near >= 0.999);
-        CHECK(exact >= 0.999);
-    }
-    glint_image_free(img);
-    glint_scene_free(s);
-    free(golden);
+    CHECK(near >= 0.999);
+    CHECK(exact >= 0.999);
 }
 
 // ---- paper mode on tiny scenes -------------------------------------------------------------------------

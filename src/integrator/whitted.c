@@ -58,21 +58,29 @@ static double paper_colour(float albedo) {
     return fabs(c - i) < 1e-3 ? i : c;
 }
 
+// The program's quadratic for the ray o + t d and sphere sp: false when the discriminant is negative (or NaN),
+// else its two roots, the + root in *t1.
+static bool paper_roots(const sphere *sp, dvec o, dvec d, double *t1, double *t2) {
+    double radius = paper_number(sp->radius);
+    dvec co = dv_sub(o, paper_vec(sp->center));
+    double a = dv_dot(d, d);
+    double b = 2.0 * dv_dot(d, co);
+    double c = dv_dot(co, co) - radius * radius;
+    double disc = b * b - 4.0 * a * c;
+    if (!(disc >= 0.0)) return false;
+    *t1 = (-b + sqrt(disc)) / (2.0 * a);
+    *t2 = (-b - sqrt(disc)) / (2.0 * a);
+    return true;
+}
+
 // Closest sphere with a root t, tmin <= t <= tmax, brute force in list order; all comparisons inclusive,
 // so on a tie the later root and the later sphere win. -1 when there is none.
 static long paper_closest(const glint_scene *s, dvec o, dvec d, double tmin, double tmax, double *t_out) {
     long best = -1;
     double best_t = INFINITY;
     for (size_t k = 0; k < s->sphere_count; k++) {
-        const sphere *sp = &s->spheres[k];
-        double radius = paper_number(sp->radius);
-        dvec co = dv_sub(o, paper_vec(sp->center));
-        double a = dv_dot(d, d);
-        double b = 2.0 * dv_dot(d, co);
-        double c = dv_dot(co, co) - radius * radius;
-        double disc = b * b - 4.0 * a * c;
-        if (!(disc >= 0.0)) continue;
-        double t1 = (-b + sqrt(disc)) / (2.0 * a), t2 = (-b - sqrt(disc)) / (2.0 * a);
+        double t1, t2;
+        if (!paper_roots(&s->spheres[k], o, d, &t1, &t2)) continue;
         if (t1 >= tmin && t1 <= tmax && t1 <= best_t) { best_t = t1; best = (long)k; }
         if (t2 >= tmin && t2 <= tmax && t2 <= best_t) { best_t = t2; best = (long)k; }
     }
@@ -83,15 +91,8 @@ static long paper_closest(const glint_scene *s, dvec o, dvec d, double tmin, dou
 // Whether any sphere (the one being shaded included) has a root in [tmin, tmax]: the program's shadow test.
 static bool paper_blocked(const glint_scene *s, dvec o, dvec d, double tmin, double tmax) {
     for (size_t k = 0; k < s->sphere_count; k++) {
-        const sphere *sp = &s->spheres[k];
-        double radius = paper_number(sp->radius);
-        dvec co = dv_sub(o, paper_vec(sp->center));
-        double a = dv_dot(d, d);
-        double b = 2.0 * dv_dot(d, co);
-        double c = dv_dot(co, co) - radius * radius;
-        double disc = b * b - 4.0 * a * c;
-        if (!(disc >= 0.0)) continue;
-        double t1 = (-b + sqrt(disc)) / (2.0 * a), t2 = (-b - sqrt(disc)) / (2.0 * a);
+        double t1, t2;
+        if (!paper_roots(&s->spheres[k], o, d, &t1, &t2)) continue;
         if ((t1 >= tmin && t1 <= tmax) || (t2 >= tmin && t2 <= tmax)) return true;
     }
     return false;

@@ -765,6 +765,54 @@ LOAD_PRINTF(3, 4) static void warn_at(loader *ld, size_t offset, const char *fmt
 }
 
 // ---------------------------------------------------------------------------------------------
+// The two shapes of a top-level collection: an object mapping names to items, an array of items
+
+/// Reads one named ("textures", "materials") or inline item into the scene; *index is its number.
+typedef bool (*named_reader)(loader *ld, jval v, const char *what, const char *name, uint32_t *index);
+
+/// Reads "<kind>s", an object mapping names to items of that kind, adding each name to `map`.
+static bool read_named(loader *ld, jval v, const char *kind, name_map *map, named_reader read) {
+    char got[96], what[64 + SCENE_MAX_NAME];
+    if (!cJSON_IsObject(v.item))
+        return fail_at(ld, offset_of(ld, v.tok), "\"%ss\" must be a JSON object mapping names to %ss, got %s", kind,
+                       kind, describe(ld, v, got, sizeof got));
+    jiter it = iter_begin(ld, v);
+    uint32_t kt = 0;
+    jval val;
+    int r;
+    while ((r = iter_step(ld, &it, &kt, &val)) > 0) {
+        // The key string lives in the cJSON tree for the whole parse: the map may point at it.
+        const char *name = val.item->string;
+        if (!check_new_name(ld, map, kt, name, kind)) return false;
+        snprintf(what, sizeof what, "%s \"%s\"", kind, name);
+        uint32_t index;
+        if (!read(ld, val, what, name, &index)) return false;
+        if (!map_add(map, name, index, kt)) return fail_oom(ld);
+    }
+    return r == 0;
+}
+
+/// Reads element i of an array ("objects", "lights") into the scene.
+typedef bool (*element_reader)(loader *ld, jval v, size_t i);
+
+/// Reads `key`, an array of at most LOAD_MAX_ITEMS objects.
+static bool read_array(loader *ld, jval v, const char *key, element_reader read) {
+    char got[96];
+    if (!cJSON_IsArray(v.item))
+        return fail_at(ld, offset_of(ld, v.tok), "\"%s\" must be an array of objects, got %s", key,
+                       describe(ld, v, got, sizeof got));
+    jiter it = iter_begin(ld, v);
+    jval e;
+    int r;
+    for (size_t i = 0; (r = iter_step(ld, &it, NULL, &e)) > 0; i++) {
+        if (i >= LOAD_MAX_ITEMS)
+            return fail_at(ld, offset_of(ld, e.tok), "too many %s (the limit is %d)", key, LOAD_MAX_ITEMS);
+        if (!read(ld, e, i)) return false;
+    }
+    return r == 0;
+}
+
+// ---------------------------------------------------------------------------------------------
 // Textures: add a row to texture_types (name, keys, reader) for a new kind.
 
 static const char *const solid_keys[] = {"type", "color", NULL};
@@ -870,27 +918,6 @@ static bool read_texture(loader *ld, jval v, const char *what, const char *name,
     jobj o;
     return obj_open(ld, v, what, texture_types[t].keys, &o) &&
            texture_types[t].read(ld, &o, texture_types[t].variant, name, index);
-}
-
-static bool read_textures(loader *ld, jval v) {
-    char got[96], what[64 + SCENE_MAX_NAME];
-    if (!cJSON_IsObject(v.item))
-        return fail_at(ld, offset_of(ld, v.tok), "\"textures\" must be a JSON object mapping names to textures, got %s",
-                       describe(ld, v, got, sizeof got));
-    jiter it = iter_begin(ld, v);
-    uint32_t kt = 0;
-    jval val;
-    int r;
-    while ((r = iter_step(ld, &it, &kt, &val)) > 0) {
-        // The key string lives in the cJSON tree for the whole parse: the map may point at it.
-        const char *name = val.item->string;
-        if (!check_new_name(ld, &ld->textures, kt, name, "texture")) return false;
-        snprintf(what, sizeof what, "texture \"%s\"", name);
-        uint32_t index;
-        if (!read_texture(ld, val, what, name, &index)) return false;
-        if (!map_add(&ld->textures, name, index, kt)) return fail_oom(ld);
-    }
-    return r == 0;
 }
 
 // The largest colour component a texture can give (images are in [0, 1]).
@@ -1005,27 +1032,6 @@ static bool read_material(loader *ld, jval v, const char *what, const char *name
     if (i < 0) return fail_oom(ld);
     *index = (uint32_t)i;
     return true;
-}
-
-static bool read_materials(loader *ld, jval v) {
-    char got[96], what[64 + SCENE_MAX_NAME];
-    if (!cJSON_IsObject(v.item))
-        return fail_at(ld, offset_of(ld, v.tok),
-                       "\"materials\" must be a JSON object mapping names to materials, got %s",
-                       describe(ld, v, got, sizeof got));
-    jiter it = iter_begin(ld, v);
-    uint32_t kt = 0;
-    jval val;
-    int r;
-    while ((r = iter_step(ld, &it, &kt, &val)) > 0) {
-        const char *name = val.item->string;
-        if (!check_new_name(ld, &ld->materials, kt, name, "material")) return false;
-        snprintf(what, sizeof what, "material \"%s\"", name);
-        uint32_t index;
-        if (!read_material(ld, val, what, name, &index)) return false;
-        if (!map_add(&ld->materials, ld->scene->material_names[index], index, kt)) return fail_oom(ld);
-    }
-    return r == 0;
 }
 
 /// The "material" of an object: a name defined in "materials", or an inline material object.
@@ -1466,26 +1472,14 @@ static const struct object_type {
 };
 #define OBJECT_TYPES (sizeof object_types / sizeof object_types[0])
 
-static bool read_objects(loader *ld, jval v) {
-    char got[96];
-    if (!cJSON_IsArray(v.item))
-        return fail_at(ld, offset_of(ld, v.tok), "\"objects\" must be an array of objects, got %s",
-                       describe(ld, v, got, sizeof got));
-    jiter it = iter_begin(ld, v);
-    jval e;
-    int r;
-    for (size_t i = 0; (r = iter_step(ld, &it, NULL, &e)) > 0; i++) {
-        char what[64], typed[96];
-        size_t t;
-        if (i >= LOAD_MAX_ITEMS)
-            return fail_at(ld, offset_of(ld, e.tok), "too many objects (the limit is %d)", LOAD_MAX_ITEMS);
-        snprintf(what, sizeof what, "object %zu", i);
-        if (!open_typed(ld, e, what, object_types, OBJECT_TYPES, sizeof object_types[0], &t)) return false;
-        snprintf(typed, sizeof typed, "object %zu (%s)", i, object_types[t].name);
-        jobj o;
-        if (!obj_open(ld, e, typed, object_types[t].keys, &o) || !object_types[t].read(ld, &o, typed)) return false;
-    }
-    return r == 0;
+static bool read_object(loader *ld, jval v, size_t i) {
+    char what[64], typed[96];
+    size_t t;
+    snprintf(what, sizeof what, "object %zu", i);
+    if (!open_typed(ld, v, what, object_types, OBJECT_TYPES, sizeof object_types[0], &t)) return false;
+    snprintf(typed, sizeof typed, "object %zu (%s)", i, object_types[t].name);
+    jobj o;
+    return obj_open(ld, v, typed, object_types[t].keys, &o) && object_types[t].read(ld, &o, typed);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1528,22 +1522,6 @@ static bool read_light(loader *ld, jval v, size_t i) {
         }
     }
     return scene_add_light(ld->scene, l) || fail_oom(ld);
-}
-
-static bool read_lights(loader *ld, jval v) {
-    char got[96];
-    if (!cJSON_IsArray(v.item))
-        return fail_at(ld, offset_of(ld, v.tok), "\"lights\" must be an array of objects, got %s",
-                       describe(ld, v, got, sizeof got));
-    jiter it = iter_begin(ld, v);
-    jval e;
-    int r;
-    for (size_t i = 0; (r = iter_step(ld, &it, NULL, &e)) > 0; i++) {
-        if (i >= LOAD_MAX_ITEMS)
-            return fail_at(ld, offset_of(ld, e.tok), "too many lights (the limit is %d)", LOAD_MAX_ITEMS);
-        if (!read_light(ld, e, i)) return false;
-    }
-    return r == 0;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -1753,10 +1731,11 @@ static bool read_scene(loader *ld, jval root) {
     // key order in the file.
     if ((m = obj_get(&o, "render")) && !read_render(ld, m->val)) return false;
     if ((m = obj_get(&o, "camera")) && !read_camera(ld, m->val)) return false;
-    if ((m = obj_get(&o, "textures")) && !read_textures(ld, m->val)) return false;
-    if ((m = obj_get(&o, "materials")) && !read_materials(ld, m->val)) return false;
-    if ((m = obj_get(&o, "objects")) && !read_objects(ld, m->val)) return false;
-    if ((m = obj_get(&o, "lights")) && !read_lights(ld, m->val)) return false;
+    if ((m = obj_get(&o, "textures")) && !read_named(ld, m->val, "texture", &ld->textures, read_texture)) return false;
+    if ((m = obj_get(&o, "materials")) && !read_named(ld, m->val, "material", &ld->materials, read_material))
+        return false;
+    if ((m = obj_get(&o, "objects")) && !read_array(ld, m->val, "objects", read_object)) return false;
+    if ((m = obj_get(&o, "lights")) && !read_array(ld, m->val, "lights", read_light)) return false;
     if (ld->warnings_dropped) {
         char msg[256];
         snprintf(msg, sizeof msg, "%s: warning: %zu more warnings not listed", ld->name, ld->warnings_dropped);
