@@ -51,7 +51,8 @@ PROBE=$ROOT/../shared/tools/embree-probe/run_book1.sh
 median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print v[(NR + 1) / 2]; else printf "%.4g\n", (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
 
 # glint_run OUTFILE ARGS...: one render; appends "wall mrays build_ms peak_kb" to OUTFILE.
-# Times come from glint's statistics line (wall time of the render including the BVH build).
+# Times come from glint's statistics line (wall time of the render including the BVH build; Mrays/s over the
+# render loop alone, as the Embree yardstick counts).
 glint_run() {
     local out=$1; shift
     local err=$WORK/stderr
@@ -188,8 +189,9 @@ if want scaling; then
             [ $accel = none ] && [ "$n" -gt 1000 ] && continue # brute force: quadratic, only as a reference
             : >"$WORK/s"
             for _ in $(seq "$RUNS"); do glint_run "$WORK/s" "$WORK/spheres-$n.json" --threads 1 --accel $accel; done
-            # The rate of tracing alone: glint's wall time includes the build, which grows as N log N.
-            awk '{ t = $1 - $3 / 1000; if (t > 0) print t, $1 * $2 / t }' "$WORK/s" >"$WORK/st"
+            # Tracing alone: glint's wall time includes the build, which grows as N log N; its Mrays/s is
+            # already over the render loop alone (wall less the build).
+            awk '{ t = $1 - $3 / 1000; if (t > 0) print t, $2 }' "$WORK/s" >"$WORK/st"
             mr=$(col "$WORK/st" 2)
             ns=$(awk -v m="$mr" 'BEGIN { if (m > 0) printf "%.1f", 1000 / m; else print "nan" }')
             [ "$n" = 1000 ] && base[$accel]=$ns

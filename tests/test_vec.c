@@ -54,7 +54,23 @@ static void test_basis(void) {
     }
 }
 
+// f_min/f_max agree with fminf/fmaxf, NaN operands included (a NaN yields the other operand).
+static void test_min_max(void) {
+    const float vals[] = {-2.0f, -0.5f, 0.0f, 1.0f, 3.5f, INFINITY, -INFINITY, NAN};
+    int n = (int)(sizeof vals / sizeof vals[0]), bad = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = 0; j < n; j++) {
+            float a = vals[i], b = vals[j], lo = f_min(a, b), hi = f_max(a, b), flo = fminf(a, b), fhi = fmaxf(a, b);
+            if (!(lo == flo || (isnan(lo) && isnan(flo))) || !(hi == fhi || (isnan(hi) && isnan(fhi)))) bad++;
+        }
+    CHECK(bad == 0);
+    vec3 m = v3_max(v3(1, NAN, -3), v3(NAN, 2, -4));
+    CHECK(m.x == 1 && m.y == 2 && m.z == -3);
+    CHECK(v3_max_comp(v3(-1, 5, 2)) == 5 && v3_max_comp(v3(NAN, -1, -2)) == -1);
+}
+
 int main(void) {
+    test_min_max();
     test_basic_ops();
     test_reflect();
     test_refract();

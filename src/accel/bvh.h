@@ -120,6 +120,7 @@ typedef struct bvh {
     bvh_slot *slots;
     size_t slot_count;
     uint32_t root;
+    uint32_t front; ///< leaf of the huge spheres, tested after the tree by every query (BVH_EMPTY: none)
     bounds3 bounds; ///< of everything in the BVH (empty when it holds nothing)
     accel_stats stats;
 } bvh;

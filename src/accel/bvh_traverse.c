@@ -362,18 +362,25 @@ static inline unsigned spheres_simd(const bvh_sphere_packet *p, const simd_ray *
     // b = -(f.d)
     pk fd = PK(add_ps)(PK(add_ps)(PK(mul_ps)(fx, s->dx), PK(mul_ps)(fy, s->dy)), PK(mul_ps)(fz, s->dz));
     pk b = PK(xor_ps)(fd, sign);
-    pk ba = PK(div_ps)(b, s->a);
-    pk lx = PK(fmadd_ps)(s->dx, ba, fx), ly = PK(fmadd_ps)(s->dy, ba, fy), lz = PK(fmadd_ps)(s->dz, ba, fz);
     pk rr = PK(mul_ps)(rad, rad);
-    pk l2 = PK(add_ps)(PK(add_ps)(PK(mul_ps)(lx, lx), PK(mul_ps)(ly, ly)), PK(mul_ps)(lz, lz));
-    pk disc = PK(sub_ps)(rr, l2);
     pk f2 = PK(add_ps)(PK(add_ps)(PK(mul_ps)(fx, fx), PK(mul_ps)(fy, fy)), PK(mul_ps)(fz, fz));
     pk c = PK(sub_ps)(f2, rr);
     // From outside (c > 0) and moving away (b < 0) both roots are negative: q < 0, t1 = q / a <= 0 and
     // t0 = c / q < 0, exact sign facts of the computed values, so no root can lie above tmin >= 0.
     pk away = PK(and_ps)(PK(and_ps)(PK(cmp_ps)(c, zero, _CMP_GT_OQ), PK(cmp_ps)(b, zero, _CMP_LT_OQ)), s->tmin_nonneg);
+    // Early rejection without the division (the common case: the ray misses every sphere). a c - b^2 is a
+    // times (squared distance from the centre to the line - r^2). Where it exceeds 2^-12 a (|f|^2 + r^2), far
+    // beyond the rounding of it and of the full test below (about 2^-20 of that), the full test finds
+    // disc < 0 too: leaving such lanes out changes no result. NaN lanes (unused) compare false.
+    pk gap = PK(fmsub_ps)(s->a, c, PK(mul_ps)(b, b));
+    pk bound = PK(mul_ps)(PK(mul_ps)(s->a, PK(set1_ps)(0x1p-12f)), PK(add_ps)(f2, rr));
+    if (PK(movemask_ps)(PK(andnot_ps)(away, PK(cmp_ps)(gap, bound, _CMP_LE_OQ))) == 0) return 0;
+    pk ba = PK(div_ps)(b, s->a);
+    pk lx = PK(fmadd_ps)(s->dx, ba, fx), ly = PK(fmadd_ps)(s->dy, ba, fy), lz = PK(fmadd_ps)(s->dz, ba, fz);
+    pk l2 = PK(add_ps)(PK(add_ps)(PK(mul_ps)(lx, lx), PK(mul_ps)(ly, ly)), PK(mul_ps)(lz, lz));
+    pk disc = PK(sub_ps)(rr, l2);
     pk ok = PK(andnot_ps)(away, PK(cmp_ps)(disc, zero, _CMP_GE_OQ));
-    if (PK(movemask_ps)(ok) == 0) return 0; // the common case: the ray misses every sphere
+    if (PK(movemask_ps)(ok) == 0) return 0;
     pk root = PK(sqrt_ps)(PK(mul_ps)(s->a, disc));
     pk q = PK(add_ps)(b, PK(or_ps)(PK(andnot_ps)(sign, root), PK(and_ps)(sign, b))); // b + copysign(root, b)
     pk t0 = PK(div_ps)(c, q), t1 = PK(div_ps)(q, s->a);
@@ -521,7 +528,7 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
 // every vector register would have to be saved), is left out.
 static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id,
                                                            bool any, bool simd, bool generic) {
-    if (b->root == BVH_EMPTY) return false;
+    if (b->root == BVH_EMPTY && b->front == BVH_EMPTY) return false;
     trav_ray tr;
 #if BVH_SIMD
     simd_ray sr;
@@ -534,16 +541,31 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
         tr = trav_setup(r);
     }
     tri_cache tc = {.ready = false};
-    stack_entry stack[WIDE_STACK];
-    walk w = {b->root, 0};
     bool found = false;
+    if (b->root != BVH_EMPTY) {
+        stack_entry stack[WIDE_STACK];
+        walk w = {b->root, 0};
 #if BVH_SIMD
-    while (wide_step(b, r, &tr, &sr, &tc, stack, &w, best, inst_id, &found, any, simd, generic) == STEP_MORE) {
-    }
+        int st;
+        while ((st = wide_step(b, r, &tr, &sr, &tc, stack, &w, best, inst_id, &found, any, simd, generic)) == STEP_MORE) {
+        }
 #else
-    while (wide_step(b, r, &tr, NULL, &tc, stack, &w, best, inst_id, &found, any, simd, generic) == STEP_MORE) {
-    }
+        int st;
+        while ((st = wide_step(b, r, &tr, NULL, &tc, stack, &w, best, inst_id, &found, any, simd, generic)) == STEP_MORE) {
+        }
 #endif
+        if (st == STEP_FOUND) return true;
+    }
+    // The huge spheres after the tree (bvh_build's split_front), against the tree's nearest hit.
+    if (b->front != BVH_EMPTY) {
+        bool h;
+#if BVH_SIMD
+        if (simd) h = leaf_simd(b, b->front, r, &sr, &tc, best, inst_id, any, generic);
+        else
+#endif
+            h = leaf_scalar(b, b->front, r, &tc, best, inst_id, any, generic);
+        found = found || h;
+    }
     return found;
 }
 
@@ -597,7 +619,7 @@ bool bvh_occluded(const bvh *b, const ray *r) { return b->spheres_only ? any_sph
 void bvh_intersect2(const bvh *b, const ray *r0, const ray *r1, hit *h0, hit *h1, bool *f0, bool *f1) {
 #if BVH_SIMD
     *f0 = *f1 = false;
-    if (b->root == BVH_EMPTY) return;
+    if (b->root == BVH_EMPTY && b->front == BVH_EMPTY) return;
     simd_ray sr0, sr1;
     bool ok0 = simd_setup(r0, &sr0), ok1 = simd_setup(r1, &sr1);
     if (!ok0 || !ok1) {
@@ -612,7 +634,7 @@ void bvh_intersect2(const bvh *b, const ray *r0, const ray *r1, hit *h0, hit *h1
     walk w0 = {b->root, 0}, w1 = {b->root, 0};
     bool found0 = false, found1 = false;
     // Alternate single steps of the two rays: two independent dependency chains in flight at once.
-    int s0 = STEP_MORE, s1 = STEP_MORE;
+    int s0 = b->root == BVH_EMPTY ? STEP_DONE : STEP_MORE, s1 = s0;
     while (s0 == STEP_MORE && s1 == STEP_MORE) {
         s0 = wide_step(b, r0, NULL, &sr0, &tc0, stack0, &w0, &best0, HIT_NO_INSTANCE, &found0, false, true, true);
         s1 = wide_step(b, r1, NULL, &sr1, &tc1, stack1, &w1, &best1, HIT_NO_INSTANCE, &found1, false, true, true);
@@ -621,6 +643,10 @@ void bvh_intersect2(const bvh *b, const ray *r0, const ray *r1, hit *h0, hit *h1
         s0 = wide_step(b, r0, NULL, &sr0, &tc0, stack0, &w0, &best0, HIT_NO_INSTANCE, &found0, false, true, true);
     while (s1 == STEP_MORE)
         s1 = wide_step(b, r1, NULL, &sr1, &tc1, stack1, &w1, &best1, HIT_NO_INSTANCE, &found1, false, true, true);
+    if (b->front != BVH_EMPTY) { // the huge spheres after the tree, as in wide_run
+        found0 = leaf_simd(b, b->front, r0, &sr0, &tc0, &best0, HIT_NO_INSTANCE, false, true) || found0;
+        found1 = leaf_simd(b, b->front, r1, &sr1, &tc1, &best1, HIT_NO_INSTANCE, false, true) || found1;
+    }
     if ((*f0 = found0)) *h0 = best0;
     if ((*f1 = found1)) *h1 = best1;
 #else

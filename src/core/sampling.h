@@ -71,28 +71,17 @@ static inline vec3 sample_sphere_uniform(rng *r) {
     return v3(rad * c, rad * s, 1.0f - 2.0f * u1);
 }
 
-/// Uniform point in the unit disk from exactly two random numbers, without rejection: radius sqrt(u1) (the
-/// area inside radius rho grows as rho^2), angle 2 pi u2. The point can lie on the circle itself only by
-/// rounding.
-static inline void sample_disk_polar(rng *r, float *x, float *y) {
+/// Direction in the hemisphere around unit normal n with density cos(theta)/pi (Malley's method: a
+/// uniform disk point lifted onto the hemisphere), drawn from exactly two random numbers, in the frame of
+/// v3_basis. (The path tracer's Lambertian uses unit(n + sample_sphere_uniform), which measured faster.)
+static inline vec3 sample_cosine_hemisphere(rng *r, vec3 n) {
     float u1 = rng_float(r), u2 = rng_float(r);
     float c, s;
     sincos_turn(u2, &c, &s);
-    float rad = sqrtf(u1);
-    *x = rad * c;
-    *y = rad * s;
-}
-
-/// Direction in the hemisphere around unit normal n with density cos(theta)/pi (Malley's method: a
-/// uniform disk point lifted onto the hemisphere), drawn from exactly two random numbers.
-static inline vec3 sample_cosine_hemisphere(rng *r, vec3 n) {
-    const float two_pi = 6.28318530717959f;
-    float u1 = rng_float(r), u2 = rng_float(r);
-    float rad = sqrtf(u1), phi = two_pi * u2;
-    float z = sqrtf(fmaxf(0.0f, 1.0f - u1));
+    float rad = sqrtf(u1), z = sqrtf(1.0f - u1); // u1 < 1: z >= 2^-12, strictly above the surface
     vec3 t, b;
     v3_basis(n, &t, &b);
-    return v3_add(v3_add(v3_scale(t, rad * cosf(phi)), v3_scale(b, rad * sinf(phi))), v3_scale(n, z));
+    return v3_fma(v3_fma(v3_scale(n, z), t, rad * c), b, rad * s);
 }
 
 #endif

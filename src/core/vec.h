@@ -34,10 +34,14 @@ static inline vec3 v3_fma(vec3 a, vec3 b, float s) {
     return v3(fmaf(b.x, s, a.x), fmaf(b.y, s, a.y), fmaf(b.z, s, a.z));
 }
 static inline vec3 v3_lerp(vec3 a, vec3 b, float t) { return v3_add(v3_scale(a, 1.0f - t), v3_scale(b, t)); }
-static inline vec3 v3_min(vec3 a, vec3 b) { return v3(fminf(a.x, b.x), fminf(a.y, b.y), fminf(a.z, b.z)); }
-static inline vec3 v3_max(vec3 a, vec3 b) { return v3(fmaxf(a.x, b.x), fmaxf(a.y, b.y), fmaxf(a.z, b.z)); }
+/// fminf and fmaxf without the library call (they are calls at -O3 unless -ffinite-math-only, which this
+/// code must not use): comparisons and a select, with fminf's NaN rule (a NaN operand yields the other).
+static inline float f_min(float a, float b) { return (a < b || b != b) ? a : b; }
+static inline float f_max(float a, float b) { return (a > b || b != b) ? a : b; }
+static inline vec3 v3_min(vec3 a, vec3 b) { return v3(f_min(a.x, b.x), f_min(a.y, b.y), f_min(a.z, b.z)); }
+static inline vec3 v3_max(vec3 a, vec3 b) { return v3(f_max(a.x, b.x), f_max(a.y, b.y), f_max(a.z, b.z)); }
 static inline float v3_comp(vec3 a, int axis) { return axis == 0 ? a.x : (axis == 1 ? a.y : a.z); }
-static inline float v3_max_comp(vec3 a) { return fmaxf(a.x, fmaxf(a.y, a.z)); }
+static inline float v3_max_comp(vec3 a) { return f_max(a.x, f_max(a.y, a.z)); }
 static inline bool v3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 static inline bool v3_near_zero(vec3 a) {
     const float eps = 1e-8f;
@@ -51,7 +55,7 @@ static inline vec3 v3_reflect(vec3 v, vec3 n) { return v3_sub(v, v3_scale(n, 2.0
 /// Refract unit vector uv through unit normal n (facing against uv) with eta = n_incident / n_transmitted.
 /// The caller checks for total internal reflection first (eta * sin(theta) > 1).
 static inline vec3 v3_refract(vec3 uv, vec3 n, float eta) {
-    float cos_theta = fminf(-v3_dot(uv, n), 1.0f);
+    float cos_theta = f_min(-v3_dot(uv, n), 1.0f);
     vec3 perp = v3_scale(v3_fma(uv, n, cos_theta), eta);
     vec3 para = v3_scale(n, -sqrtf(fabsf(1.0f - v3_len2(perp))));
     return v3_add(perp, para);

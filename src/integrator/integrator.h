@@ -34,13 +34,25 @@ typedef struct surface {
 /// Shading data of a hit on anything but a world-space sphere (quads, triangles, instances).
 surface surface_at_general(const glint_scene *s, const ray *r, const hit *h);
 
+/// Where ray r meets sphere sp at distance t: the point re-projected onto the sphere, c + q |r| / |q| with
+/// q = p - c (pbrt's refinement: its error is then a few ulps of |r| and of p, whatever the error of t;
+/// spawned rays are offset by that), and the unit normal q / |q|, outward (inward for a negative radius),
+/// from the same reciprocal length: one square root and one division for both.
+static inline void sphere_hit_frame(const sphere *sp, const ray *r, float t, vec3 *p, vec3 *outward) {
+    vec3 q = v3_sub(ray_at(r, t), sp->center);
+    float len = sqrtf(v3_len2(q));
+    float inv = len > 0.0f ? 1.0f / len : 0.0f;
+    *p = v3_fma(sp->center, q, fabsf(sp->radius) * inv);
+    *outward = v3_scale(q, copysignf(inv, sp->radius));
+}
+
 /// Shading data of a closest hit found by accel_intersect for ray r.
 static inline surface surface_at(const glint_scene *s, const ray *r, const hit *h) {
     if (h->kind != HIT_SPHERE || h->instance != HIT_NO_INSTANCE) return surface_at_general(s, r, h);
     surface out;
     const sphere *sp = &s->spheres[h->prim];
-    out.p = ray_at(r, h->t);
-    vec3 outward = sphere_normal(sp, out.p); // inward for a negative radius
+    vec3 outward;
+    sphere_hit_frame(sp, r, h->t, &out.p, &outward);
     out.front = v3_dot(r->d, outward) < 0.0f;
     out.n = out.front ? outward : v3_neg(outward);
     out.ng = out.n;
@@ -62,6 +74,9 @@ vec3 integrator_sample(const glint_scene *s, int x, int y, uint32_t sample, rng 
 
 vec3 whitted_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
 vec3 path_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
+/// The rest of path_sample once its camera ray is made (integrator_camera_ray with the same r): path_sample
+/// is exactly the two in sequence, so a render loop can make the next sample's camera ray ahead of time.
+vec3 path_trace(const glint_scene *s, ray primary, rng *r, thread_stats *ts);
 
 /// The path tracer's index of a scene's emissive quads (for next-event estimation).
 typedef struct path_lights path_lights;
@@ -79,6 +94,14 @@ static inline void integrator_film_point(const glint_scene *s, int x, int y, rng
     }
     *fx = (float)x + rng_float(r);
     *fy = (float)y + rng_float(r);
+}
+
+/// The camera ray of a sample of pixel (x, y): its film point (integrator_film_point), then the camera's ray
+/// through it, both drawing from r.
+static inline ray integrator_camera_ray(const glint_scene *s, int x, int y, rng *r) {
+    float fx, fy;
+    integrator_film_point(s, x, y, r, &fx, &fy);
+    return camera_ray(&s->camera, fx, fy, r);
 }
 
 #endif

@@ -172,20 +172,43 @@ static vec3 direct_light(const glint_scene *s, const spawn_point *sp, vec3 n, ve
 
 vec3 path_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
     (void)sample;
-    float fx, fy;
-    integrator_film_point(s, x, y, r, &fx, &fy);
-    ray cur = camera_ray(&s->camera, fx, fy, r);
+    ray primary = integrator_camera_ray(s, x, y, r);
+    return path_trace(s, primary, r, ts);
+}
+
+vec3 path_trace(const glint_scene *s, ray cur, rng *r, thread_stats *ts) {
     vec3 radiance = v3s(0.0f), throughput = v3s(1.0f);
     bool has_lights = s->light_count > 0;
     const path_lights *pl = s->settings.no_light_sampling ? NULL : s->path_lights;
     bool light_sampled = false; // the last vertex sampled the quad lights: a hit on one is weighted
     float bsdf_pdf = 0.0f;      // solid-angle density of the direction the last vertex sampled
+    bool lean = !has_lights && !pl;
     for (int depth = 0; depth < s->settings.max_depth; depth++) {
         hit h;
         ts->rays++;
         if (!accel_intersect(s->accel, &cur, &h)) {
             radiance = v3_add(radiance, v3_mul(throughput, scene_background(&s->settings, cur.d)));
             break;
+        }
+        // A world sphere of an untextured material that does not emit, with no light to sample (the book's
+        // scenes): exactly what the general code below computes for it, without the surface record, texture
+        // lookups, emission, shading normals and light sampling, which cost as much as the bounce itself.
+        if (lean && h.kind == HIT_SPHERE && h.instance == HIT_NO_INSTANCE) {
+            const sphere *sp = &s->spheres[h.prim];
+            const material *m = &s->materials[sp->material];
+            if (m->kind != MAT_DIFFUSE_LIGHT && m->albedo_texture < 0) {
+                vec3 p, n;
+                sphere_hit_frame(sp, &cur, h.t, &p, &n);
+                bool front = v3_dot(cur.d, n) < 0.0f;
+                if (!front) n = v3_neg(n);
+                scatter_event ev;
+                if (!mat_scatter(m, m->albedo, cur.d, n, front, r, &ev)) break;
+                throughput = v3_mul(throughput, ev.weight);
+                if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) break;
+                spawn_point spt = spawn_point_sphere(p, n, sp->radius);
+                cur = spawn_ray(&spt, ev.dir, 0.0f, INFINITY);
+                continue;
+            }
         }
         surface sf = surface_at(s, &cur, &h);
         const material *m = &s->materials[sf.material];

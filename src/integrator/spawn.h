@@ -28,18 +28,6 @@ static inline float spawn_max_abs(vec3 p) {
     return ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
 }
 
-/// The point p moved onto sphere sp: c + (p - c) |r| / |p - c| (pbrt's re-projection), in float. Its error
-/// is a few ulps of |r| (the direction of p - c and its length, each good to about 2^-23) plus the rounding
-/// of the sum, about 2^-24 max|p_i|: within SPAWN_OFFSET_REL (max|p_i| + |r|). On the book's final scene it
-/// is as robust as the same formula in double (no re-hit down to a quarter of the offset, re-hits at an
-/// eighth, for both), and it spares a double square root and division on every bounce (docs/benchmarks.md).
-static inline vec3 spawn_sphere_reproject(const sphere *sp, vec3 p) {
-    vec3 q = v3_sub(p, sp->center);
-    float len = sqrtf(v3_len2(q));
-    if (!(len > 0.0f)) return p;
-    return v3_fma(sp->center, q, fabsf(sp->radius) / len);
-}
-
 /// Largest coordinate magnitude of the primitive a surface point lies on, in world units: what the float
 /// error of intersecting it (and its neighbours) again scales with. A 2000-wide floor hit near the origin
 /// has a small hit point but corners of 1000, and a nearby origin's position relative to those corners is
@@ -74,19 +62,22 @@ static inline float spawn_primitive_magnitude(const glint_scene *s, const surfac
     return obj * norm;
 }
 
-/// Where rays leave surface sf. A world-space sphere's point is re-projected onto it in double and offset by
-/// SPAWN_OFFSET_REL (max|p_i| + |r|). Any other surface (quad, triangle, instanced sphere) keeps its point
+/// The spawn point at p, re-projected onto a world sphere of radius r (sphere_hit_frame), with unit normal n:
+/// offset by SPAWN_OFFSET_REL (max|p_i| + |r|).
+static inline spawn_point spawn_point_sphere(vec3 p, vec3 n, float r) {
+    spawn_point out = {p, n, SPAWN_OFFSET_REL * (spawn_max_abs(p) + fabsf(r)) + 1e-30f};
+    return out;
+}
+
+/// Where rays leave surface sf. A world-space sphere's point, re-projected onto it by surface_at, is offset
+/// as spawn_point_sphere says. Any other surface (quad, triangle, instanced sphere) keeps its point
 /// and is offset by its error bound sf->error (the rounding of p, from surface_at) plus SPAWN_OFFSET_REL
 /// times the larger of max|p_i| and the primitive's own magnitude (spawn_primitive_magnitude).
 static inline spawn_point spawn_point_of(const glint_scene *s, const surface *sf) {
+    if (sf->kind == HIT_SPHERE && sf->instance == HIT_NO_INSTANCE)
+        return spawn_point_sphere(sf->p, sf->ng, s->spheres[sf->prim].radius);
     spawn_point out;
     out.n = sf->ng;
-    if (sf->kind == HIT_SPHERE && sf->instance == HIT_NO_INSTANCE) {
-        const sphere *sp = &s->spheres[sf->prim];
-        out.p = spawn_sphere_reproject(sp, sf->p);
-        out.offset = SPAWN_OFFSET_REL * (spawn_max_abs(out.p) + fabsf(sp->radius)) + 1e-30f;
-        return out;
-    }
     out.p = sf->p;
     float mag = spawn_max_abs(sf->p), prim = spawn_primitive_magnitude(s, sf);
     out.offset = sf->error + SPAWN_OFFSET_REL * (prim > mag ? prim : mag) + 1e-30f;

@@ -4,6 +4,7 @@
 #define GLINT_SCATTER_H
 
 #include "core/rng.h"
+#include "core/sampling.h"
 #include "core/vec.h"
 #include "material/material.h"
 #include "material/texture.h"
@@ -72,7 +73,44 @@ static inline vec3 mat_emitted(const material *m, const texture *textures, bool 
 
 /// Samples how m, of albedo `albedo` at this point (mat_albedo), scatters a ray of unit direction d at a
 /// surface with unit normal n facing against d (front: d arrived on the outward side); false when the path
-/// ends there (absorbed, or an emitter).
-bool mat_scatter(const material *m, vec3 albedo, vec3 d, vec3 n, bool front, rng *r, scatter_event *ev);
+/// ends there (absorbed, or an emitter). One random decision per event, the throughput weight computed so
+/// that its expectation is the BSDF's reflectance. Always inlined: the path tracer's loop calls it in two
+/// places, and out of line (as gcc otherwise leaves it) the call cost the lean bounce its gain.
+static inline __attribute__((always_inline)) bool mat_scatter(const material *m, vec3 albedo, vec3 d, vec3 n,
+                                                            bool front, rng *r, scatter_event *ev) {
+    ev->diffuse = false;
+    ev->transmitted = false;
+    switch (m->kind) {
+    case MAT_LAMBERTIAN:
+        ev->dir = mat_lambertian_dir(n, sample_sphere_uniform(r));
+        ev->weight = albedo; // (albedo / pi) cos / (cos / pi)
+        ev->diffuse = true;
+        return true;
+    case MAT_METAL:
+        ev->weight = albedo;
+        return mat_metal_dir(d, n, m->fuzz, sample_sphere_uniform(r), &ev->dir);
+    case MAT_DIELECTRIC: {
+        bool reflected;
+        float eta = front ? 1.0f / m->ior : m->ior;
+        ev->dir = mat_dielectric_dir(d, n, eta, rng_float(r), &reflected);
+        ev->transmitted = !reflected;
+        ev->weight = albedo; // the tint; (1,1,1) is clear glass
+        return true;
+    }
+    case MAT_PHONG:
+        // The paper's colour blend (1 - rfl) diffuse + rfl mirror, as a random choice of one of the two.
+        if (rng_float(r) < m->reflective) {
+            ev->dir = v3_reflect(d, n);
+            ev->weight = v3s(1.0f);
+            return true;
+        }
+        ev->dir = mat_lambertian_dir(n, sample_sphere_uniform(r));
+        ev->weight = albedo;
+        ev->diffuse = true;
+        return true;
+    case MAT_DIFFUSE_LIGHT: return false;
+    }
+    return false;
+}
 
 #endif

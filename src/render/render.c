@@ -89,6 +89,16 @@ static int plan_passes(int spp, int start[MAX_PASSES + 1]) {
     return n;
 }
 
+// Stores a pixel's state after its samples [0, k) (k1: the end of this pass): its running sum for the next
+// pass, and the mean of its samples so far in the image.
+static void store_pixel(const render_job *job, size_t pixel, const double sum[3], int k, int k1) {
+    if (job->sums && k1 < job->scene->settings.spp) memcpy(&job->sums[pixel * 3u], sum, 3 * sizeof *sum);
+    if (k > 0) {
+        float *px = &job->image->rgb[pixel * 3u];
+        for (int c = 0; c < 3; c++) px[c] = (float)(sum[c] / k);
+    }
+}
+
 // Renders samples [k0, k1) of pixel (x, y), adding to the sums of earlier passes, and stores the mean of the
 // samples completed so far; false when a stop request cut it short.
 static bool render_pixel(const render_job *job, int x, int y, int k0, int k1, thread_stats *ts,
@@ -114,12 +124,68 @@ static bool render_pixel(const render_job *job, int x, int y, int k0, int k1, th
         sum[1] += c.y;
         sum[2] += c.z;
     }
-    if (job->sums && k1 < rs->spp) memcpy(&job->sums[pixel * 3u], sum, sizeof sum);
-    if (k > 0) {
-        float *px = &job->image->rgb[pixel * 3u];
-        for (int c = 0; c < 3; c++) px[c] = (float)(sum[c] / k);
-    }
+    store_pixel(job, pixel, sum, k, k1);
     return !stopped;
+}
+
+// One pass of one tile in the path tracer: render_pixel over the tile's pixels, except that each sample's
+// camera ray (and generator) is made while the sample before it is traced. A path is one long chain of
+// dependent operations; the next camera ray does not depend on it, so the processor fills its idle cycles
+// with that work (docs/benchmarks.md). Same samples, same order, same sums: the same bytes.
+static bool render_tile_path(const render_job *job, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *ts,
+                             _Atomic uint64_t *progress) {
+    const glint_scene *s = job->scene;
+    const render_settings *rs = &s->settings;
+    int w = x1 - x0, spp = k1 - k0, items = w * (y1 - y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
+    int x = x0, y = y0, k = k0;
+    size_t pixel = (size_t)y * (size_t)rs->width + (size_t)x;
+    uint64_t key = rng_pixel_key(rs->seed, (uint64_t)pixel);
+    rng next_rng = rng_for_key(job->stream, key, (uint64_t)k);
+    ray next_ray = integrator_camera_ray(s, x, y, &next_rng);
+    double sum[3] = {0, 0, 0};
+    if (k0 > 0) memcpy(sum, &job->sums[pixel * 3u], sizeof sum);
+    for (int j = 0;;) {
+        if (stop_is_requested()) {
+            store_pixel(job, pixel, sum, k, k1);
+            return false;
+        }
+        rng r = next_rng;
+        ray primary = next_ray;
+        // The item after this one: the next sample of this pixel, or the first of the next pixel.
+        bool last = ++j == items;
+        int nx = x, ny = y, nk = k + 1;
+        uint64_t nkey = key;
+        if (nk == k1) {
+            nk = k0;
+            if (++nx == x1) { nx = x0; ny++; }
+            if (!last) nkey = rng_pixel_key(rs->seed, (uint64_t)ny * (uint64_t)rs->width + (uint64_t)nx);
+        }
+        if (!last) {
+            next_rng = rng_for_key(job->stream, nkey, (uint64_t)nk);
+            next_ray = integrator_camera_ray(s, nx, ny, &next_rng);
+        }
+        vec3 c = path_trace(s, primary, &r, ts);
+        ts->samples++;
+        atomic_store_explicit(progress, ts->samples, memory_order_relaxed);
+        // A NaN or infinite sample would poison the pixel: drop it (it counts as black), count it, report it.
+        if (!v3_is_finite(c)) ts->discarded_samples++;
+        else {
+            sum[0] += c.x;
+            sum[1] += c.y;
+            sum[2] += c.z;
+        }
+        if (nk == k0) { // this pixel's samples of the pass are done
+            store_pixel(job, pixel, sum, k1, k1);
+            if (last) return true;
+            pixel = (size_t)ny * (size_t)rs->width + (size_t)nx;
+            sum[0] = sum[1] = sum[2] = 0.0;
+            if (k0 > 0) memcpy(sum, &job->sums[pixel * 3u], sizeof sum);
+        }
+        x = nx;
+        y = ny;
+        k = nk;
+        key = nkey;
+    }
 }
 
 // Renders one pass of one tile; false when stopped part-way (pixels not reached keep the previous pass's mean).
@@ -129,6 +195,7 @@ static bool render_tile(const render_job *job, int tile, int pass, thread_stats 
     int x1 = x0 + TILE_SIZE < rs->width ? x0 + TILE_SIZE : rs->width;
     int y1 = y0 + TILE_SIZE < rs->height ? y0 + TILE_SIZE : rs->height;
     int k0 = job->pass_start[pass], k1 = job->pass_start[pass + 1];
+    if (rs->integrator == INTEGRATOR_PATH) return render_tile_path(job, x0, y0, x1, y1, k0, k1, ts, progress);
     for (int y = y0; y < y1; y++)
         for (int x = x0; x < x1; x++)
             if (!render_pixel(job, x, y, k0, k1, ts, progress)) return false;
