@@ -522,6 +522,19 @@ static void test_transform_order(void) {
     glint_scene_free(s);
 }
 
+// A textured sphere under a rotation stays an instance, so that its texture turns with it.
+static void test_textured_sphere_rotates(void) {
+    glint_scene *s = parse(
+        "{\"textures\": {\"c\": {\"type\": \"checker\"}},\n"
+        " \"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": \"c\"}},\n"
+        " \"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\",\n"
+        "   \"transform\": [{\"rotate\": {\"axis\": [0, 1, 0], \"degrees\": 90}}]}]}");
+    if (!s) return;
+    CHECK(s->sphere_count == 0 && s->instance_count == 1 && s->instance_sphere_count == 1);
+    if (s->instance_count == 1) CHECK(s->instances[0].kind == INSTANCE_SPHERE);
+    glint_scene_free(s);
+}
+
 // Meshes: each file loads once however often it is placed; its MTL materials become scene materials.
 static void test_meshes(void) {
     glint_scene *s = parse_in_scenes(
@@ -691,6 +704,7 @@ int main(void) {
     test_textures();
     test_quads_and_boxes();
     test_transform_order();
+    test_textured_sphere_rotates();
     test_meshes();
     test_issue5_scenes();
     return check_summary();

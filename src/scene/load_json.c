@@ -1206,7 +1206,8 @@ static const char *const quad_keys[] = {"type", "q", "u", "v", "material", "tran
 static const char *const box_keys[] = {"type", "min", "max", "material", "transform", NULL};
 static const char *const mesh_keys[] = {"type", "file", "material", "transform", "face_normals", NULL};
 
-// A sphere under a similarity is another sphere; under any other transform it becomes an instance.
+// A sphere under a similarity is another sphere; under any other transform, or when its material is
+// textured (the texture must turn with it), it becomes an instance.
 static bool read_sphere(loader *ld, const jobj *o, const char *what) {
     sphere s = {0};
     transform xf;
@@ -1217,7 +1218,9 @@ static bool read_sphere(loader *ld, const jobj *o, const char *what) {
         return false;
     if (!moved) return scene_add_sphere(ld->scene, s) || fail_oom(ld);
     double scale;
-    if (similarity_scale(&xf.m, &scale)) {
+    const material *m = &ld->scene->materials[s.material];
+    bool textured = m->albedo_texture >= 0 || m->emission_texture >= 0;
+    if (!textured && similarity_scale(&xf.m, &scale)) {
         sphere w = s;
         w.center = mat4_apply_point(&xf.m, s.center);
         w.radius = (float)(s.radius * scale);
