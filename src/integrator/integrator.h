@@ -78,9 +78,10 @@ vec3 path_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, th
 /// is exactly the two in sequence, so a render loop can make the next sample's camera ray ahead of time.
 vec3 path_trace(const glint_scene *s, ray primary, rng *r, thread_stats *ts);
 
-/// The path tracer's index of a scene's emissive quads (for next-event estimation).
+/// The path tracer's index of a scene's emissive quads and mesh triangles (for next-event estimation).
 typedef struct path_lights path_lights;
-/// (Re)builds s->path_lights from the scene's quads and materials; scene_prepare calls it. False when out of memory.
+/// (Re)builds s->path_lights from the scene's quads, mesh instances and materials; scene_prepare calls it. False
+/// when out of memory.
 bool path_prepare(glint_scene *s);
 /// Frees s->path_lights and sets it to NULL; glint_scene_free calls it.
 void path_release(glint_scene *s);

@@ -34,7 +34,7 @@ typedef struct render_settings {
     vec3 sky_horizon, sky_zenith; ///< sky: lerp(horizon, zenith, 0.5 * (dir.y + 1))
     output_transform transform;
     accel_kind accel;
-    bool no_light_sampling;       ///< path tracer: no next-event estimation towards emissive quads (tests; not in the file format)
+    bool no_light_sampling;       ///< path tracer: no next-event estimation towards area lights (tests; not in the file format)
 } render_settings;
 
 /// Hard limits on sizes, so that a scene file cannot ask for absurd amounts of memory or time.
@@ -102,7 +102,7 @@ struct glint_scene {
     size_t warning_count;
 
     struct accel *accel;   ///< built by scene_prepare
-    struct path_lights *path_lights; ///< emissive quads indexed for next-event estimation: path_prepare, path_release
+    struct path_lights *path_lights; ///< area lights indexed for next-event estimation: path_prepare, path_release
 };
 
 /// Builds what rendering needs (the acceleration structure); idempotent.
