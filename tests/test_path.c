@@ -58,6 +58,16 @@ static material lambertian(float a) {
     return m;
 }
 
+// The closed-form light tests' set-up: a Lambertian floor of albedo rho seen from just below the light
+// (added by the caller) at y = 1, black background, with or without light sampling.
+static glint_scene *plane_under_light(int nee, float rho) {
+    glint_scene *s = new_scene(48, 48, nee ? 16 : 256, 50, v3(0, 0.8f, 0.6f), v3(0, 0, 0), v3(0, 1, 0), 1);
+    s->settings.background_color = v3s(0.0f);
+    s->settings.no_light_sampling = !nee;
+    add_quad(s, v3(-5, 0, 5), v3(10, 0, 0), v3(0, 0, -10), add_material(s, lambertian(rho)));
+    return s;
+}
+
 // Renders with the given thread count; the image's linear pixels stay valid until glint_image_free.
 static glint_image *render(glint_scene *s, int threads, glint_render_stats *stats) {
     glint_render_options opt = {threads};
@@ -450,10 +460,7 @@ static void test_quad_light_irradiance(void) {
         for (int nee = 0; nee < 2; nee++) {
             // The camera looks at the plane's centre from below the light: a 1-degree view spans about 0.02,
             // where the irradiance varies by less than 1e-4 relative.
-            glint_scene *s = new_scene(48, 48, nee ? 16 : 256, 50, v3(0, 0.8f, 0.6f), v3(0, 0, 0), v3(0, 1, 0), 1);
-            s->settings.background_color = v3s(0.0f);
-            s->settings.no_light_sampling = !nee;
-            add_quad(s, v3(-5, 0, 5), v3(10, 0, 0), v3(0, 0, -10), add_material(s, lambertian((float)rho)));
+            glint_scene *s = plane_under_light(nee, (float)rho);
             material lamp = material_default(MAT_DIFFUSE_LIGHT);
             if (layout == 0) {
                 lamp.emission = v3s(4.0f);
@@ -588,10 +595,7 @@ static void test_triangle_light_irradiance(void) {
     for (int layout = 0; layout < 3; layout++) {
         double mean[2], se[2];
         for (int nee = 0; nee < 2; nee++) {
-            glint_scene *s = new_scene(48, 48, nee ? 16 : 256, 50, v3(0, 0.8f, 0.6f), v3(0, 0, 0), v3(0, 1, 0), 1);
-            s->settings.background_color = v3s(0.0f);
-            s->settings.no_light_sampling = !nee;
-            add_quad(s, v3(-5, 0, 5), v3(10, 0, 0), v3(0, 0, -10), add_material(s, lambertian((float)rho)));
+            glint_scene *s = plane_under_light(nee, (float)rho);
             material lamp = material_default(MAT_DIFFUSE_LIGHT);
             lamp.emission = v3s(4.0f);
             uint32_t lm = add_material(s, lamp);
