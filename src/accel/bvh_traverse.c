@@ -3,6 +3,7 @@
 #include "accel/bvh.h"
 
 #include <math.h>
+#include <stddef.h>
 
 #if BVH_SIMD
 #include <immintrin.h>
@@ -293,57 +294,77 @@ typedef __m128 pk;
 #error "BVH_PACKET must be 4 or 8"
 #endif
 
-/// The ray broadcast into registers, with the box rows it enters (near) and leaves (far) by.
+/// The ray broadcast into registers, with the byte offsets in a node's boxes of the rows it enters (near)
+/// and leaves (far) by.
 typedef struct simd_ray {
-    __m256 inv[3], noi[3], tmin;
-    pk ox, oy, oz, dx, dy, dz, a, ptmin, ptmax, tmin_nonneg;
-    int near[3], far[3];
+    __m256 inv[3], noi[3];
+    pk ox, oy, oz, dx, dy, dz, a, inv_a, tmin, tmax, tmin_nonneg;
+    size_t near[3], far[3];
 } simd_ray;
 
-// Computes what trav_setup computes (the same IEEE operations, so the same values) with a handful of
-// vector instructions; false for a ray with a NaN coordinate.
+_Static_assert(sizeof(ray) == 8 * sizeof(float) && offsetof(ray, o) == 0 && offsetof(ray, d) == 12 &&
+                   offsetof(ray, tmin) == 24 && offsetof(ray, tmax) == 28,
+               "simd_setup reads a ray as eight floats: o, d, tmin, tmax");
+
+// Computes what trav_setup computes (the same IEEE operations, so the same values); false for a ray with a
+// NaN coordinate. Every traversal pays for it once, so it reads the ray with one load and broadcasts from
+// memory rather than shuffling.
 static inline bool simd_setup(const ray *r, simd_ray *s) {
-    __m128 o = _mm_setr_ps(r->o.x, r->o.y, r->o.z, 0.0f), d = _mm_setr_ps(r->d.x, r->d.y, r->d.z, 1.0f);
-    bool nan = _mm_movemask_ps(_mm_cmpunord_ps(o, d)) != 0;
+    const float *rf = &r->o.x;
+    __m256 all = _mm256_loadu_ps(rf);
+    if (_mm256_movemask_ps(_mm256_cmp_ps(all, all, _CMP_UNORD_Q)) & 0x3f) return false;
+    __m128 o = _mm256_castps256_ps128(all), d = _mm_loadu_ps(rf + 3); // lanes 0-2: o and d (lane 3 unused)
     const __m128 sign = _mm_set1_ps(-0.0f), eps = _mm_set1_ps(DIR_EPSILON);
     __m128 tiny = _mm_cmplt_ps(_mm_andnot_ps(sign, d), eps);
     __m128 dc = _mm_blendv_ps(d, _mm_or_ps(_mm_and_ps(sign, d), eps), tiny);
     __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), dc);
     __m128 noi = _mm_xor_ps(_mm_mul_ps(o, inv), sign);
-    int neg = _mm_movemask_ps(inv);
+    unsigned neg = (unsigned)_mm_movemask_ps(inv);
     s->inv[0] = _mm256_broadcastss_ps(inv);
     s->inv[1] = _mm256_broadcastss_ps(_mm_movehdup_ps(inv));
     s->inv[2] = _mm256_broadcastss_ps(_mm_movehl_ps(inv, inv));
     s->noi[0] = _mm256_broadcastss_ps(noi);
     s->noi[1] = _mm256_broadcastss_ps(_mm_movehdup_ps(noi));
     s->noi[2] = _mm256_broadcastss_ps(_mm_movehl_ps(noi, noi));
-    for (int k = 0; k < 3; k++) {
-        int n = (neg >> k) & 1;
-        s->near[k] = k + 3 * n;
-        s->far[k] = k + 3 - 3 * n;
+    const size_t row = sizeof(((const bvh_wnode *)0)->box[0]);
+    for (unsigned k = 0; k < 3; k++) {
+        size_t n = (neg >> k) & 1u; // a negative direction enters by the upper bound
+        s->near[k] = (k + 3 * n) * row;
+        s->far[k] = (k + 3 - 3 * n) * row;
     }
-    s->tmin = _mm256_set1_ps(r->tmin);
-    s->ox = PK(set1_ps)(r->o.x);
-    s->oy = PK(set1_ps)(r->o.y);
-    s->oz = PK(set1_ps)(r->o.z);
-    s->dx = PK(set1_ps)(r->d.x);
-    s->dy = PK(set1_ps)(r->d.y);
-    s->dz = PK(set1_ps)(r->d.z);
-    s->a = PK(set1_ps)(v3_dot(r->d, r->d));
-    s->ptmin = PK(set1_ps)(r->tmin);
-    s->ptmax = PK(set1_ps)(r->tmax);
-    s->tmin_nonneg = PK(cmp_ps)(s->ptmin, PK(setzero_ps)(), _CMP_GE_OQ);
-    return !nan;
+    s->ox = PK(broadcast_ss)(rf + 0);
+    s->oy = PK(broadcast_ss)(rf + 1);
+    s->oz = PK(broadcast_ss)(rf + 2);
+    s->dx = PK(broadcast_ss)(rf + 3);
+    s->dy = PK(broadcast_ss)(rf + 4);
+    s->dz = PK(broadcast_ss)(rf + 5);
+    s->tmin = PK(broadcast_ss)(rf + 6);
+    s->tmax = PK(broadcast_ss)(rf + 7);
+    float a = v3_dot(r->d, r->d);
+    s->a = PK(set1_ps)(a);
+    s->inv_a = PK(set1_ps)(1.0f / a);
+    s->tmin_nonneg = PK(cmp_ps)(s->tmin, PK(setzero_ps)(), _CMP_GE_OQ);
+    return true;
+}
+
+// Row k of the boxes of n: the row at byte offset off (simd_ray's near and far).
+static inline __m256 wnode_row(const bvh_wnode *n, size_t off) {
+    return _mm256_load_ps((const float *)(const void *)((const char *)n->box + off));
 }
 
 static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, float tlimit, float *tnear) {
-    __m256 nx = _mm256_fmadd_ps(_mm256_load_ps(n->box[s->near[0]]), s->inv[0], s->noi[0]);
-    __m256 ny = _mm256_fmadd_ps(_mm256_load_ps(n->box[s->near[1]]), s->inv[1], s->noi[1]);
-    __m256 nz = _mm256_fmadd_ps(_mm256_load_ps(n->box[s->near[2]]), s->inv[2], s->noi[2]);
-    __m256 fx = _mm256_fmadd_ps(_mm256_load_ps(n->box[s->far[0]]), s->inv[0], s->noi[0]);
-    __m256 fy = _mm256_fmadd_ps(_mm256_load_ps(n->box[s->far[1]]), s->inv[1], s->noi[1]);
-    __m256 fz = _mm256_fmadd_ps(_mm256_load_ps(n->box[s->far[2]]), s->inv[2], s->noi[2]);
-    __m256 tn = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, s->tmin));
+    __m256 nx = _mm256_fmadd_ps(wnode_row(n, s->near[0]), s->inv[0], s->noi[0]);
+    __m256 ny = _mm256_fmadd_ps(wnode_row(n, s->near[1]), s->inv[1], s->noi[1]);
+    __m256 nz = _mm256_fmadd_ps(wnode_row(n, s->near[2]), s->inv[2], s->noi[2]);
+    __m256 fx = _mm256_fmadd_ps(wnode_row(n, s->far[0]), s->inv[0], s->noi[0]);
+    __m256 fy = _mm256_fmadd_ps(wnode_row(n, s->far[1]), s->inv[1], s->noi[1]);
+    __m256 fz = _mm256_fmadd_ps(wnode_row(n, s->far[2]), s->inv[2], s->noi[2]);
+#if BVH_PACKET == 8
+    __m256 tmin = s->tmin;
+#else
+    __m256 tmin = _mm256_set_m128(s->tmin, s->tmin);
+#endif
+    __m256 tn = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, tmin));
     __m256 tf = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(fx, fy), fz), _mm256_set1_ps(SLAB_FAR_SCALE));
     tf = _mm256_min_ps(tf, _mm256_set1_ps(tlimit));
     _mm256_storeu_ps(tnear, tn);
@@ -365,7 +386,7 @@ static inline unsigned spheres_simd(const bvh_sphere_packet *p, const simd_ray *
     pk rr = PK(mul_ps)(rad, rad);
     pk f2 = PK(add_ps)(PK(add_ps)(PK(mul_ps)(fx, fx), PK(mul_ps)(fy, fy)), PK(mul_ps)(fz, fz));
     pk c = PK(sub_ps)(f2, rr);
-    // From outside (c > 0) and moving away (b < 0) both roots are negative: q < 0, t1 = q / a <= 0 and
+    // From outside (c > 0) and moving away (b < 0) both roots are negative: q < 0, t1 = q (1/a) <= 0 and
     // t0 = c / q < 0, exact sign facts of the computed values, so no root can lie above tmin >= 0.
     pk away = PK(and_ps)(PK(and_ps)(PK(cmp_ps)(c, zero, _CMP_GT_OQ), PK(cmp_ps)(b, zero, _CMP_LT_OQ)), s->tmin_nonneg);
     // Early rejection without the division (the common case: the ray misses every sphere). a c - b^2 is a
@@ -375,7 +396,7 @@ static inline unsigned spheres_simd(const bvh_sphere_packet *p, const simd_ray *
     pk gap = PK(fmsub_ps)(s->a, c, PK(mul_ps)(b, b));
     pk bound = PK(mul_ps)(PK(mul_ps)(s->a, PK(set1_ps)(0x1p-12f)), PK(add_ps)(f2, rr));
     if (PK(movemask_ps)(PK(andnot_ps)(away, PK(cmp_ps)(gap, bound, _CMP_LE_OQ))) == 0) return 0;
-    pk ba = PK(div_ps)(b, s->a);
+    pk ba = PK(mul_ps)(b, s->inv_a);
     pk lx = PK(fmadd_ps)(s->dx, ba, fx), ly = PK(fmadd_ps)(s->dy, ba, fy), lz = PK(fmadd_ps)(s->dz, ba, fz);
     pk l2 = PK(add_ps)(PK(add_ps)(PK(mul_ps)(lx, lx), PK(mul_ps)(ly, ly)), PK(mul_ps)(lz, lz));
     pk disc = PK(sub_ps)(rr, l2);
@@ -383,12 +404,12 @@ static inline unsigned spheres_simd(const bvh_sphere_packet *p, const simd_ray *
     if (PK(movemask_ps)(ok) == 0) return 0;
     pk root = PK(sqrt_ps)(PK(mul_ps)(s->a, disc));
     pk q = PK(add_ps)(b, PK(or_ps)(PK(andnot_ps)(sign, root), PK(and_ps)(sign, b))); // b + copysign(root, b)
-    pk t0 = PK(div_ps)(c, q), t1 = PK(div_ps)(q, s->a);
+    pk t0 = PK(div_ps)(c, q), t1 = PK(mul_ps)(q, s->inv_a);
     t0 = PK(blendv_ps)(t0, t1, PK(cmp_ps)(q, zero, _CMP_EQ_OQ));
     pk swap = PK(cmp_ps)(t0, t1, _CMP_GT_OQ);
     pk lo = PK(blendv_ps)(t0, t1, swap), hi = PK(blendv_ps)(t1, t0, swap);
-    pk in0 = PK(and_ps)(PK(cmp_ps)(lo, s->ptmin, _CMP_GT_OQ), PK(cmp_ps)(lo, s->ptmax, _CMP_LT_OQ));
-    pk in1 = PK(and_ps)(PK(cmp_ps)(hi, s->ptmin, _CMP_GT_OQ), PK(cmp_ps)(hi, s->ptmax, _CMP_LT_OQ));
+    pk in0 = PK(and_ps)(PK(cmp_ps)(lo, s->tmin, _CMP_GT_OQ), PK(cmp_ps)(lo, s->tmax, _CMP_LT_OQ));
+    pk in1 = PK(and_ps)(PK(cmp_ps)(hi, s->tmin, _CMP_GT_OQ), PK(cmp_ps)(hi, s->tmax, _CMP_LT_OQ));
     *t_out = PK(blendv_ps)(hi, lo, in0);
     return (unsigned)PK(movemask_ps)(PK(and_ps)(ok, PK(or_ps)(in0, in1)));
 }

@@ -50,28 +50,6 @@ void camera_prepare(camera *c, int width, int height) {
     c->defocus_v = v3_scale(v, radius);
 }
 
-ray camera_ray(const camera *c, float fx, float fy, rng *r) {
-    vec3 target = v3_add(c->pixel00, v3_add(v3_scale(c->pixel_du, fx), v3_scale(c->pixel_dv, fy)));
-    ray out;
-    out.tmin = 0.0f;
-    out.tmax = INFINITY;
-    if (c->kind == CAMERA_VIEWPORT) {
-        // Primary rays start on the viewport plane (t >= 1 in the paper's parametrisation).
-        out.o = target;
-        out.d = v3_unit(v3_sub(target, c->origin));
-        return out;
-    }
-    vec3 o = c->origin;
-    if (c->defocus_angle_degrees > 0.0f) {
-        float dx, dy;
-        sample_unit_disk(r, &dx, &dy);
-        o = v3_add(o, v3_add(v3_scale(c->defocus_u, dx), v3_scale(c->defocus_v, dy)));
-    }
-    out.o = o;
-    out.d = v3_unit(v3_sub(target, o));
-    return out;
-}
-
 void camera_viewport_point(const camera *c, double fx, double fy, double out[3]) {
     double gx = fx - c->image_width / 2.0, gy = c->image_height / 2.0 - fy;
     out[0] = gx * c->viewport_width / c->image_width;

@@ -3,7 +3,10 @@
 #define GLINT_CAMERA_H
 
 #include "core/rng.h"
+#include "core/sampling.h"
 #include "core/vec.h"
+
+#include <math.h>
 
 typedef enum camera_kind { CAMERA_VIEWPORT, CAMERA_LOOKAT } camera_kind;
 
@@ -28,8 +31,29 @@ camera camera_default(void);
 void camera_prepare(camera *c, int width, int height);
 
 /// Primary ray through film point (fx, fy) (pixel (x, y) covers [x, x+1) x [y, y+1), y down), with
-/// lens samples drawn from r when the camera has defocus blur. The direction is unit length.
-ray camera_ray(const camera *c, float fx, float fy, rng *r);
+/// lens samples drawn from r when the camera has defocus blur. The direction is unit length. Inline, as the
+/// render loop makes one per sample.
+static inline ray camera_ray(const camera *c, float fx, float fy, rng *r) {
+    vec3 target = v3_add(c->pixel00, v3_add(v3_scale(c->pixel_du, fx), v3_scale(c->pixel_dv, fy)));
+    ray out;
+    out.tmin = 0.0f;
+    out.tmax = INFINITY;
+    if (c->kind == CAMERA_VIEWPORT) {
+        // Primary rays start on the viewport plane (t >= 1 in the paper's parametrisation).
+        out.o = target;
+        out.d = v3_unit(v3_sub(target, c->origin));
+        return out;
+    }
+    vec3 o = c->origin;
+    if (c->defocus_angle_degrees > 0.0f) {
+        float dx, dy;
+        sample_unit_disk(r, &dx, &dy);
+        o = v3_add(o, v3_add(v3_scale(c->defocus_u, dx), v3_scale(c->defocus_v, dy)));
+    }
+    out.o = o;
+    out.d = v3_unit(v3_sub(target, o));
+    return out;
+}
 
 /// The paper's viewport point for film point (fx, fy), in double: V = (gx * Vw / W, gy * Vh / H, d)
 /// relative to the eye, with gx = fx - W/2 and gy = H/2 - fy.

@@ -17,15 +17,15 @@ typedef struct sphere {
 /// Gems, ch. 7) that keeps precision for large spheres and distant rays. Returns false when there is none.
 static inline bool sphere_intersect(vec3 center, float radius, const ray *r, float tmin, float tmax, float *t_out) {
     vec3 f = v3_sub(r->o, center);
-    float a = v3_dot(r->d, r->d);
+    float a = v3_dot(r->d, r->d), inv_a = 1.0f / a; // one division per ray, shared by a packet's spheres
     float b = -v3_dot(f, r->d); // half of -b of the textbook quadratic
     // |f - (f.d/a) d|^2 is the squared distance from the centre to the line: no cancellation in b^2 - ac.
-    vec3 l = v3_fma(f, r->d, b / a);
+    vec3 l = v3_fma(f, r->d, b * inv_a);
     float disc = radius * radius - v3_len2(l);
     if (disc < 0.0f) return false;
     float c = v3_len2(f) - radius * radius;
     float q = b + copysignf(sqrtf(a * disc), b);
-    float t0 = c / q, t1 = q / a; // the two roots, neither computed by subtracting near-equal numbers
+    float t0 = c / q, t1 = q * inv_a; // the two roots, neither computed by subtracting near-equal numbers
     if (q == 0.0f) t0 = t1;
     if (t0 > t1) { float tmp = t0; t0 = t1; t1 = tmp; }
     if (t0 > tmin && t0 < tmax) { *t_out = t0; return true; }

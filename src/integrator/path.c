@@ -353,10 +353,12 @@ vec3 path_trace(const glint_scene *s, ray cur, rng *r, thread_stats *ts) {
     bool light_sampled = false; // the last vertex sampled the area lights: a hit on one is weighted
     float bsdf_pdf = 0.0f;      // solid-angle density of the direction the last vertex sampled
     bool lean = !has_lights && !pl;
+    bool unit = true; // cur.d has unit length; the lean bounce leaves Lambertian directions unnormalised
     for (int depth = 0; depth < s->settings.max_depth; depth++) {
         hit h;
         ts->rays++;
         if (!accel_intersect(s->accel, &cur, &h)) {
+            if (!unit) cur.d = v3_unit(cur.d);
             radiance = v3_add(radiance, v3_mul(throughput, scene_background(&s->settings, cur.d)));
             break;
         }
@@ -372,13 +374,29 @@ vec3 path_trace(const glint_scene *s, ray cur, rng *r, thread_stats *ts) {
                 bool front = v3_dot(cur.d, n) < 0.0f;
                 if (!front) n = v3_neg(n);
                 scatter_event ev;
-                if (!mat_scatter(m, m->albedo, cur.d, n, front, r, &ev)) break;
+                if (m->kind == MAT_LAMBERTIAN) {
+                    // Only the direction matters to the next intersection: the normalisation (a square root
+                    // and a division) waits until a mirror, glass or the background needs a unit vector.
+                    ev.dir = mat_lambertian_sum(n, sample_sphere_uniform(r));
+                    ev.weight = m->albedo;
+                    unit = false;
+                } else {
+                    if (!unit) cur.d = v3_unit(cur.d);
+                    unit = true;
+                    if (!mat_scatter(m, m->albedo, cur.d, n, front, r, &ev)) break;
+                }
                 throughput = v3_mul(throughput, ev.weight);
                 if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) break;
                 spawn_point spt = spawn_point_sphere(p, n, sp->radius);
                 cur = spawn_ray(&spt, ev.dir, 0.0f, INFINITY);
                 continue;
             }
+        }
+        if (!unit) { // the general code below works with unit directions: the same ray, t in its units
+            float len = v3_len(cur.d);
+            cur.d = v3_scale(cur.d, 1.0f / len);
+            h.t *= len;
+            unit = true;
         }
         surface sf = surface_at(s, &cur, &h);
         const material *m = &s->materials[sf.material];
