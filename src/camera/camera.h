@@ -31,9 +31,9 @@ camera camera_default(void);
 void camera_prepare(camera *c, int width, int height);
 
 /// Primary ray through film point (fx, fy) (pixel (x, y) covers [x, x+1) x [y, y+1), y down), with
-/// lens samples drawn from r when the camera has defocus blur. The direction is unit length. Inline, as the
-/// render loop makes one per sample.
-static inline ray camera_ray(const camera *c, float fx, float fy, rng *r) {
+/// lens samples drawn from r when the camera has defocus blur; its direction, from the lens to the focus
+/// plane, is not normalised. Inline, as the render loop makes one per sample.
+static inline ray camera_ray_unnormalised(const camera *c, float fx, float fy, rng *r) {
     vec3 target = v3_add(c->pixel00, v3_add(v3_scale(c->pixel_du, fx), v3_scale(c->pixel_dv, fy)));
     ray out;
     out.tmin = 0.0f;
@@ -41,7 +41,7 @@ static inline ray camera_ray(const camera *c, float fx, float fy, rng *r) {
     if (c->kind == CAMERA_VIEWPORT) {
         // Primary rays start on the viewport plane (t >= 1 in the paper's parametrisation).
         out.o = target;
-        out.d = v3_unit(v3_sub(target, c->origin));
+        out.d = v3_sub(target, c->origin);
         return out;
     }
     vec3 o = c->origin;
@@ -51,7 +51,14 @@ static inline ray camera_ray(const camera *c, float fx, float fy, rng *r) {
         o = v3_add(o, v3_add(v3_scale(c->defocus_u, dx), v3_scale(c->defocus_v, dy)));
     }
     out.o = o;
-    out.d = v3_unit(v3_sub(target, o));
+    out.d = v3_sub(target, o);
+    return out;
+}
+
+/// camera_ray_unnormalised with a unit direction.
+static inline ray camera_ray(const camera *c, float fx, float fy, rng *r) {
+    ray out = camera_ray_unnormalised(c, fx, fy, r);
+    out.d = v3_unit(out.d);
     return out;
 }
 

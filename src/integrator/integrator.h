@@ -75,7 +75,8 @@ vec3 integrator_sample(const glint_scene *s, int x, int y, uint32_t sample, rng 
 vec3 whitted_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
 vec3 path_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
 /// The rest of path_sample once its camera ray is made (integrator_camera_ray with the same r): path_sample
-/// is exactly the two in sequence, so a render loop can make the next sample's camera ray ahead of time.
+/// is exactly the two in sequence, so a render loop can make the next sample's camera ray ahead of time. The
+/// primary ray's direction need not have unit length.
 vec3 path_trace(const glint_scene *s, ray primary, rng *r, thread_stats *ts);
 
 /// The path tracer's index of a scene's emissive quads and mesh triangles (for next-event estimation).
@@ -97,12 +98,13 @@ static inline void integrator_film_point(const glint_scene *s, int x, int y, rng
     *fy = (float)y + rng_float(r);
 }
 
-/// The camera ray of a sample of pixel (x, y): its film point (integrator_film_point), then the camera's ray
-/// through it, both drawing from r.
+/// The path tracer's camera ray of a sample of pixel (x, y): its film point (integrator_film_point), then the
+/// camera's ray through it, both drawing from r. Its direction is not normalised (path_trace does that when
+/// it needs to).
 static inline ray integrator_camera_ray(const glint_scene *s, int x, int y, rng *r) {
     float fx, fy;
     integrator_film_point(s, x, y, r, &fx, &fy);
-    return camera_ray(&s->camera, fx, fy, r);
+    return camera_ray_unnormalised(&s->camera, fx, fy, r);
 }
 
 #endif

@@ -353,7 +353,8 @@ vec3 path_trace(const glint_scene *s, ray cur, rng *r, thread_stats *ts) {
     bool light_sampled = false; // the last vertex sampled the area lights: a hit on one is weighted
     float bsdf_pdf = 0.0f;      // solid-angle density of the direction the last vertex sampled
     bool lean = !has_lights && !pl;
-    bool unit = true; // cur.d has unit length; the lean bounce leaves Lambertian directions unnormalised
+    // Whether cur.d has unit length: camera rays and the lean bounce's Lambertian directions are left unnormalised.
+    bool unit = false;
     for (int depth = 0; depth < s->settings.max_depth; depth++) {
         hit h;
         ts->rays++;
