@@ -330,10 +330,7 @@ static uint32_t collapse(collapser *cl, uint32_t id, uint64_t depth) {
     bvh_wnode *w = &b->wnodes[wid];
     for (int k = 0; k < BVH_WIDTH; k++) {
         if (k >= nk) {
-            for (int a = 0; a < 3; a++) {
-                w->box[a][k] = INFINITY;
-                w->box[3 + a][k] = -INFINITY;
-            }
+            for (int a = 0; a < 6; a++) w->box[a][k] = NAN; // no ray enters it (bvh.h)
             w->child[k] = BVH_EMPTY;
             continue;
         }

@@ -239,7 +239,8 @@ static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr,
         float fx = slab_t(n->box[tr->far[0]][i], tr->inv[0], tr->noi[0]);
         float fy = slab_t(n->box[tr->far[1]][i], tr->inv[1], tr->noi[1]);
         float fz = slab_t(n->box[tr->far[2]][i], tr->inv[2], tr->noi[2]);
-        float tn = max_sse(max_sse(nx, ny), max_sse(nz, tr->r->tmin));
+        // The slab distances as second operands: an empty slot's NaN reaches tn, and tn <= tf fails.
+        float tn = max_sse(max_sse(tr->r->tmin, nx), max_sse(ny, nz));
         float tf = min_sse(min_sse(fx, fy), fz) * SLAB_FAR_SCALE;
         tf = min_sse(tf, tlimit);
         tnear[i] = tn;
@@ -294,12 +295,10 @@ typedef __m128 pk;
 #error "BVH_PACKET must be 4 or 8"
 #endif
 
-/// The ray broadcast into registers, with the byte offsets in a node's boxes of the rows it enters (near)
-/// and leaves (far) by.
+/// The ray broadcast into registers.
 typedef struct simd_ray {
     __m256 inv[3], noi[3];
     pk ox, oy, oz, dx, dy, dz, a, inv_a, tmin, tmax, tmin_nonneg;
-    size_t near[3], far[3];
 } simd_ray;
 
 _Static_assert(sizeof(ray) == 8 * sizeof(float) && offsetof(ray, o) == 0 && offsetof(ray, d) == 12 &&
@@ -319,19 +318,12 @@ static inline bool simd_setup(const ray *r, simd_ray *s) {
     __m128 dc = _mm_blendv_ps(d, _mm_or_ps(_mm_and_ps(sign, d), eps), tiny);
     __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), dc);
     __m128 noi = _mm_xor_ps(_mm_mul_ps(o, inv), sign);
-    unsigned neg = (unsigned)_mm_movemask_ps(inv);
     s->inv[0] = _mm256_broadcastss_ps(inv);
     s->inv[1] = _mm256_broadcastss_ps(_mm_movehdup_ps(inv));
     s->inv[2] = _mm256_broadcastss_ps(_mm_movehl_ps(inv, inv));
     s->noi[0] = _mm256_broadcastss_ps(noi);
     s->noi[1] = _mm256_broadcastss_ps(_mm_movehdup_ps(noi));
     s->noi[2] = _mm256_broadcastss_ps(_mm_movehl_ps(noi, noi));
-    const size_t row = sizeof(((const bvh_wnode *)0)->box[0]);
-    for (unsigned k = 0; k < 3; k++) {
-        size_t n = (neg >> k) & 1u; // a negative direction enters by the upper bound
-        s->near[k] = (k + 3 * n) * row;
-        s->far[k] = (k + 3 - 3 * n) * row;
-    }
     s->ox = PK(broadcast_ss)(rf + 0);
     s->oy = PK(broadcast_ss)(rf + 1);
     s->oz = PK(broadcast_ss)(rf + 2);
@@ -347,24 +339,24 @@ static inline bool simd_setup(const ray *r, simd_ray *s) {
     return true;
 }
 
-// Row k of the boxes of n: the row at byte offset off (simd_ray's near and far).
-static inline __m256 wnode_row(const bvh_wnode *n, size_t off) {
-    return _mm256_load_ps((const float *)(const void *)((const char *)n->box + off));
-}
-
 static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, float tlimit, float *tnear) {
-    __m256 nx = _mm256_fmadd_ps(wnode_row(n, s->near[0]), s->inv[0], s->noi[0]);
-    __m256 ny = _mm256_fmadd_ps(wnode_row(n, s->near[1]), s->inv[1], s->noi[1]);
-    __m256 nz = _mm256_fmadd_ps(wnode_row(n, s->near[2]), s->inv[2], s->noi[2]);
-    __m256 fx = _mm256_fmadd_ps(wnode_row(n, s->far[0]), s->inv[0], s->noi[0]);
-    __m256 fy = _mm256_fmadd_ps(wnode_row(n, s->far[1]), s->inv[1], s->noi[1]);
-    __m256 fz = _mm256_fmadd_ps(wnode_row(n, s->far[2]), s->inv[2], s->noi[2]);
+    // Both planes of every slab, the nearer by min and the farther by max: the same values as choosing the
+    // rows by the direction's signs (trav_setup's near and far), without per-ray row offsets to keep live.
+    __m256 lx = _mm256_fmadd_ps(_mm256_load_ps(n->box[0]), s->inv[0], s->noi[0]);
+    __m256 ly = _mm256_fmadd_ps(_mm256_load_ps(n->box[1]), s->inv[1], s->noi[1]);
+    __m256 lz = _mm256_fmadd_ps(_mm256_load_ps(n->box[2]), s->inv[2], s->noi[2]);
+    __m256 hx = _mm256_fmadd_ps(_mm256_load_ps(n->box[3]), s->inv[0], s->noi[0]);
+    __m256 hy = _mm256_fmadd_ps(_mm256_load_ps(n->box[4]), s->inv[1], s->noi[1]);
+    __m256 hz = _mm256_fmadd_ps(_mm256_load_ps(n->box[5]), s->inv[2], s->noi[2]);
+    __m256 nx = _mm256_min_ps(lx, hx), ny = _mm256_min_ps(ly, hy), nz = _mm256_min_ps(lz, hz);
+    __m256 fx = _mm256_max_ps(lx, hx), fy = _mm256_max_ps(ly, hy), fz = _mm256_max_ps(lz, hz);
 #if BVH_PACKET == 8
     __m256 tmin = s->tmin;
 #else
     __m256 tmin = _mm256_set_m128(s->tmin, s->tmin);
 #endif
-    __m256 tn = _mm256_max_ps(_mm256_max_ps(nx, ny), _mm256_max_ps(nz, tmin));
+    // Operand order as in wnode_test_scalar: an empty slot's NaN reaches tn.
+    __m256 tn = _mm256_max_ps(_mm256_max_ps(tmin, nx), _mm256_max_ps(ny, nz));
     __m256 tf = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(fx, fy), fz), _mm256_set1_ps(SLAB_FAR_SCALE));
     tf = _mm256_min_ps(tf, _mm256_set1_ps(tlimit));
     _mm256_storeu_ps(tnear, tn);
