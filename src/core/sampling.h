@@ -8,14 +8,6 @@
 #include <stdint.h>
 #include <string.h>
 
-/// Uniform point in the unit disk, by rejection (the book's method).
-static inline void sample_unit_disk(rng *r, float *x, float *y) {
-    for (;;) {
-        float a = rng_range(r, -1.0f, 1.0f), b = rng_range(r, -1.0f, 1.0f);
-        if (a * a + b * b < 1.0f) { *x = a; *y = b; return; }
-    }
-}
-
 /// Uniform direction on the unit sphere, by rejection from the cube (the book's method).
 static inline vec3 sample_unit_vector(rng *r) {
     for (;;) {
@@ -58,6 +50,16 @@ static inline void sincos_turn(float u, float *c, float *s) {
     uint32_t rs = ((bc & swap) | (bs & ~swap)) ^ ((k & 2u) << 30);
     memcpy(c, &rc, sizeof rc);
     memcpy(s, &rs, sizeof rs);
+}
+
+/// Uniform point in the unit disk from exactly two random numbers, without rejection: radius sqrt(u1), angle
+/// 2 pi u2 (sincos_turn).
+static inline void sample_unit_disk(rng *r, float *x, float *y) {
+    float u1 = rng_float(r), u2 = rng_float(r);
+    float c, s, rad = sqrtf(u1);
+    sincos_turn(u2, &c, &s);
+    *x = rad * c;
+    *y = rad * s;
 }
 
 /// Uniform direction on the unit sphere from exactly two random numbers, without rejection: z = 1 - 2 u1 is
