@@ -303,16 +303,16 @@ typedef struct simd_ray {
 
 _Static_assert(sizeof(ray) == 8 * sizeof(float) && offsetof(ray, o) == 0 && offsetof(ray, d) == 12 &&
                    offsetof(ray, tmin) == 24 && offsetof(ray, tmax) == 28,
-               "simd_setup reads a ray as eight floats: o, d, tmin, tmax");
+               "simd_setup reads a ray as eight consecutive floats: o, d, tmin, tmax");
 
 // Computes what trav_setup computes (the same IEEE operations, so the same values); false for a ray with a
-// NaN coordinate. Every traversal pays for it once, so it reads the ray with one load and broadcasts from
-// memory rather than shuffling.
+// NaN coordinate. Every traversal pays for it once, so it broadcasts from memory rather than shuffling. The
+// ray was just written field by field: loads that span several of those stores would wait for them to
+// retire (no store-to-load forwarding), so every load here reads one float.
 static inline bool simd_setup(const ray *r, simd_ray *s) {
     const float *rf = &r->o.x;
-    __m256 all = _mm256_loadu_ps(rf);
-    if (_mm256_movemask_ps(_mm256_cmp_ps(all, all, _CMP_UNORD_Q)) & 0x3f) return false;
-    __m128 o = _mm256_castps256_ps128(all), d = _mm_loadu_ps(rf + 3); // lanes 0-2: o and d (lane 3 unused)
+    __m128 o = _mm_setr_ps(rf[0], rf[1], rf[2], 0.0f), d = _mm_setr_ps(rf[3], rf[4], rf[5], 1.0f);
+    if (_mm_movemask_ps(_mm_cmpunord_ps(o, d)) != 0) return false;
     const __m128 sign = _mm_set1_ps(-0.0f), eps = _mm_set1_ps(DIR_EPSILON);
     __m128 tiny = _mm_cmplt_ps(_mm_andnot_ps(sign, d), eps);
     __m128 dc = _mm_blendv_ps(d, _mm_or_ps(_mm_and_ps(sign, d), eps), tiny);
