@@ -76,8 +76,10 @@ vec3 whitted_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r,
 vec3 path_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
 /// The rest of path_sample once its camera ray is made (integrator_camera_ray with the same r): path_sample
 /// is exactly the two in sequence, so a render loop can make the next sample's camera ray ahead of time. The
-/// primary ray's direction need not have unit length.
-vec3 path_trace(const glint_scene *s, ray primary, rng *r, thread_stats *ts);
+/// primary ray (origin o, direction d, all t > 0) is passed by its parts, in registers: a whole ray passed by
+/// value is copied with wide loads that cannot be forwarded from the stores that just made it. d need not have
+/// unit length.
+vec3 path_trace(const glint_scene *s, vec3 o, vec3 d, rng *r, thread_stats *ts);
 
 /// The path tracer's index of a scene's emissive quads and mesh triangles (for next-event estimation).
 typedef struct path_lights path_lights;

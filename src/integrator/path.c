@@ -343,10 +343,11 @@ static vec3 direct_light(const glint_scene *s, const spawn_point *sp, vec3 n, ve
 vec3 path_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
     (void)sample;
     ray primary = integrator_camera_ray(s, x, y, r);
-    return path_trace(s, primary, r, ts);
+    return path_trace(s, primary.o, primary.d, r, ts);
 }
 
-vec3 path_trace(const glint_scene *s, ray cur, rng *r, thread_stats *ts) {
+vec3 path_trace(const glint_scene *s, vec3 o, vec3 d, rng *r, thread_stats *ts) {
+    ray cur = {o, d, 0.0f, INFINITY};
     vec3 radiance = v3s(0.0f), throughput = v3s(1.0f);
     bool has_lights = s->light_count > 0;
     const path_lights *pl = s->settings.no_light_sampling ? NULL : s->path_lights;

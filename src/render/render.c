@@ -164,7 +164,7 @@ static bool render_tile_path(const render_job *job, int x0, int y0, int x1, int 
             next_rng = rng_for_key(job->stream, nkey, (uint64_t)nk);
             next_ray = integrator_camera_ray(s, nx, ny, &next_rng);
         }
-        vec3 c = path_trace(s, primary, &r, ts);
+        vec3 c = path_trace(s, primary.o, primary.d, &r, ts);
         ts->samples++;
         atomic_store_explicit(progress, ts->samples, memory_order_relaxed);
         // A NaN or infinite sample would poison the pixel: drop it (it counts as black), count it, report it.
