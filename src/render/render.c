@@ -95,7 +95,8 @@ static void store_pixel(const render_job *job, size_t pixel, const double sum[3]
     if (job->sums && k1 < job->scene->settings.spp) memcpy(&job->sums[pixel * 3u], sum, 3 * sizeof *sum);
     if (k > 0) {
         float *px = &job->image->rgb[pixel * 3u];
-        for (int c = 0; c < 3; c++) px[c] = (float)(sum[c] / k);
+        double inv = 1.0 / k; // one division for the three channels, at every pass of every pixel
+        for (int c = 0; c < 3; c++) px[c] = (float)(sum[c] * inv);
     }
 }
 
