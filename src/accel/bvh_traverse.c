@@ -414,7 +414,7 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
     bool found = false;
     for (;;) {
         const bvh_packet_header *hd = (const bvh_packet_header *)(const void *)slot;
-        if (hd->kind == PRIM_SPHERE) {
+        if (!generic || hd->kind == PRIM_SPHERE) { // a sphere-only BVH holds nothing else
             const bvh_sphere_packet *p = (const bvh_sphere_packet *)(const void *)slot;
             pk tv;
             unsigned mask = spheres_simd(p, s, &tv);
