@@ -3,6 +3,7 @@
 // count gives the same bytes, and a stop request leaves every pixel at the mean of its completed samples.
 #include "accel/accel.h"
 #include "integrator/integrator.h"
+#include "render/camera_batch.h"
 #include "render/film.h"
 
 #include <errno.h>
@@ -129,64 +130,64 @@ static bool render_pixel(const render_job *job, int x, int y, int k0, int k1, th
     return !stopped;
 }
 
-// One pass of one tile in the path tracer: render_pixel over the tile's pixels, except that each sample's
-// camera ray (and generator) is made while the sample before it is traced. A path is one long chain of
-// dependent operations; the next camera ray does not depend on it, so the processor fills its idle cycles
-// with that work (docs/benchmarks.md). Same samples, same order, same sums: the same bytes.
+// One pass of one tile in the path tracer: render_pixel over the tile's pixels, except that the samples' camera
+// rays (and generators) are made CAMERA_BATCH at a time, in vector instructions (camera_batch.h), before their
+// paths are traced. Same samples, same order, same sums: the same bytes.
 static bool render_tile_path(const render_job *job, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *ts,
                              _Atomic uint64_t *progress) {
     const glint_scene *s = job->scene;
     const render_settings *rs = &s->settings;
     int w = x1 - x0, spp = k1 - k0, items = w * (y1 - y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
+    // The batch cursor (gx, gy, gk) runs ahead of the tracing cursor (x, y, k) by up to CAMERA_BATCH items.
+    int gx = x0, gy = y0, gk = k0;
+    uint64_t gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
     int x = x0, y = y0, k = k0;
     size_t pixel = (size_t)y * (size_t)rs->width + (size_t)x;
-    uint64_t key = rng_pixel_key(rs->seed, (uint64_t)pixel);
-    rng next_rng = rng_for_key(job->stream, key, (uint64_t)k);
-    ray next_ray = integrator_camera_ray(s, x, y, &next_rng);
     double sum[3] = {0, 0, 0};
     if (k0 > 0) memcpy(sum, &job->sums[pixel * 3u], sizeof sum);
-    for (int j = 0;;) {
-        if (stop_is_requested()) {
-            store_pixel(job, pixel, sum, k, k1);
-            return false;
+    camera_batch cb;
+    for (int j = 0; j < items; j += CAMERA_BATCH) {
+        int n = items - j < CAMERA_BATCH ? items - j : CAMERA_BATCH;
+        for (int i = 0; i < CAMERA_BATCH; i++) {
+            if (i >= n) { // lanes past the tile's end repeat the first
+                cb.x[i] = cb.x[0], cb.y[i] = cb.y[0], cb.key[i] = cb.key[0], cb.sample[i] = cb.sample[0];
+                continue;
+            }
+            cb.x[i] = gx, cb.y[i] = gy, cb.key[i] = gkey, cb.sample[i] = (uint64_t)gk;
+            if (++gk == k1) {
+                gk = k0;
+                if (++gx == x1) { gx = x0; gy++; }
+                if (gy < y1) gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
+            }
         }
-        rng r = next_rng;
-        ray primary = next_ray;
-        // The item after this one: the next sample of this pixel, or the first of the next pixel.
-        bool last = ++j == items;
-        int nx = x, ny = y, nk = k + 1;
-        uint64_t nkey = key;
-        if (nk == k1) {
-            nk = k0;
-            if (++nx == x1) { nx = x0; ny++; }
-            if (!last) nkey = rng_pixel_key(rs->seed, (uint64_t)ny * (uint64_t)rs->width + (uint64_t)nx);
-        }
-        if (!last) {
-            next_rng = rng_for_key(job->stream, nkey, (uint64_t)nk);
-            next_ray = integrator_camera_ray(s, nx, ny, &next_rng);
-        }
-        vec3 c = path_trace(s, primary.o, primary.d, &r, ts);
-        ts->samples++;
-        atomic_store_explicit(progress, ts->samples, memory_order_relaxed);
-        // A NaN or infinite sample would poison the pixel: drop it (it counts as black), count it, report it.
-        if (!v3_is_finite(c)) ts->discarded_samples++;
-        else {
-            sum[0] += c.x;
-            sum[1] += c.y;
-            sum[2] += c.z;
-        }
-        if (nk == k0) { // this pixel's samples of the pass are done
-            store_pixel(job, pixel, sum, k1, k1);
-            if (last) return true;
-            pixel = (size_t)ny * (size_t)rs->width + (size_t)nx;
+        camera_batch_make(s, job->stream, &cb);
+        for (int i = 0; i < n; i++) {
+            if (stop_is_requested()) {
+                store_pixel(job, pixel, sum, k, k1);
+                return false;
+            }
+            rng r = cb.r[i];
+            vec3 c = path_trace(s, cb.o[i], cb.d[i], &r, ts);
+            ts->samples++;
+            atomic_store_explicit(progress, ts->samples, memory_order_relaxed);
+            // A NaN or infinite sample would poison the pixel: drop it (it counts as black), count it, report it.
+            if (!v3_is_finite(c)) ts->discarded_samples++;
+            else {
+                sum[0] += c.x;
+                sum[1] += c.y;
+                sum[2] += c.z;
+            }
+            if (++k < k1) continue;
+            store_pixel(job, pixel, sum, k1, k1); // this pixel's samples of the pass are done
+            k = k0;
+            if (++x == x1) { x = x0; y++; }
+            if (y == y1) return true;
+            pixel = (size_t)y * (size_t)rs->width + (size_t)x;
             sum[0] = sum[1] = sum[2] = 0.0;
             if (k0 > 0) memcpy(sum, &job->sums[pixel * 3u], sizeof sum);
         }
-        x = nx;
-        y = ny;
-        k = nk;
-        key = nkey;
     }
+    return true;
 }
 
 // Renders one pass of one tile; false when stopped part-way (pixels not reached keep the previous pass's mean).

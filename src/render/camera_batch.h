@@ -1,0 +1,122 @@
+// camera_batch.h — the path tracer's camera rays eight samples at a time, for the render loop: every lane
+// computes exactly what rng_for_key and integrator_camera_ray compute for one sample (the same operations in
+// the same order, so the same bits), in loops over the lanes that the compiler turns into vector instructions.
+#ifndef GLINT_CAMERA_BATCH_H
+#define GLINT_CAMERA_BATCH_H
+
+#include "integrator/integrator.h"
+
+#include <stdint.h>
+#include <string.h>
+
+enum { CAMERA_BATCH = 8 };
+
+/// One batch: per lane the pixel, its rng_pixel_key and the sample index (inputs), then the sample's generator
+/// after the camera's draws and its primary ray (outputs). Unused lanes must hold some valid sample.
+typedef struct camera_batch {
+    int x[CAMERA_BATCH], y[CAMERA_BATCH];
+    uint64_t key[CAMERA_BATCH], sample[CAMERA_BATCH];
+    rng r[CAMERA_BATCH];
+    vec3 o[CAMERA_BATCH], d[CAMERA_BATCH];
+} camera_batch;
+
+// rng_u32 in every lane (state st, shared stream inc).
+static inline void batch_u32(uint64_t st[CAMERA_BATCH], uint64_t inc, uint32_t out[CAMERA_BATCH]) {
+    for (int i = 0; i < CAMERA_BATCH; i++) {
+        uint64_t old = st[i];
+        st[i] = old * 6364136223846793005ULL + inc;
+        uint32_t xorshifted = (uint32_t)(((old >> 18u) ^ old) >> 27u);
+        uint32_t rot = (uint32_t)(old >> 59u);
+        out[i] = (xorshifted >> rot) | (xorshifted << ((-rot) & 31u));
+    }
+}
+
+// rng_float in every lane.
+static inline void batch_float(uint64_t st[CAMERA_BATCH], uint64_t inc, float out[CAMERA_BATCH]) {
+    uint32_t u[CAMERA_BATCH];
+    batch_u32(st, inc, u);
+    for (int i = 0; i < CAMERA_BATCH; i++) out[i] = (float)(u[i] >> 8) * 0x1.0p-24f;
+}
+
+// sincos_turn in every lane. floorf(x + 0.5f) is the truncation of that non-negative number.
+static inline void batch_sincos_turn(const float u[CAMERA_BATCH], float c[CAMERA_BATCH], float s[CAMERA_BATCH]) {
+    float cs[CAMERA_BATCH], sn[CAMERA_BATCH];
+    uint32_t k[CAMERA_BATCH], bc[CAMERA_BATCH], bs[CAMERA_BATCH], rc[CAMERA_BATCH], rs[CAMERA_BATCH];
+    for (int i = 0; i < CAMERA_BATCH; i++) {
+        float x = 4.0f * u[i];
+        int32_t qi = (int32_t)(x + 0.5f);
+        float q = (float)qi;
+        float t = (x - q) * 1.57079632679490f, z = t * t;
+        sn[i] = sampling_mad(sampling_mad(sampling_mad(-1.9515295891e-4f, z, 8.3321608736e-3f), z, -1.6666654611e-1f),
+                             z * t, t);
+        cs[i] = sampling_mad(
+            sampling_mad(sampling_mad(sampling_mad(2.443315711809948e-5f, z, -1.388731625493765e-3f), z,
+                                      4.166664568298827e-2f),
+                         z, -0.5f),
+            z, 1.0f);
+        k[i] = (uint32_t)qi;
+    }
+    memcpy(bc, cs, sizeof bc);
+    memcpy(bs, sn, sizeof bs);
+    for (int i = 0; i < CAMERA_BATCH; i++) {
+        uint32_t swap = 0u - (k[i] & 1u);
+        rc[i] = ((bs[i] & swap) | (bc[i] & ~swap)) ^ (((k[i] + 1u) & 2u) << 30);
+        rs[i] = ((bc[i] & swap) | (bs[i] & ~swap)) ^ ((k[i] & 2u) << 30);
+    }
+    memcpy(c, rc, sizeof rc);
+    memcpy(s, rs, sizeof rs);
+}
+
+/// Fills b->r, b->o and b->d from the inputs: lane i is rng_for_key(stream, key[i], sample[i]) followed by
+/// integrator_camera_ray(s, x[i], y[i], &r) of the path tracer.
+static inline void camera_batch_make(const glint_scene *s, uint64_t stream, camera_batch *b) {
+    const camera *c = &s->camera;
+    uint64_t st[CAMERA_BATCH];
+    for (int i = 0; i < CAMERA_BATCH; i++) {
+        // rng_for_key: state 0 stepped (to the stream), plus the mixed key, stepped again.
+        st[i] = (stream + rng_mix64(b->key[i] ^ (b->sample[i] + 0x2545f4914f6cdd1dULL))) * 6364136223846793005ULL +
+                stream;
+    }
+    float jx[CAMERA_BATCH], jy[CAMERA_BATCH];
+    batch_float(st, stream, jx);
+    batch_float(st, stream, jy);
+    float tx[CAMERA_BATCH], ty[CAMERA_BATCH], tz[CAMERA_BATCH];
+    for (int i = 0; i < CAMERA_BATCH; i++) {
+        float fx = (float)b->x[i] + jx[i], fy = (float)b->y[i] + jy[i];
+        tx[i] = c->pixel00.x + (c->pixel_du.x * fx + c->pixel_dv.x * fy);
+        ty[i] = c->pixel00.y + (c->pixel_du.y * fx + c->pixel_dv.y * fy);
+        tz[i] = c->pixel00.z + (c->pixel_du.z * fx + c->pixel_dv.z * fy);
+    }
+    float ox[CAMERA_BATCH], oy[CAMERA_BATCH], oz[CAMERA_BATCH];
+    if (c->kind == CAMERA_VIEWPORT) {
+        for (int i = 0; i < CAMERA_BATCH; i++) {
+            b->o[i] = v3(tx[i], ty[i], tz[i]);
+            b->d[i] = v3(tx[i] - c->origin.x, ty[i] - c->origin.y, tz[i] - c->origin.z);
+        }
+    } else {
+        for (int i = 0; i < CAMERA_BATCH; i++) {
+            ox[i] = c->origin.x;
+            oy[i] = c->origin.y;
+            oz[i] = c->origin.z;
+        }
+        if (c->defocus_angle_degrees > 0.0f) { // sample_unit_disk, then the lens point
+            float u1[CAMERA_BATCH], u2[CAMERA_BATCH], cs[CAMERA_BATCH], sn[CAMERA_BATCH];
+            batch_float(st, stream, u1);
+            batch_float(st, stream, u2);
+            batch_sincos_turn(u2, cs, sn);
+            for (int i = 0; i < CAMERA_BATCH; i++) {
+                float rad = sqrtf(u1[i]), dx = rad * cs[i], dy = rad * sn[i];
+                ox[i] = c->origin.x + (c->defocus_u.x * dx + c->defocus_v.x * dy);
+                oy[i] = c->origin.y + (c->defocus_u.y * dx + c->defocus_v.y * dy);
+                oz[i] = c->origin.z + (c->defocus_u.z * dx + c->defocus_v.z * dy);
+            }
+        }
+        for (int i = 0; i < CAMERA_BATCH; i++) {
+            b->o[i] = v3(ox[i], oy[i], oz[i]);
+            b->d[i] = v3(tx[i] - ox[i], ty[i] - oy[i], tz[i] - oz[i]);
+        }
+    }
+    for (int i = 0; i < CAMERA_BATCH; i++) b->r[i] = (rng){st[i], stream};
+}
+
+#endif
