@@ -3,7 +3,6 @@
 #include "accel/bvh.h"
 
 #include <math.h>
-#include <stddef.h>
 
 #if BVH_SIMD
 #include <immintrin.h>
@@ -301,17 +300,12 @@ typedef struct simd_ray {
     pk ox, oy, oz, dx, dy, dz, a, inv_a, tmin, tmax, tmin_nonneg;
 } simd_ray;
 
-_Static_assert(sizeof(ray) == 8 * sizeof(float) && offsetof(ray, o) == 0 && offsetof(ray, d) == 12 &&
-                   offsetof(ray, tmin) == 24 && offsetof(ray, tmax) == 28,
-               "simd_setup reads a ray as eight consecutive floats: o, d, tmin, tmax");
-
 // Computes what trav_setup computes (the same IEEE operations, so the same values); false for a ray with a
 // NaN coordinate. Every traversal pays for it once, so it broadcasts from memory rather than shuffling. The
 // ray was just written field by field: loads that span several of those stores would wait for them to
 // retire (no store-to-load forwarding), so every load here reads one float.
 static inline bool simd_setup(const ray *r, simd_ray *s) {
-    const float *rf = &r->o.x;
-    __m128 o = _mm_setr_ps(rf[0], rf[1], rf[2], 0.0f), d = _mm_setr_ps(rf[3], rf[4], rf[5], 1.0f);
+    __m128 o = _mm_setr_ps(r->o.x, r->o.y, r->o.z, 0.0f), d = _mm_setr_ps(r->d.x, r->d.y, r->d.z, 1.0f);
     if (_mm_movemask_ps(_mm_cmpunord_ps(o, d)) != 0) return false;
     const __m128 sign = _mm_set1_ps(-0.0f), eps = _mm_set1_ps(DIR_EPSILON);
     __m128 tiny = _mm_cmplt_ps(_mm_andnot_ps(sign, d), eps);
@@ -324,14 +318,14 @@ static inline bool simd_setup(const ray *r, simd_ray *s) {
     s->noi[0] = _mm256_broadcastss_ps(noi);
     s->noi[1] = _mm256_broadcastss_ps(_mm_movehdup_ps(noi));
     s->noi[2] = _mm256_broadcastss_ps(_mm_movehl_ps(noi, noi));
-    s->ox = PK(broadcast_ss)(rf + 0);
-    s->oy = PK(broadcast_ss)(rf + 1);
-    s->oz = PK(broadcast_ss)(rf + 2);
-    s->dx = PK(broadcast_ss)(rf + 3);
-    s->dy = PK(broadcast_ss)(rf + 4);
-    s->dz = PK(broadcast_ss)(rf + 5);
-    s->tmin = PK(broadcast_ss)(rf + 6);
-    s->tmax = PK(broadcast_ss)(rf + 7);
+    s->ox = PK(broadcast_ss)(&r->o.x);
+    s->oy = PK(broadcast_ss)(&r->o.y);
+    s->oz = PK(broadcast_ss)(&r->o.z);
+    s->dx = PK(broadcast_ss)(&r->d.x);
+    s->dy = PK(broadcast_ss)(&r->d.y);
+    s->dz = PK(broadcast_ss)(&r->d.z);
+    s->tmin = PK(broadcast_ss)(&r->tmin);
+    s->tmax = PK(broadcast_ss)(&r->tmax);
     float a = v3_dot(r->d, r->d);
     s->a = PK(set1_ps)(a);
     s->inv_a = PK(set1_ps)(1.0f / a);

@@ -26,23 +26,21 @@ static inline vec3 mat_albedo(const material *m, const texture *textures, float 
     return texture_value(&textures[m->albedo_texture], u, v, p);
 }
 
-/// Whether the Lambertian sum s = n + u is unusable: (nearly) zero or, by rounding, not above the surface.
-static inline bool mat_lambertian_degenerate(vec3 s, vec3 n) {
-    // |n + u| < 1e-6 has probability ~2.5e-13; there the sum's direction is rounding noise.
-    return v3_len2(s) < 1e-12f || !(v3_dot(s, n) > 0.0f);
-}
-
 /// The book's Lambertian direction from unit normal n and a uniform unit vector u, not normalised: n + u,
-/// whose direction has density cos/pi; n itself when the sum is degenerate. Its length lies in (1e-6, 2].
+/// whose direction has density cos/pi; n itself when n + u is (nearly) zero or, by rounding, not above the
+/// surface. Its length lies in (1e-6, 2].
 static inline vec3 mat_lambertian_sum(vec3 n, vec3 u) {
     vec3 s = v3_add(n, u);
-    return mat_lambertian_degenerate(s, n) ? n : s;
+    // |n + u| < 1e-6 has probability ~2.5e-13; there the sum's direction is rounding noise.
+    if (v3_len2(s) < 1e-12f || !(v3_dot(s, n) > 0.0f)) return n;
+    return s;
 }
 
-/// The book's Lambertian direction: unit(n + u), whose density is cos/pi; n itself when the sum is degenerate.
+/// The book's Lambertian direction: unit(n + u) (mat_lambertian_sum), whose density is cos/pi.
 static inline vec3 mat_lambertian_dir(vec3 n, vec3 u) {
     vec3 s = v3_add(n, u);
-    return mat_lambertian_degenerate(s, n) ? n : v3_unit(s);
+    if (v3_len2(s) < 1e-12f || !(v3_dot(s, n) > 0.0f)) return n;
+    return v3_unit(s);
 }
 
 /// The book's fuzzy mirror: unit(reflect(d, n)) + fuzz u, normalised, for unit d and n and a uniform unit
