@@ -4,6 +4,7 @@
 #include "core/rng.h"
 #include "geometry/mesh.h"
 #include "geometry/transform.h"
+#include "geometry/quad.h"
 #include "geometry/triangle.h"
 
 #include <stdlib.h>

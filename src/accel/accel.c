@@ -2,12 +2,12 @@
 // which tests every primitive (for testing). Meshes get a BVH each, shared by all their instances; the
 // world BVH holds spheres, quads and instances.
 #include "accel/accel.h"
+#include "core/clock.h"
 #include "accel/bvh.h"
 #include "scene/scene.h"
 
 #include <stdio.h>
 #include <stdlib.h>
-#include <time.h>
 
 // Quads, meshes and instances go into the BVH only once the integrators' surface_at turns their hits
 // (hit.kind, instance, b1, b2) into shading data; until then a non-sphere hit would index the spheres.
@@ -25,14 +25,8 @@ struct accel {
     accel_stats stats;
 };
 
-static double now_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
-
 accel *accel_build(const glint_scene *s, glint_error *err) {
-    double t0 = now_seconds();
+    double t0 = clock_seconds();
     accel *a = calloc(1, sizeof *a);
     if (!a) {
         snprintf(err->message, sizeof err->message, "out of memory building the acceleration structure");
@@ -73,7 +67,7 @@ accel *accel_build(const glint_scene *s, glint_error *err) {
         a->stats.leaves += a->world.stats.leaves;
         a->stats.depth += a->world.stats.depth;
     }
-    a->stats.build_seconds = now_seconds() - t0;
+    a->stats.build_seconds = clock_seconds() - t0;
     return a;
 }
 

@@ -8,6 +8,7 @@
 #include "geometry/mesh.h"
 #include "geometry/sphere.h"
 #include "geometry/transform.h"
+#include "geometry/quad.h"
 #include "geometry/triangle.h"
 #include "scene/scene.h"
 

@@ -2,6 +2,7 @@
 // N threads, each pixel's samples drawn from generators seeded by (seed, pixel, sample) alone, so any thread
 // count gives the same bytes, and a stop request leaves every pixel at the mean of its completed samples.
 #include "accel/accel.h"
+#include "core/clock.h"
 #include "integrator/integrator.h"
 #include "render/camera_batch.h"
 #include "render/film.h"
@@ -69,12 +70,6 @@ typedef struct progress_state {
     pthread_mutex_t lock;
     pthread_cond_t wake;
 } progress_state;
-
-static double now_seconds(void) {
-    struct timespec ts;
-    clock_gettime(CLOCK_MONOTONIC, &ts);
-    return (double)ts.tv_sec + 1e-9 * (double)ts.tv_nsec;
-}
 
 // Pass boundaries 0, 1, 2, 4, 8, ..., spp: a stopped render has at least doubled its samples since the last
 // complete pass, and a full render pays for log2(spp) visits of each pixel, a negligible cost.
@@ -345,10 +340,10 @@ static void job_free(render_job *job) {
 glint_status glint_render(glint_scene *s, const glint_render_options *opt, glint_progress_fn progress, void *user,
                           glint_image **out, glint_render_stats *stats, glint_error *err) {
     *out = NULL;
-    double t0 = now_seconds();
+    double t0 = clock_seconds();
     glint_status st = scene_prepare(s, err);
     if (st != GLINT_OK) return st;
-    double t_built = now_seconds();
+    double t_built = clock_seconds();
     const render_settings *rs = &s->settings;
     int threads = opt && opt->threads > 0 ? opt->threads : online_cpus();
     if (threads > MAX_THREADS) threads = MAX_THREADS;
@@ -403,7 +398,7 @@ glint_status glint_render(glint_scene *s, const glint_render_options *opt, glint
         stats->bvh_leaves = as.leaves;
         stats->bvh_depth = as.depth;
         stats->build_seconds = as.build_seconds > 0 ? as.build_seconds : t_built - t0;
-        double t_end = now_seconds();
+        double t_end = clock_seconds();
         stats->wall_seconds = t_end - t0;
         stats->render_seconds = t_end - t_built;
         stats->threads = started + 1;

@@ -10,6 +10,7 @@
 #include "geometry/mesh.h"
 #include "geometry/sphere.h"
 #include "geometry/transform.h"
+#include "geometry/quad.h"
 #include "geometry/triangle.h"
 #include "material/texture.h"
 

@@ -1,5 +1,5 @@
-// triangle.c — building parallelogram quads and six-quad boxes; the intersection tests are inline in triangle.h.
-#include "geometry/triangle.h"
+// quad.c — building parallelogram quads and six-quad boxes; the intersection test is inline in quad.h.
+#include "geometry/quad.h"
 
 #include <math.h>
 

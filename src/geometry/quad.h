@@ -1,0 +1,56 @@
+// quad.h — parallelogram quads (corner Q, edges u, v), tested as two watertight triangles, and boxes of
+// six quads ("Ray Tracing: The Next Week", ch. 6-7).
+#ifndef GLINT_QUAD_H
+#define GLINT_QUAD_H
+
+#include "core/vec.h"
+#include "geometry/transform.h"
+#include "geometry/triangle.h"
+
+#include <stdbool.h>
+#include <stdint.h>
+
+/// A parallelogram: the points q + a u + b v for a, b in [0, 1]. Its front side is where u x v points.
+typedef struct quad {
+    vec3 q, u, v;
+    vec3 p[4];         ///< corners q, q+u, q+u+v, q+v: the two triangles (p0,p1,p2), (p0,p2,p3) are tested
+    vec3 normal;       ///< unit u x v
+    float area;        ///< |u x v|
+    uint32_t material; ///< index into the scene's materials
+} quad;
+
+/// A quad hit: distance and the parallelogram coordinates (alpha along u, beta along v), both in [0, 1].
+typedef struct quad_hit {
+    float t, alpha, beta;
+} quad_hit;
+
+/// A quad from corner q and edges u, v; false when u x v is zero or anything is not finite.
+bool quad_make(vec3 q, vec3 u, vec3 v, uint32_t material, quad *out);
+/// The six quads of the axis-aligned box with opposite corners a and b, normals outwards (the book's box()),
+/// with corners snapped to exactly the box's coordinates so that the box is watertight.
+/// False when the box is flat along some axis or not finite.
+bool quad_box(vec3 a, vec3 b, uint32_t material, quad out[6]);
+/// Bounds of a quad.
+bounds3 quad_bounds(const quad *q);
+
+/// Ray/quad test with tmin < t < tmax: the watertight triangle test on the quad's two triangles.
+static inline bool quad_intersect(const quad *qd, const tri_ray *tr, float tmin, float tmax, quad_hit *h) {
+    tri_hit th;
+    if (tri_intersect(tr, qd->p[0], qd->p[1], qd->p[2], tmin, tmax, &th)) {
+        // b1 (q+u) + b2 (q+u+v) - q: alpha = b1 + b2, beta = b2.
+        h->t = th.t;
+        h->alpha = th.b1 + th.b2;
+        h->beta = th.b2;
+        return true;
+    }
+    if (tri_intersect(tr, qd->p[0], qd->p[2], qd->p[3], tmin, tmax, &th)) {
+        // b1 (q+u+v) + b2 (q+v) - q: alpha = b1, beta = b1 + b2.
+        h->t = th.t;
+        h->alpha = th.b1;
+        h->beta = th.b1 + th.b2;
+        return true;
+    }
+    return false;
+}
+
+#endif
