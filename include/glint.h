@@ -70,8 +70,8 @@ size_t glint_scene_warning_count(const glint_scene *scene);
 const char *glint_scene_warning(const glint_scene *scene, size_t i);
 void glint_scene_free(glint_scene *scene);
 
-/// Prepares (builds the BVH, once) and renders the scene. On GLINT_ERR_INTERRUPTED *out still holds the samples completed so far.
-glint_status glint_render(glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,
+/// Renders the scene: builds what the render needs (BVH, light index, camera) from it, renders, frees that. On GLINT_ERR_INTERRUPTED *out still holds the samples completed so far.
+glint_status glint_render(const glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,
                           void *user, glint_image **out, glint_render_stats *stats, glint_error *err);
 
 /// Asks running renders to stop soon; async-signal-safe (it stores one atomic flag).

@@ -1,8 +1,8 @@
 // test_camera_batch.c — the render loop's camera rays made eight at a time are, lane for lane and bit for bit,
-// the rays and generators that rng_for_key and integrator_camera_ray make one at a time: with and without
+// the rays and generators that rng_for_key and camera_sample_ray make one at a time: with and without
 // defocus blur, for the look-at and the viewport camera, for any pixel and sample index.
 #include "check.h"
-#include "render/camera_batch.h"
+#include "camera/camera_batch.h"
 #include "scene/scene.h"
 
 #include <string.h>
@@ -43,10 +43,10 @@ static void check_batches(const glint_scene *s, const char *what) {
             if (round % 7 == 0 && i >= 5) b.x[i] = b.x[0], b.y[i] = b.y[0], b.sample[i] = b.sample[0];
             b.key[i] = rng_pixel_key(12345, (uint64_t)b.y[i] * (uint64_t)s->settings.width + (uint64_t)b.x[i]);
         }
-        camera_batch_make(s, stream, &b);
+        camera_batch_make(&s->camera, stream, &b);
         for (int i = 0; i < CAMERA_BATCH; i++) {
             rng r = rng_for_key(stream, b.key[i], b.sample[i]);
-            ray want = integrator_camera_ray(s, b.x[i], b.y[i], &r);
+            ray want = camera_sample_ray(&s->camera, b.x[i], b.y[i], &r);
             bool same = memcmp(&want.o, &b.o[i], sizeof want.o) == 0 && memcmp(&want.d, &b.d[i], sizeof want.d) == 0 &&
                         r.state == b.r[i].state && r.inc == b.r[i].inc;
             mismatches += !same;

@@ -2,7 +2,7 @@
 // temporary-file-and-rename contract: failures leave neither a half image nor a temporary file behind.
 #include "check.h"
 #include "test_util.h"
-#include "render/film.h"
+#include "film/film.h"
 
 #include <png.h>
 
@@ -41,7 +41,7 @@ static uint8_t *read_file(const char *path, size_t *size) {
 
 // Linear values covering black, mid-grey, the clamp at both ends, NaN and a gradient.
 static glint_image *test_image(output_transform encoding) {
-    glint_image *img = film_new(W, H, encoding);
+    glint_image *img = film_image_new(W, H, encoding);
     for (int y = 0; y < H; y++)
         for (int x = 0; x < W; x++)
             for (int c = 0; c < 3; c++) {
@@ -184,7 +184,7 @@ static void test_png(void) {
 }
 
 static void test_mode(void) {
-    glint_image *img = film_new(2, 2, TRANSFORM_LINEAR);
+    glint_image *img = film_image_new(2, 2, TRANSFORM_LINEAR);
     mode_t mask = umask(022);
     glint_error err;
     CHECK(glint_image_write(img, tmp_path("mode.ppm"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);

@@ -363,6 +363,8 @@ static void test_ellipsoid_silhouette(void) {
             int w, h;
             const float *rgb;
             glint_image_info(img, &w, &h, &rgb);
+            camera cam = s->camera; // as the render frame prepares it
+            camera_prepare(&cam, w, h);
             int covered = 0, analytic = 0, mismatches = 0, grazing = 0;
             for (int y = 0; y < h; y++)
                 for (int x = 0; x < w; x++) {
@@ -370,9 +372,12 @@ static void test_ellipsoid_silhouette(void) {
                     for (int j = 0; j < spp; j++) {
                         // The camera ray of sample j, drawn exactly as the integrators draw it.
                         rng r = rng_for_sample(s->settings.seed, (uint64_t)y * (uint64_t)w + (uint64_t)x, (uint64_t)j);
-                        float fx, fy;
-                        integrator_film_point(s, x, y, &r, &fx, &fy);
-                        ray cr = camera_ray(&s->camera, fx, fy, &r);
+                        float fx = (float)x + 0.5f, fy = (float)y + 0.5f; // Whitted's one ray: the centre
+                        if (spp > 1) {
+                            fx = (float)x + rng_float(&r);
+                            fy = (float)y + rng_float(&r);
+                        }
+                        ray cr = camera_ray(&cam, fx, fy, &r);
                         // World to the unit sphere's space: undo the translation, the rotation, then the scale.
                         double o[3] = {cr.o.x - move[0], cr.o.y - move[1], cr.o.z - move[2]};
                         double d[3] = {cr.d.x, cr.d.y, cr.d.z};

@@ -5,6 +5,7 @@
 // byte-identical images for any thread count.
 #include "check.h"
 #include "glint.h"
+#include "render/render.h"
 #include "scene/scene.h"
 
 #include <math.h>
@@ -52,6 +53,8 @@ static uint32_t add_texture(glint_scene *s, texture t) {
     return (uint32_t)i;
 }
 
+static bool without_nee; // the next render() samples no area lights (set by the scene builders)
+
 static material lambertian(float a) {
     material m = material_default(MAT_LAMBERTIAN);
     m.albedo = v3s(a);
@@ -63,19 +66,22 @@ static material lambertian(float a) {
 static glint_scene *plane_under_light(int nee, float rho) {
     glint_scene *s = new_scene(48, 48, nee ? 16 : 256, 50, v3(0, 0.8f, 0.6f), v3(0, 0, 0), v3(0, 1, 0), 1);
     s->settings.background_color = v3s(0.0f);
-    s->settings.no_light_sampling = !nee;
+    without_nee = !nee;
     add_quad(s, v3(-5, 0, 5), v3(10, 0, 0), v3(0, 0, -10), add_material(s, lambertian(rho)));
     return s;
 }
 
-// Renders with the given thread count; the image's linear pixels stay valid until glint_image_free.
+// Renders with the given thread count, without next-event estimation towards area lights when the scene's
+// builder set without_nee (the choice holds for that one render); the image's linear pixels stay valid until
+// glint_image_free.
 static glint_image *render(glint_scene *s, int threads, glint_render_stats *stats) {
-    glint_render_options opt = {threads};
+    render_options opt = {.threads = threads, .integrator = {.no_light_sampling = without_nee}};
+    without_nee = false;
     glint_image *img = NULL;
     glint_error err;
     glint_render_stats local;
     if (!stats) stats = &local;
-    glint_status st = glint_render(s, &opt, NULL, NULL, &img, stats, &err);
+    glint_status st = render_scene(s, &opt, NULL, NULL, &img, stats, &err);
     CHECK(st == GLINT_OK);
     if (st != GLINT_OK) fprintf(stderr, "render: %s\n", err.message);
     CHECK(stats->discarded_samples == 0);
@@ -498,7 +504,7 @@ static glint_scene *tiny_cornell(int spp, bool nee, uint64_t seed) {
     // Looking below the light (at its own pixels both estimators are as noisy as the jitter across its edge).
     glint_scene *s = new_scene(12, 12, spp, 50, v3(278, 278, -800), v3(278, 150, 0), v3(0, 1, 0), 30);
     s->settings.background_color = v3s(0.0f);
-    s->settings.no_light_sampling = !nee;
+    without_nee = !nee;
     s->settings.seed = seed;
     material red = material_default(MAT_LAMBERTIAN), white = red, green = red, lamp = material_default(MAT_DIFFUSE_LIGHT);
     red.albedo = v3(0.65f, 0.05f, 0.05f);
@@ -641,7 +647,7 @@ static glint_image *cornell_obj(int spp, int depth, uint64_t seed, bool nee) {
     s->settings.spp = spp;
     s->settings.max_depth = depth;
     s->settings.seed = seed;
-    s->settings.no_light_sampling = !nee;
+    without_nee = !nee;
     glint_image *img = render(s, 0, NULL);
     glint_scene_free(s);
     return img;

@@ -2,7 +2,8 @@
 // sequential sum), the same for any thread count; progress reports; a stop keeps completed samples only.
 #include "check.h"
 #include "integrator/integrator.h"
-#include "render/film.h"
+#include "film/film.h"
+#include "render/frame.h"
 #include "scene/scene.h"
 
 #include <stdlib.h>
@@ -57,13 +58,14 @@ static glint_scene *make_scene(integrator_kind kind, int width, int height, int 
 }
 
 // Mean of samples 0..n-1 of pixel (x, y), accumulated exactly as the contract says.
-static void reference_pixel(const glint_scene *s, int x, int y, int n, float out[3]) {
+static void reference_pixel(const integrator *it, int x, int y, int n, float out[3]) {
+    const glint_scene *s = it->scene;
     uint64_t pixel = (uint64_t)y * (uint64_t)s->settings.width + (uint64_t)x;
     thread_stats ts = {0};
     double sum[3] = {0, 0, 0};
     for (int k = 0; k < n; k++) {
         rng r = rng_for_sample(s->settings.seed, pixel, (uint64_t)k);
-        vec3 c = integrator_sample(s, x, y, (uint32_t)k, &r, &ts);
+        vec3 c = it->sample(it, x, y, (uint32_t)k, &r, &ts);
         if (!v3_is_finite(c)) continue;
         sum[0] += c.x;
         sum[1] += c.y;
@@ -92,15 +94,19 @@ static void test_deterministic(integrator_kind kind, int width, int height, int 
     if (!first) { glint_scene_free(s); return; }
     CHECK(stats.samples == (uint64_t)width * (uint64_t)height * (uint64_t)spp);
     CHECK(stats.threads == 1);
+    render_frame frame;
+    glint_error err;
+    CHECK(frame_build(&frame, s, NULL, &err) == GLINT_OK);
     int mismatches = 0;
     for (int y = 0; y < height; y++)
         for (int x = 0; x < width; x++) {
             float want[3];
-            reference_pixel(s, x, y, spp, want);
+            reference_pixel(frame.integrator, x, y, spp, want);
             if (memcmp(want, &first->rgb[((size_t)y * (size_t)width + (size_t)x) * 3], sizeof want) != 0)
                 mismatches++;
         }
     CHECK(mismatches == 0);
+    frame_release(&frame);
     size_t bytes = (size_t)width * (size_t)height * 3 * sizeof(float);
     for (int threads = 2; threads <= 5; threads++) {
         glint_image *img = render(s, threads, &st, &stats);
@@ -179,6 +185,9 @@ static void test_stop_during(void) {
     CHECK(img != NULL);
     if (!img) { glint_scene_free(s); return; }
     if (st == GLINT_ERR_INTERRUPTED) CHECK(stats.samples < (uint64_t)SW * SH * SPP);
+    render_frame frame;
+    CHECK(frame_build(&frame, s, NULL, &err) == GLINT_OK);
+    const integrator *it = frame.integrator;
     int inconsistent = 0;
     uint64_t matched_samples = 0;
     for (int y = 0; y < SH; y++)
@@ -191,7 +200,7 @@ static void test_stop_during(void) {
             bool found = got[0] == 0.0f && got[1] == 0.0f && got[2] == 0.0f;
             for (int k = 0; !found && k < SPP; k++) {
                 rng r = rng_for_sample(s->settings.seed, pixel, (uint64_t)k);
-                vec3 c = integrator_sample(s, x, y, (uint32_t)k, &r, &ts);
+                vec3 c = it->sample(it, x, y, (uint32_t)k, &r, &ts);
                 if (v3_is_finite(c)) {
                     sum[0] += c.x;
                     sum[1] += c.y;
@@ -211,6 +220,7 @@ static void test_stop_during(void) {
            (unsigned long long)matched_samples);
     CHECK(inconsistent == 0);
     CHECK(matched_samples <= stats.samples); // no pixel claims samples that were not rendered
+    frame_release(&frame);
     glint_image_free(img);
     glint_scene_free(s);
 }

@@ -3,7 +3,7 @@
 // emitters).
 #include "check.h"
 #include "glint.h"
-#include "render/film.h"
+#include "film/film.h"
 #include "scene/scene.h"
 
 #include <stdlib.h>

@@ -1,14 +1,34 @@
-// accel.h — closest-hit and any-hit queries over a scene's primitives (brute force or a BVH).
+// accel.h — closest-hit and any-hit queries over geometry arrays (brute force or a BVH). Built from plain
+// arrays of spheres, quads, meshes and instances (accel_input), never from an application's scene.
 #ifndef GLINT_ACCEL_H
 #define GLINT_ACCEL_H
 
 #include "glint.h"
 #include "core/vec.h"
+#include "geometry/instance.h"
+#include "geometry/mesh.h"
+#include "geometry/quad.h"
+#include "geometry/sphere.h"
 
 #include <stdbool.h>
 #include <stdint.h>
 
-struct glint_scene;
+/// Which structure answers the queries: the 8-wide SIMD BVH, the binary BVH, or none (every primitive tested).
+typedef enum accel_kind { ACCEL_BVH, ACCEL_BVH2, ACCEL_NONE } accel_kind;
+
+/// The geometry a structure is built over, in world space except what instances place. The arrays must
+/// outlive the structure (it keeps pointers into them); unused arrays are NULL with count 0.
+typedef struct accel_input {
+    const sphere *spheres;
+    size_t sphere_count;
+    const quad *quads;
+    size_t quad_count;
+    const mesh *const *meshes;      ///< meshes[i]: the triangles an INSTANCE_MESH instance with index i places
+    size_t mesh_count;
+    const sphere *instance_spheres; ///< the object-space spheres INSTANCE_SPHERE instances place
+    const instance *instances;
+    size_t instance_count;
+} accel_input;
 
 /// Kinds of primitive a hit can be on.
 typedef enum hit_kind { HIT_SPHERE = 0, HIT_QUAD = 1, HIT_TRIANGLE = 2 } hit_kind;
@@ -19,9 +39,9 @@ typedef enum hit_kind { HIT_SPHERE = 0, HIT_QUAD = 1, HIT_TRIANGLE = 2 } hit_kin
 /// The result of a closest-hit query: distance along the ray and which primitive.
 typedef struct hit {
     float t;
-    uint32_t prim;     ///< index into the scene's array of `kind` (spheres, quads; triangles of the instance's mesh)
+    uint32_t prim;     ///< index into the input's array of `kind` (spheres, quads; triangles of the instance's mesh)
     uint32_t kind;     ///< hit_kind
-    uint32_t instance; ///< scene instance the primitive belongs to, or HIT_NO_INSTANCE
+    uint32_t instance; ///< instance the primitive belongs to, or HIT_NO_INSTANCE
     float b1, b2;      ///< triangle barycentrics of vertices 1 and 2; quad (alpha, beta)
 } hit;
 
@@ -34,8 +54,9 @@ typedef struct accel_stats {
 /// The acceleration structure of a scene (opaque): immutable once built, shared by every thread.
 typedef struct accel accel;
 
-/// Builds the structure chosen in the scene's settings over its primitives. NULL on out-of-memory.
-accel *accel_build(const struct glint_scene *s, glint_error *err);
+/// Builds a structure of the given kind over in's primitives (the arrays, not copied, must outlive it; the
+/// list of meshes is copied). NULL, with a message in *err, when out of memory.
+accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err);
 /// Frees the structure (NULL is allowed).
 void accel_free(accel *a);
 /// Tree statistics and build time, for the statistics line.
@@ -43,9 +64,6 @@ void accel_get_stats(const accel *a, accel_stats *out);
 
 /// Nearest hit with r->tmin < t < r->tmax; false when the ray escapes.
 bool accel_intersect(const accel *a, const ray *r, hit *h);
-/// Closest hits of two independent rays at once (faster than two calls: their traversals overlap in the
-/// processor); found[i] says whether ray i hit, and h[i] is then its hit.
-void accel_intersect2(const accel *a, const ray r[2], hit h[2], bool found[2]);
 /// Whether anything lies on the ray with r->tmin < t < r->tmax (for shadow rays).
 bool accel_occluded(const accel *a, const ray *r);
 

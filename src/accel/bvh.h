@@ -10,7 +10,6 @@
 #include "geometry/transform.h"
 #include "geometry/quad.h"
 #include "geometry/triangle.h"
-#include "scene/scene.h"
 
 #include <stdbool.h>
 #include <stddef.h>
@@ -93,8 +92,7 @@ typedef struct bvh_input {
     const mesh *mesh; ///< its triangles
     const instance *instances;
     size_t instance_count;
-    const struct bvh *blas;        ///< blas[i]: the BVH of scene mesh i, for INSTANCE_MESH instances
-    const scene_mesh *meshes;      ///< the scene's meshes (brute force tests their triangles directly)
+    const struct bvh *blas;        ///< blas[i]: the BVH of mesh i, for INSTANCE_MESH instances
     const sphere *instance_spheres; ///< object-space spheres of INSTANCE_SPHERE instances
 } bvh_input;
 
@@ -154,12 +152,6 @@ bool bvh2_occluded(const bvh *b, const ray *r);
 bool bvh_intersect(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH, SIMD when compiled in, else scalar.
 bool bvh_occluded(const bvh *b, const ray *r);
-/// Closest hit among the primitives of in by testing every one (the reference for the BVHs).
-bool bvh_brute_intersect(const bvh_input *in, const ray *r, hit *h);
-/// Any hit among the primitives of in by testing every one.
-bool bvh_brute_occluded(const bvh_input *in, const ray *r);
-/// Closest hits of two independent rays in the wide BVH, their traversals interleaved step by step.
-void bvh_intersect2(const bvh *b, const ray *r0, const ray *r1, hit *h0, hit *h1, bool *f0, bool *f1);
 /// Closest hit in the wide BVH by the portable scalar path (always compiled, for tests).
 bool bvh_intersect_scalar(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH by the portable scalar path.

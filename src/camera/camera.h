@@ -62,6 +62,14 @@ static inline ray camera_ray(const camera *c, float fx, float fy, rng *r) {
     return out;
 }
 
+/// The camera ray of a sample of pixel (x, y) as the path tracer makes it: a film point uniformly jittered in
+/// the pixel (two draws from r), then camera_ray_unnormalised through it (camera_batch.h makes eight at once).
+static inline ray camera_sample_ray(const camera *c, int x, int y, rng *r) {
+    float fx = (float)x + rng_float(r);
+    float fy = (float)y + rng_float(r);
+    return camera_ray_unnormalised(c, fx, fy, r);
+}
+
 /// The paper's viewport point for film point (fx, fy), in double: V = (gx * Vw / W, gy * Vh / H, d)
 /// relative to the eye, with gx = fx - W/2 and gy = H/2 - fy.
 void camera_viewport_point(const camera *c, double fx, double fy, double out[3]);

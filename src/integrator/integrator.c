@@ -1,70 +1,48 @@
-// integrator.c — dispatch to the integrator the scene chose, and shading data of a hit.
+// integrator.c — choosing and building the integrator a scene asks for, and the sample-by-sample tile loop.
 #include "integrator/integrator.h"
 
-#include <math.h>
+#include <stddef.h>
+#include <stdlib.h>
 
-vec3 integrator_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
+integrator *integrator_create(const glint_scene *s, const accel *a, const integrator_options *o, glint_error *err) {
     switch (s->settings.integrator) {
-    case INTEGRATOR_WHITTED: return whitted_sample(s, x, y, sample, r, ts);
-    case INTEGRATOR_PATH: return path_sample(s, x, y, sample, r, ts);
+    case INTEGRATOR_WHITTED: return whitted_create(s, a, err);
+    case INTEGRATOR_PATH: return path_create(s, a, !(o && o->no_light_sampling), err);
     }
-    return v3s(0.0f);
+    return NULL;
 }
 
-// Bound on the rounding error of a point computed as o + t d in float, relative to its magnitude: a few
-// ulps of the largest coordinate involved (pbrt's gamma(n) bounds, rounded up generously).
-static float point_error(vec3 o, vec3 p) {
-    vec3 ao = v3(fabsf(o.x), fabsf(o.y), fabsf(o.z)), ap = v3(fabsf(p.x), fabsf(p.y), fabsf(p.z));
-    return (v3_max_comp(ao) + v3_max_comp(ap)) * 0x1p-20f;
+void integrator_free(integrator *it) {
+    if (!it) return;
+    if (it->release) it->release(it);
+    else free(it);
 }
 
-// Orients the shading record: `outward` is the geometric normal the surface was defined with, `ns` the
-// shading normal on the same side; both end up facing against the ray.
-static void orient(surface *out, const ray *r, vec3 outward, vec3 ns) {
-    out->front = v3_dot(r->d, outward) < 0.0f;
-    out->ng = out->front ? outward : v3_neg(outward);
-    out->n = out->front ? ns : v3_neg(ns);
+void integrator_init(integrator *it, const glint_scene *s, const accel *a) {
+    it->scene = s;
+    it->accel = a;
+    it->camera = s->camera;
+    camera_prepare(&it->camera, s->settings.width, s->settings.height);
+    it->stream = rng_seed_stream(s->settings.seed);
+    it->sample = NULL;
+    it->render_tile = NULL;
+    it->release = NULL;
 }
 
-surface surface_at_general(const glint_scene *s, const ray *r, const hit *h) {
-    surface out;
-    out.p = ray_at(r, h->t);
-    out.error = point_error(r->o, out.p);
-    out.kind = (hit_kind)h->kind;
-    out.prim = h->prim;
-    out.instance = h->instance;
-    out.u = h->b1;
-    out.v = h->b2;
-    if (h->instance == HIT_NO_INSTANCE) { // world-space quad (world spheres take the inline path)
-        const quad *q = &s->quads[h->prim];
-        orient(&out, r, q->normal, q->normal);
-        out.material = q->material;
-        return out;
-    }
-    const instance *in = &s->instances[h->instance];
-    // Object-space quantities go to world space: normals by the inverse transpose.
-    if (in->kind == INSTANCE_SPHERE) {
-        const sphere *sp = &s->instance_spheres[in->index];
-        ray ro = mat4_apply_ray(&in->xf.inv, r);
-        vec3 po = ray_at(&ro, h->t);
-        vec3 no = sphere_normal(sp, po);
-        vec3 nw = v3_unit(mat4_apply_normal(&in->xf.inv, no));
-        orient(&out, r, nw, nw);
-        out.material = in->material >= 0 ? (uint32_t)in->material : sp->material;
-        sphere_uv(sp->radius < 0.0f ? v3_neg(no) : no, &out.u, &out.v);
-        return out;
-    }
-    const scene_mesh *sm = &s->meshes[in->index];
-    tri_hit th = {h->t, 1.0f - h->b1 - h->b2, h->b1, h->b2};
-    mesh_shading sh = mesh_shade(&sm->geometry, h->prim, &th);
-    vec3 ng = v3_unit(mat4_apply_normal(&in->xf.inv, sh.ng));
-    vec3 ns = v3_unit(mat4_apply_normal(&in->xf.inv, sh.ns));
-    orient(&out, r, ng, ns);
-    out.u = sh.u;
-    out.v = sh.v;
-    int32_t slot = sm->geometry.triangles[h->prim].material;
-    if (in->material >= 0) out.material = (uint32_t)in->material;
-    else if (slot >= 0 && (size_t)slot < sm->slot_count) out.material = sm->slot_material[slot];
-    else out.material = sm->default_material;
-    return out;
+bool integrator_tile_by_samples(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
+    const render_settings *rs = &it->scene->settings;
+    for (int y = tp->y0; y < tp->y1; y++)
+        for (int x = tp->x0; x < tp->x1; x++) {
+            // rng_for_sample(seed, pixel, k), its per-render and per-pixel parts computed once.
+            uint64_t key = rng_pixel_key(rs->seed, (uint64_t)y * (uint64_t)rs->width + (uint64_t)x);
+            for (int k = tp->k0; k < tp->k1; k++) {
+                if (tile_pass_stopping(tp)) {
+                    film_tile_stop(ft);
+                    return false;
+                }
+                rng r = rng_for_key(it->stream, key, (uint64_t)k);
+                film_tile_add(ft, it->sample(it, x, y, (uint32_t)k, &r, ts));
+            }
+        }
+    return true;
 }

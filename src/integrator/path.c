@@ -4,190 +4,25 @@
 // are emissive quads and mesh triangles, combined with the BSDF samples that hit them by multiple importance
 // sampling.
 #include "integrator/integrator.h"
+#include "integrator/light_sampler.h"
 #include "integrator/spawn.h"
+#include "integrator/surface.h"
 #include "material/scatter.h"
 
+#include "camera/camera_batch.h"
+
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 
 static const float inv_pi = 0.318309886183791f;
 
-/// An emissive triangle of a mesh instance, in world space (placed by the instance's transform at prepare time).
-typedef struct tri_light {
-    vec3 p0, e1, e2;   ///< corner and the edges to the other two corners
-    vec3 n;            ///< unit normal of the world-space triangle, either side (for the area-to-solid-angle factor)
-    float area;
-    uint32_t instance; ///< scene instance, and the triangle in its mesh: for emission sides and texture coordinates
-    uint32_t tri;
-    uint32_t material;
-} tri_light;
-
-/// One light of the index: a scene quad, or a triangle of tris.
-typedef struct light_ref {
-    bool is_tri;
-    uint32_t index; ///< into s->quads, or into path_lights.tris
-} light_ref;
-
-/// The scene's emissive quads and mesh triangles, indexed for next-event estimation (built by path_prepare).
-struct path_lights {
-    light_ref *lights;      ///< the lights, quads first in scene order, then triangles by instance and triangle
-    float *cdf;             ///< cdf[i]: probability of choosing one of lights[0..i]; the last is 1
-    float *select_pdf;      ///< per scene quad: probability of choosing it, 0 for a quad that is not a light
-    size_t count;           ///< lights
-    size_t quad_count;      ///< scene quads when indexed (select_pdf's length)
-    tri_light *tris;        ///< the emissive triangles
-    size_t tri_count;
-    size_t *tri_base;       ///< per scene instance: its first triangle's entry in tri_select_pdf, or SIZE_MAX
-    float *tri_select_pdf;  ///< per triangle of each instance with a tri_base: probability of choosing it, or 0
-    size_t instance_count;  ///< scene instances when indexed (tri_base's length)
-};
-
-void path_release(glint_scene *s) {
-    path_lights *pl = s->path_lights;
-    if (!pl) return;
-    free(pl->lights);
-    free(pl->cdf);
-    free(pl->select_pdf);
-    free(pl->tris);
-    free(pl->tri_base);
-    free(pl->tri_select_pdf);
-    free(pl);
-    s->path_lights = NULL;
-}
-
-// Power of a light of material m and area `area` up to constant factors (area times summed emission), by
-// which lights are chosen; 0 for one that emits nothing. Emission textures scale this, but any positive
-// choice stays unbiased.
-static double light_power(const material *m, double area) {
-    if (m->kind != MAT_DIFFUSE_LIGHT) return 0.0;
-    double e = (double)m->emission.x + m->emission.y + m->emission.z;
-    double p = e * area;
-    return isfinite(p) && p > 0.0 ? p : 0.0;
-}
-
-// A quad light's power (light_power).
-static double quad_light_power(const glint_scene *s, const quad *q) {
-    return light_power(&s->materials[q->material], q->area);
-}
-
-// The scene material of triangle `tri` of mesh instance `in`, as surface_at_general chooses it.
-static uint32_t instance_triangle_material(const glint_scene *s, const instance *in, size_t tri) {
-    const scene_mesh *sm = &s->meshes[in->index];
-    int32_t slot = sm->geometry.triangles[tri].material;
-    if (in->material >= 0) return (uint32_t)in->material;
-    if (slot >= 0 && (size_t)slot < sm->slot_count) return sm->slot_material[slot];
-    return sm->default_material;
-}
-
-// Triangle `tri` of mesh instance `ii` in world space, with its power (light_power; 0: not a light).
-static double tri_light_make(const glint_scene *s, uint32_t ii, uint32_t tri, tri_light *out) {
-    const instance *in = &s->instances[ii];
-    const material *m = &s->materials[instance_triangle_material(s, in, tri)];
-    if (m->kind != MAT_DIFFUSE_LIGHT) return 0.0; // most triangles: skip the transform
-    vec3 p0, p1, p2;
-    mesh_triangle_positions(&s->meshes[in->index].geometry, tri, &p0, &p1, &p2);
-    p0 = mat4_apply_point(&in->xf.m, p0);
-    p1 = mat4_apply_point(&in->xf.m, p1);
-    p2 = mat4_apply_point(&in->xf.m, p2);
-    out->p0 = p0;
-    out->e1 = v3_sub(p1, p0);
-    out->e2 = v3_sub(p2, p0);
-    vec3 c = v3_cross(out->e1, out->e2);
-    float len = sqrtf(v3_len2(c));
-    out->area = 0.5f * len;
-    if (!(len > 0.0f) || !isfinite(len)) return 0.0; // degenerate: BSDF sampling alone finds it (never)
-    out->n = v3_scale(c, 1.0f / len);
-    out->instance = ii;
-    out->tri = tri;
-    out->material = (uint32_t)(m - s->materials);
-    return light_power(m, out->area);
-}
-
-// Adds a light of power p to the cdf under construction; its selection probability (the cdf step, so that
-// sampling and the MIS weights of BSDF hits agree on it).
-static float add_light(path_lights *pl, light_ref ref, double p, double *sum, double total, size_t count,
-                       float *prev) {
-    *sum += p;
-    size_t k = pl->count++;
-    pl->lights[k] = ref;
-    pl->cdf[k] = pl->count == count ? 1.0f : (float)(*sum / total);
-    float select = pl->cdf[k] - *prev;
-    *prev = pl->cdf[k];
-    return select;
-}
-
-bool path_prepare(glint_scene *s) {
-    path_release(s);
-    size_t count = 0, tri_count = 0, tri_slots = 0;
-    double total = 0.0;
-    for (size_t i = 0; i < s->quad_count; i++) {
-        double p = quad_light_power(s, &s->quads[i]);
-        count += p > 0.0;
-        total += p;
-    }
-    for (size_t i = 0; i < s->instance_count; i++) {
-        const instance *in = &s->instances[i];
-        if (in->kind != INSTANCE_MESH) continue;
-        size_t nt = s->meshes[in->index].geometry.triangle_count, here = 0;
-        for (size_t t = 0; t < nt; t++) {
-            tri_light tl;
-            double p = tri_light_make(s, (uint32_t)i, (uint32_t)t, &tl);
-            here += p > 0.0;
-            total += p;
-        }
-        tri_count += here;
-        if (here) tri_slots += nt;
-    }
-    count += tri_count;
-    if (count == 0 || !isfinite(total)) return true; // nothing to sample: BSDF sampling alone
-    path_lights *pl = calloc(1, sizeof *pl);
-    if (!pl) return false;
-    s->path_lights = pl;
-    pl->lights = malloc(count * sizeof *pl->lights);
-    pl->cdf = malloc(count * sizeof *pl->cdf);
-    pl->select_pdf = calloc(s->quad_count ? s->quad_count : 1, sizeof *pl->select_pdf);
-    bool ok = pl->lights && pl->cdf && pl->select_pdf;
-    if (ok && tri_count) {
-        pl->tris = malloc(tri_count * sizeof *pl->tris);
-        pl->tri_base = malloc(s->instance_count * sizeof *pl->tri_base);
-        pl->tri_select_pdf = calloc(tri_slots, sizeof *pl->tri_select_pdf);
-        ok = pl->tris && pl->tri_base && pl->tri_select_pdf;
-    }
-    if (!ok) {
-        path_release(s);
-        return false;
-    }
-    double sum = 0.0;
-    float prev = 0.0f;
-    for (size_t i = 0; i < s->quad_count; i++) {
-        double p = quad_light_power(s, &s->quads[i]);
-        if (!(p > 0.0)) continue;
-        pl->select_pdf[i] = add_light(pl, (light_ref){false, (uint32_t)i}, p, &sum, total, count, &prev);
-    }
-    pl->quad_count = s->quad_count;
-    if (!tri_count) return true;
-    size_t slot = 0;
-    for (size_t i = 0; i < s->instance_count; i++) {
-        const instance *in = &s->instances[i];
-        pl->tri_base[i] = SIZE_MAX;
-        if (in->kind != INSTANCE_MESH) continue;
-        size_t nt = s->meshes[in->index].geometry.triangle_count;
-        for (size_t t = 0; t < nt; t++) {
-            tri_light tl;
-            double p = tri_light_make(s, (uint32_t)i, (uint32_t)t, &tl);
-            if (!(p > 0.0)) continue;
-            if (pl->tri_base[i] == SIZE_MAX) {
-                pl->tri_base[i] = slot;
-                slot += nt;
-            }
-            uint32_t k = (uint32_t)pl->tri_count++;
-            pl->tris[k] = tl;
-            pl->tri_select_pdf[pl->tri_base[i] + t] = add_light(pl, (light_ref){true, k}, p, &sum, total, count, &prev);
-        }
-    }
-    pl->instance_count = s->instance_count;
-    return true;
-}
+/// The path tracer: the common integrator state and its light sampler (pbrt's PathIntegrator owns its own).
+typedef struct path_integrator {
+    integrator base;
+    light_sampler lights;
+    const light_sampler *sampled; ///< &lights when next-event estimation samples the emissive surfaces, else NULL
+} path_integrator;
 
 // Power heuristic weight (beta = 2) of a strategy of density a against one of density b, a > 0: a^2 /
 // (a^2 + b^2), in a form that neither overflows nor divides zero by zero.
@@ -196,55 +31,14 @@ static float mis_weight(float a, float b) {
     return 1.0f / (1.0f + q * q);
 }
 
-// Probability density, per unit solid angle, with which next-event estimation would have chosen the point
-// where a ray of unit direction d hit an emissive quad or mesh triangle at distance t; 0 when it is not an
-// indexed light.
-static float light_pdf(const glint_scene *s, const path_lights *pl, const surface *sf, vec3 d, float t) {
-    if (sf->kind == HIT_TRIANGLE) {
-        if (sf->instance >= pl->instance_count || pl->tri_base[sf->instance] == SIZE_MAX) return 0.0f;
-        float select = pl->tri_select_pdf[pl->tri_base[sf->instance] + sf->prim];
-        if (!(select > 0.0f)) return 0.0f;
-        // The light's record, found by binary search: its entries are sorted by (instance, triangle).
-        size_t lo = 0, hi = pl->tri_count - 1;
-        while (lo < hi) {
-            size_t mid = lo + (hi - lo) / 2;
-            const tri_light *tm = &pl->tris[mid];
-            if (tm->instance < sf->instance || (tm->instance == sf->instance && tm->tri < sf->prim)) lo = mid + 1;
-            else hi = mid;
-        }
-        const tri_light *tl = &pl->tris[lo];
-        float cos_l = fabsf(v3_dot(d, tl->n));
-        if (!(cos_l > 0.0f)) return 0.0f;
-        return select * t * t / (cos_l * tl->area);
-    }
-    if (sf->kind != HIT_QUAD || sf->instance != HIT_NO_INSTANCE || sf->prim >= pl->quad_count) return 0.0f;
-    float select = pl->select_pdf[sf->prim];
-    if (!(select > 0.0f)) return 0.0f;
-    const quad *q = &s->quads[sf->prim];
-    float cos_l = fabsf(v3_dot(d, q->normal));
-    if (!(cos_l > 0.0f)) return 0.0f;
-    return select * t * t / (cos_l * q->area);
-}
-
-// The emitted radiance of triangle light tl at barycentrics (b1, b2), point x, towards unit direction wi
-// (from the receiver to the light): the side and texture coordinates as surface_at_general gives them to a
-// ray that hits it there, so that both strategies see the same emission.
-static vec3 tri_light_emitted(const glint_scene *s, const tri_light *tl, float b1, float b2, vec3 x, vec3 wi) {
-    const instance *in = &s->instances[tl->instance];
-    tri_hit th = {0.0f, 1.0f - b1 - b2, b1, b2};
-    mesh_shading sh = mesh_shade(&s->meshes[in->index].geometry, tl->tri, &th);
-    vec3 ng = mat4_apply_normal(&in->xf.inv, sh.ng);
-    bool front = v3_dot(wi, ng) < 0.0f;
-    return mat_emitted(&s->materials[tl->material], s->textures, front, sh.u, sh.v, x);
-}
-
 // Next-event estimation towards the emissive quads and triangles at a diffuse surface point: a light chosen
 // by power, a uniform point on it and a shadow ray, weighted against BSDF sampling by the power heuristic.
 // Returns Le cos / (pi pdf) times the weight; the caller multiplies by the albedo and the path's throughput.
 // in_side is d.ng for the arriving ray d: light below the geometric surface does not count (the BSDF
 // sampling does not continue there either).
-static vec3 sample_light(const glint_scene *s, const path_lights *pl, const surface *sf, const spawn_point *sp,
+static vec3 sample_light(const integrator *it, const light_sampler *pl, const surface *sf, const spawn_point *sp,
                          float in_side, rng *r, thread_stats *ts) {
+    const glint_scene *s = it->scene;
     float xi = rng_float(r), a = rng_float(r), b = rng_float(r);
     size_t lo = 0, hi = pl->count - 1; // the first light whose cdf exceeds xi
     while (lo < hi) {
@@ -252,7 +46,7 @@ static vec3 sample_light(const glint_scene *s, const path_lights *pl, const surf
         if (xi < pl->cdf[mid]) hi = mid;
         else lo = mid + 1;
     }
-    float select = pl->cdf[lo] - (lo ? pl->cdf[lo - 1] : 0.0f); // as path_prepare recorded it
+    float select = pl->cdf[lo] - (lo ? pl->cdf[lo - 1] : 0.0f); // as light_sampler_build recorded it
     light_ref ref = pl->lights[lo];
     vec3 x, n;
     float area;
@@ -288,7 +82,7 @@ static vec3 sample_light(const glint_scene *s, const path_lights *pl, const surf
     } else {
         cos_l = fabsf(cos_l);
         // The emitting side of a triangle is its shading record's: zero emission from the other side.
-        le = tri_light_emitted(s, tl, b1, b2, x, wi);
+        le = light_sampler_tri_emitted(s, tl, b1, b2, x, wi);
         if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return v3s(0.0f);
     }
     float cos_s = v3_dot(sf->n, wi);
@@ -298,7 +92,7 @@ static vec3 sample_light(const glint_scene *s, const path_lights *pl, const surf
     // Stop short of the light by a relative margin (pbrt's shadow epsilon) so that it does not occlude itself.
     ray shadow = spawn_ray(sp, wi, 0.0f, dist * (1.0f - 1e-4f));
     ts->shadow_rays++;
-    if (accel_occluded(s->accel, &shadow)) return v3s(0.0f);
+    if (accel_occluded(it->accel, &shadow)) return v3s(0.0f);
     if (q) le = mat_emitted(&s->materials[q->material], s->textures, true, a, b, x);
     float w = mis_weight(pdf_light, cos_s * inv_pi);
     return v3_scale(le, cos_s * inv_pi * w / pdf_light);
@@ -308,7 +102,8 @@ static vec3 sample_light(const glint_scene *s, const path_lights *pl, const surf
 // times irradiance, unoccluded. Point lights fall off with the inverse square of the distance; a
 // directional light's intensity is the irradiance it gives a surface facing it. Ambient lights have no
 // place in a path tracer (the background is the ambient light) and are ignored.
-static vec3 direct_light(const glint_scene *s, const spawn_point *sp, vec3 n, vec3 weight, thread_stats *ts) {
+static vec3 direct_light(const integrator *it, const spawn_point *sp, vec3 n, vec3 weight, thread_stats *ts) {
+    const glint_scene *s = it->scene;
     vec3 sum = v3s(0.0f);
     for (size_t i = 0; i < s->light_count; i++) {
         const light *l = &s->lights[i];
@@ -334,23 +129,22 @@ static vec3 direct_light(const glint_scene *s, const spawn_point *sp, vec3 n, ve
         // Stop just short of a point light: whatever lies beyond it casts no shadow.
         ray shadow = spawn_ray(sp, wl, 0.0f, dist * (1.0f - 0x1p-20f));
         ts->shadow_rays++;
-        if (accel_occluded(s->accel, &shadow)) continue;
+        if (accel_occluded(it->accel, &shadow)) continue;
         sum = v3_add(sum, v3_scale(l->intensity, cos_l * falloff));
     }
     return v3_scale(v3_mul(sum, weight), inv_pi);
 }
 
-vec3 path_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
-    (void)sample;
-    ray primary = integrator_camera_ray(s, x, y, r);
-    return path_trace(s, primary.o, primary.d, r, ts);
-}
-
-vec3 path_trace(const glint_scene *s, vec3 o, vec3 d, rng *r, thread_stats *ts) {
+// The radiance a path starting with the primary ray (origin o, direction d, all t > 0) carries. The ray comes
+// by its parts, in registers: a whole ray passed by value is copied with wide loads that cannot be forwarded
+// from the stores that just made it. d need not have unit length.
+static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread_stats *ts) {
+    const integrator *it = &pi->base;
+    const glint_scene *s = it->scene;
     ray cur = {o, d, 0.0f, INFINITY};
     vec3 radiance = v3s(0.0f), throughput = v3s(1.0f);
     bool has_lights = s->light_count > 0;
-    const path_lights *pl = s->settings.no_light_sampling ? NULL : s->path_lights;
+    const light_sampler *pl = pi->sampled;
     bool light_sampled = false; // the last vertex sampled the area lights: a hit on one is weighted
     float bsdf_pdf = 0.0f;      // solid-angle density of the direction the last vertex sampled
     bool lean = !has_lights && !pl;
@@ -359,7 +153,7 @@ vec3 path_trace(const glint_scene *s, vec3 o, vec3 d, rng *r, thread_stats *ts) 
     for (int depth = 0; depth < s->settings.max_depth; depth++) {
         hit h;
         ts->rays++;
-        if (!accel_intersect(s->accel, &cur, &h)) {
+        if (!accel_intersect(it->accel, &cur, &h)) {
             if (!unit) cur.d = v3_unit(cur.d);
             radiance = v3_add(radiance, v3_mul(throughput, scene_background(&s->settings, cur.d)));
             break;
@@ -405,7 +199,7 @@ vec3 path_trace(const glint_scene *s, vec3 o, vec3 d, rng *r, thread_stats *ts) 
         if (m->kind == MAT_DIFFUSE_LIGHT) {
             vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, sf.p);
             if (light_sampled) {
-                float pdf_light = light_pdf(s, pl, &sf, cur.d, h.t);
+                float pdf_light = light_sampler_pdf(pl, s, &sf, cur.d, h.t);
                 if (pdf_light > 0.0f) le = v3_scale(le, mis_weight(bsdf_pdf, pdf_light));
             }
             radiance = v3_add(radiance, v3_mul(throughput, le));
@@ -418,10 +212,10 @@ vec3 path_trace(const glint_scene *s, vec3 o, vec3 d, rng *r, thread_stats *ts) 
         float in_side = v3_dot(cur.d, sf.ng);
         light_sampled = false;
         if (ev.diffuse) {
-            if (has_lights) radiance = v3_add(radiance, v3_mul(throughput, direct_light(s, &sp, sf.n, ev.weight, ts)));
+            if (has_lights) radiance = v3_add(radiance, v3_mul(throughput, direct_light(it, &sp, sf.n, ev.weight, ts)));
             // Only where the BSDF sample is traced too, so that the two strategies cover the same paths.
             if (pl && depth + 1 < s->settings.max_depth) {
-                vec3 direct = sample_light(s, pl, &sf, &sp, in_side, r, ts);
+                vec3 direct = sample_light(it, pl, &sf, &sp, in_side, r, ts);
                 radiance = v3_add(radiance, v3_mul(throughput, v3_mul(ev.weight, direct)));
                 light_sampled = true;
                 bsdf_pdf = v3_dot(ev.dir, sf.n) * inv_pi;
@@ -440,4 +234,75 @@ vec3 path_trace(const glint_scene *s, vec3 o, vec3 d, rng *r, thread_stats *ts) 
         cur = spawn_ray(&sp, ev.dir, 0.0f, INFINITY);
     }
     return radiance;
+}
+
+// One sample of pixel (x, y): its camera ray, then its path (what path_render_tile does eight at a time).
+static vec3 path_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
+    (void)sample;
+    ray primary = camera_sample_ray(&it->camera, x, y, r);
+    return path_trace((const path_integrator *)(const void *)it, primary.o, primary.d, r, ts);
+}
+
+// One tile pass: the samples' camera rays (and generators) are made CAMERA_BATCH at a time, in vector
+// instructions (camera_batch.h), before their paths are traced one by one. Same samples, same order, same
+// sums as path_sample one at a time: the same bytes.
+static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
+    const path_integrator *pi = (const path_integrator *)(const void *)it;
+    const render_settings *rs = &it->scene->settings;
+    int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
+    int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
+    // The batch cursor (gx, gy, gk) runs ahead of the film tile's cursor by up to CAMERA_BATCH items.
+    int gx = tp->x0, gy = tp->y0, gk = tp->k0;
+    uint64_t gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
+    camera_batch cb;
+    for (int j = 0; j < items; j += CAMERA_BATCH) {
+        int n = items - j < CAMERA_BATCH ? items - j : CAMERA_BATCH;
+        for (int i = 0; i < CAMERA_BATCH; i++) {
+            if (i >= n) { // lanes past the tile's end repeat the first
+                cb.x[i] = cb.x[0], cb.y[i] = cb.y[0], cb.key[i] = cb.key[0], cb.sample[i] = cb.sample[0];
+                continue;
+            }
+            cb.x[i] = gx, cb.y[i] = gy, cb.key[i] = gkey, cb.sample[i] = (uint64_t)gk;
+            if (++gk == tp->k1) {
+                gk = tp->k0;
+                if (++gx == tp->x1) {
+                    gx = tp->x0;
+                    gy++;
+                }
+                if (gy < tp->y1) gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
+            }
+        }
+        camera_batch_make(&it->camera, it->stream, &cb);
+        for (int i = 0; i < n; i++) {
+            if (tile_pass_stopping(tp)) {
+                film_tile_stop(ft);
+                return false;
+            }
+            rng r = cb.r[i];
+            if (!film_tile_add(ft, path_trace(pi, cb.o[i], cb.d[i], &r, ts))) return true;
+        }
+    }
+    return true;
+}
+
+static void path_release(integrator *it) {
+    path_integrator *pi = (path_integrator *)(void *)it;
+    light_sampler_release(&pi->lights);
+    free(pi);
+}
+
+integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_lights, glint_error *err) {
+    path_integrator *pi = malloc(sizeof *pi);
+    // The index of emissive surfaces depends only on the scene: built once per render, before the threads start.
+    if (!pi || !light_sampler_build(&pi->lights, s)) {
+        free(pi);
+        snprintf(err->message, sizeof err->message, "%s: out of memory while indexing the emissive surfaces", s->path);
+        return NULL;
+    }
+    integrator_init(&pi->base, s, a);
+    pi->base.sample = path_sample;
+    pi->base.render_tile = path_render_tile;
+    pi->base.release = path_release;
+    pi->sampled = sample_area_lights && pi->lights.count > 0 ? &pi->lights : NULL;
+    return &pi->base;
 }

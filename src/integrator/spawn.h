@@ -4,7 +4,7 @@
 #ifndef GLINT_SPAWN_H
 #define GLINT_SPAWN_H
 
-#include "integrator/integrator.h"
+#include "integrator/surface.h"
 
 #include <math.h>
 

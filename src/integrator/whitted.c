@@ -4,6 +4,8 @@
 #include "material/scatter.h"
 
 #include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
 
 // The paper mode must round exactly as the OCaml program does: no fused multiply-adds. GCC does not
 // contract in ISO C mode (-std=c17); clang contracts within expressions unless told not to.
@@ -16,6 +18,18 @@
 // The program knows spheres only: paper mode sees the scene's world-space spheres and ignores quads,
 // meshes, instances and textures (its colours are the materials' constant ones).
 // ---------------------------------------------------------------------------------------------------
+
+// Film point of a sample: the pixel centre for a single sample (the paper's one ray a pixel), else uniformly
+// jittered in the pixel.
+static void whitted_film_point(const glint_scene *s, int x, int y, rng *r, float *fx, float *fy) {
+    if (s->settings.spp == 1) {
+        *fx = (float)x + 0.5f;
+        *fy = (float)y + 0.5f;
+        return;
+    }
+    *fx = (float)x + rng_float(r);
+    *fy = (float)y + rng_float(r);
+}
 
 /// A point or vector in double, as the program's `point` record.
 typedef struct dvec {
@@ -204,10 +218,11 @@ static float paper_channel(double colour, double intensity) {
     return (float)byte / 255.0f;
 }
 
-static vec3 paper_sample(const glint_scene *s, int x, int y, rng *r, thread_stats *ts) {
-    const camera *c = &s->camera;
+static vec3 paper_sample(const integrator *it, int x, int y, rng *r, thread_stats *ts) {
+    const glint_scene *s = it->scene;
+    const camera *c = &it->camera;
     float fx, fy;
-    integrator_film_point(s, x, y, r, &fx, &fy);
+    whitted_film_point(s, x, y, r, &fx, &fy);
     dvec o, d;
     double tmin;
     if (c->kind == CAMERA_VIEWPORT) {
@@ -274,7 +289,8 @@ static float refine_t(const sphere *sp, const ray *r, float t) {
 // Closest hit of a ray. For a ray leaving the surface of sphere `from`, that sphere's float roots near the
 // origin are rounding noise (and an offset origin would move shadow edges): its one true root is
 // t = -2 (o - C).d / |d|^2, the other being 0, so its float roots are skipped and this one stands in.
-static bool color_intersect(const glint_scene *s, const spawned *sr, hit *h) {
+static bool color_intersect(const integrator *it, const spawned *sr, hit *h) {
+    const glint_scene *s = it->scene;
     ray r = sr->r;
     float t_own = -1.0f;
     if (sr->from != NO_SPHERE) {
@@ -285,7 +301,7 @@ static bool color_intersect(const glint_scene *s, const spawned *sr, hit *h) {
     }
     // Each pass steps over at most one float root of `from`, which has two.
     for (int pass = 0; pass < 3; pass++) {
-        if (!accel_intersect(s->accel, &r, h)) break;
+        if (!accel_intersect(it->accel, &r, h)) break;
         if (!hit_world_sphere(h)) return true; // quads, triangles, instances: offset origins keep them apart
         if (h->prim != sr->from) {
             h->t = refine_t(&s->spheres[h->prim], &r, h->t);
@@ -338,8 +354,9 @@ static spawned spawn(const color_origin *co, vec3 d) {
 // Ambient + diffuse lighting times the surface colour, plus Phong highlights times the highlight colour;
 // light intensities are RGB. A light counts only when no surface (this one included) lies on the shadow ray
 // P + tL, t in (0.001, 1) towards a point light (L = position - P), (0.001, inf) along a directional one.
-static vec3 color_local(const glint_scene *s, const material *m, vec3 albedo, const color_origin *co,
+static vec3 color_local(const integrator *it, const material *m, vec3 albedo, const color_origin *co,
                         const surface *sf, vec3 view, thread_stats *ts) {
+    const glint_scene *s = it->scene;
     vec3 ambient = v3s(0.0f), diffuse = v3s(0.0f), specular = v3s(0.0f);
     int shininess = m->kind == MAT_PHONG ? m->specular : 0;
     vec3 n = sf->n;
@@ -363,7 +380,7 @@ static vec3 color_local(const glint_scene *s, const material *m, vec3 albedo, co
         if (li->kind == LIGHT_POINT) sh.r.tmax = 1.0f; // the light itself is at t = 1
         ts->shadow_rays++;
         hit h;
-        if (color_intersect(s, &sh, &h)) continue;
+        if (color_intersect(it, &sh, &h)) continue;
         diffuse = v3_add(diffuse, v3_scale(li->intensity, kd));
         specular = v3_add(specular, v3_scale(li->intensity, ks));
     }
@@ -374,14 +391,15 @@ static vec3 color_local(const glint_scene *s, const material *m, vec3 albedo, co
 // Radiance along r times weight w, with `depth` bounces left. Mirror chains loop; at a glass surface the
 // lighter of the reflected and refracted branches recurses and the heavier loops, so the stack depth stays
 // logarithmic in 1 / MIN_WEIGHT whatever the depth budget.
-static vec3 color_trace(const glint_scene *s, spawned r, int depth, vec3 w, thread_stats *ts) {
+static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thread_stats *ts) {
+    const glint_scene *s = it->scene;
     vec3 sum = v3s(0.0f);
     for (;;) {
         if (v3_max_comp(w) < MIN_WEIGHT) return sum;
         ts->rays++;
         hit h;
         vec3 d = v3_unit(r.r.d);
-        if (!color_intersect(s, &r, &h)) return v3_add(sum, v3_mul(w, scene_background(&s->settings, d)));
+        if (!color_intersect(it, &r, &h)) return v3_add(sum, v3_mul(w, scene_background(&s->settings, d)));
         surface sf = surface_at(s, &r.r, &h);
         const material *m = &s->materials[sf.material];
         if (m->kind == MAT_DIFFUSE_LIGHT)
@@ -392,7 +410,7 @@ static vec3 color_trace(const glint_scene *s, spawned r, int depth, vec3 w, thre
         case MAT_DIFFUSE_LIGHT: return sum; // handled above
         case MAT_LAMBERTIAN:
         case MAT_PHONG: {
-            vec3 local = color_local(s, m, albedo, &co, &sf, v3_neg(d), ts);
+            vec3 local = color_local(it, m, albedo, &co, &sf, v3_neg(d), ts);
             float rfl = m->kind == MAT_PHONG ? m->reflective : 0.0f;
             if (!(rfl > 0.0f) || depth <= 0) return v3_add(sum, v3_mul(w, local));
             // local (1 - rfl) + rfl (what the reflected ray sees)
@@ -427,11 +445,11 @@ static vec3 color_trace(const glint_scene *s, spawned r, int depth, vec3 w, thre
             vec3 w_refl = v3_scale(w, fresnel);
             vec3 w_refr = v3_mul(w, v3_scale(albedo, 1.0f - fresnel));
             if (v3_max_comp(w_refl) < v3_max_comp(w_refr)) {
-                sum = v3_add(sum, color_trace(s, reflected, depth, w_refl, ts));
+                sum = v3_add(sum, color_trace(it, reflected, depth, w_refl, ts));
                 r = refracted;
                 w = w_refr;
             } else {
-                sum = v3_add(sum, color_trace(s, refracted, depth, w_refr, ts));
+                sum = v3_add(sum, color_trace(it, refracted, depth, w_refr, ts));
                 r = reflected;
                 w = w_refl;
             }
@@ -444,10 +462,11 @@ static vec3 color_trace(const glint_scene *s, spawned r, int depth, vec3 w, thre
 
 // Primary ray of a colour-mode sample. The viewport camera maps pixels as the paper does (pixel (x, y) is
 // centred on film point (x, y + 1)), computed in double; the look-at camera is the camera module's.
-static ray color_primary_ray(const glint_scene *s, int x, int y, rng *r) {
-    const camera *c = &s->camera;
+static ray color_primary_ray(const integrator *it, int x, int y, rng *r) {
+    const glint_scene *s = it->scene;
+    const camera *c = &it->camera;
     float fx, fy;
-    integrator_film_point(s, x, y, r, &fx, &fy);
+    whitted_film_point(s, x, y, r, &fx, &fy);
     if (c->kind != CAMERA_VIEWPORT) return camera_ray(c, fx, fy, r);
     double v[3];
     camera_viewport_point(c, (double)fx - 0.5, (double)fy + 0.5, v);
@@ -459,9 +478,24 @@ static ray color_primary_ray(const glint_scene *s, int x, int y, rng *r) {
     return out;
 }
 
-vec3 whitted_sample(const glint_scene *s, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
-    (void)sample; // r is already seeded for this sample
-    if (s->settings.whitted_mode == WHITTED_PAPER) return paper_sample(s, x, y, r, ts);
-    spawned primary = {color_primary_ray(s, x, y, r), NO_SPHERE};
-    return color_trace(s, primary, s->settings.max_depth, v3s(1.0f), ts);
+// One sample of pixel (x, y); r is already seeded for exactly this sample.
+static vec3 whitted_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
+    (void)sample;
+    const glint_scene *s = it->scene;
+    if (s->settings.whitted_mode == WHITTED_PAPER) return paper_sample(it, x, y, r, ts);
+    spawned primary = {color_primary_ray(it, x, y, r), NO_SPHERE};
+    return color_trace(it, primary, s->settings.max_depth, v3s(1.0f), ts);
+}
+
+integrator *whitted_create(const glint_scene *s, const accel *a, glint_error *err) {
+    integrator *it = malloc(sizeof *it);
+    if (!it) {
+        snprintf(err->message, sizeof err->message, "out of memory preparing the Whitted integrator");
+        return NULL;
+    }
+    integrator_init(it, s, a);
+    it->sample = whitted_sample;
+    it->render_tile = integrator_tile_by_samples;
+    it->release = NULL;
+    return it;
 }

@@ -1,5 +1,6 @@
 // image_write.c — PNG, PPM and PFM output, written to a temporary file and renamed into place.
-#include "render/film.h"
+#include "io/image_write.h"
+#include "film/film.h"
 
 #include <png.h>
 
@@ -201,7 +202,7 @@ static glint_status write_stdout(const glint_image *img, glint_format format, gl
     return rc == 0 ? GLINT_OK : cannot_write("standard output", rc, why, err);
 }
 
-glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
+glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
     glint_status st = resolve_format(path, format, &format, err);
     if (st != GLINT_OK) return st;
     if (strcmp(path, "-") == 0) return write_stdout(img, format, err);
@@ -235,7 +236,7 @@ glint_status glint_image_write(const glint_image *img, const char *path, glint_f
     return rc == 0 ? GLINT_OK : cannot_write(path, rc, why, err);
 }
 
-glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err) {
+glint_status image_check_path(const char *path, glint_format format, glint_error *err) {
     glint_status st = resolve_format(path, format, &format, err);
     if (st != GLINT_OK || strcmp(path, "-") == 0) return st;
     struct stat sb;

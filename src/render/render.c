@@ -1,11 +1,10 @@
 // render.c — the render stage: progressive sample passes over tiles handed out through an atomic counter to
 // N threads, each pixel's samples drawn from generators seeded by (seed, pixel, sample) alone, so any thread
 // count gives the same bytes, and a stop request leaves every pixel at the mean of its completed samples.
-#include "accel/accel.h"
+#include "render/render.h"
 #include "core/clock.h"
-#include "integrator/integrator.h"
-#include "render/camera_batch.h"
-#include "render/film.h"
+#include "film/film.h"
+#include "render/frame.h"
 
 #include <errno.h>
 #include <pthread.h>
@@ -23,11 +22,11 @@ enum {
     PROGRESS_INTERVAL_MS = 200, // progress callbacks at most five times a second
 };
 
-// Set by glint_request_stop (possibly from a signal handler), polled before every sample, cleared when a
+// Set by render_request_stop (possibly from a signal handler), polled before every sample, cleared when a
 // render returns: a request made while no render runs stops the next one at once.
 static _Alignas(64) atomic_int stop_requested; // read before every sample: a line of its own
 
-void glint_request_stop(void) { atomic_store(&stop_requested, 1); }
+void render_request_stop(void) { atomic_store(&stop_requested, 1); }
 
 static bool stop_is_requested(void) { return atomic_load_explicit(&stop_requested, memory_order_relaxed) != 0; }
 
@@ -36,12 +35,11 @@ static bool stop_is_requested(void) { return atomic_load_explicit(&stop_requeste
 // order, so the final mean is bit for bit the plain sum over samples 0..spp-1 divided by spp.
 typedef struct render_job {
     const glint_scene *scene;
-    glint_image *image;
-    double *sums;                  ///< per-pixel running RGB sums between passes; NULL with a single pass
+    const integrator *integrator;
+    film film;
     int tiles_x, tile_count, pass_count;
     int pass_start[MAX_PASSES + 1];
     uint64_t total_samples;        ///< width * height * spp
-    uint64_t stream;               ///< rng_seed_stream(seed), shared by every sample's generator
     atomic_int next_item;
     atomic_int *tile_passes;       ///< passes completed by each tile; pass p of a tile waits for p
     atomic_int waiters;            ///< workers blocked in wait_for_tile
@@ -85,118 +83,20 @@ static int plan_passes(int spp, int start[MAX_PASSES + 1]) {
     return n;
 }
 
-// Stores a pixel's state after its samples [0, k) (k1: the end of this pass): its running sum for the next
-// pass, and the mean of its samples so far in the image.
-static void store_pixel(const render_job *job, size_t pixel, const double sum[3], int k, int k1) {
-    if (job->sums && k1 < job->scene->settings.spp) memcpy(&job->sums[pixel * 3u], sum, 3 * sizeof *sum);
-    if (k > 0) {
-        float *px = &job->image->rgb[pixel * 3u];
-        double inv = 1.0 / k; // one division for the three channels, at every pass of every pixel
-        for (int c = 0; c < 3; c++) px[c] = (float)(sum[c] * inv);
-    }
-}
-
-// Renders samples [k0, k1) of pixel (x, y), adding to the sums of earlier passes, and stores the mean of the
-// samples completed so far; false when a stop request cut it short.
-static bool render_pixel(const render_job *job, int x, int y, int k0, int k1, thread_stats *ts,
-                         _Atomic uint64_t *progress) {
-    const glint_scene *s = job->scene;
-    const render_settings *rs = &s->settings;
-    size_t pixel = (size_t)y * (size_t)rs->width + (size_t)x;
-    double sum[3] = {0, 0, 0};
-    if (k0 > 0) memcpy(sum, &job->sums[pixel * 3u], sizeof sum);
-    int k = k0;
-    bool stopped = false;
-    // rng_for_sample(seed, pixel, k), its per-render and per-pixel parts computed once.
-    uint64_t key = rng_pixel_key(rs->seed, (uint64_t)pixel);
-    for (; k < k1; k++) {
-        if (stop_is_requested()) { stopped = true; break; }
-        rng r = rng_for_key(job->stream, key, (uint64_t)k);
-        vec3 c = integrator_sample(s, x, y, (uint32_t)k, &r, ts);
-        ts->samples++;
-        atomic_store_explicit(progress, ts->samples, memory_order_relaxed);
-        // A NaN or infinite sample would poison the pixel: drop it (it counts as black), count it, report it.
-        if (!v3_is_finite(c)) { ts->discarded_samples++; continue; }
-        sum[0] += c.x;
-        sum[1] += c.y;
-        sum[2] += c.z;
-    }
-    store_pixel(job, pixel, sum, k, k1);
-    return !stopped;
-}
-
-// One pass of one tile in the path tracer: render_pixel over the tile's pixels, except that the samples' camera
-// rays (and generators) are made CAMERA_BATCH at a time, in vector instructions (camera_batch.h), before their
-// paths are traced. Same samples, same order, same sums: the same bytes.
-static bool render_tile_path(const render_job *job, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *ts,
-                             _Atomic uint64_t *progress) {
-    const glint_scene *s = job->scene;
-    const render_settings *rs = &s->settings;
-    int w = x1 - x0, spp = k1 - k0, items = w * (y1 - y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
-    // The batch cursor (gx, gy, gk) runs ahead of the tracing cursor (x, y, k) by up to CAMERA_BATCH items.
-    int gx = x0, gy = y0, gk = k0;
-    uint64_t gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
-    int x = x0, y = y0, k = k0;
-    size_t pixel = (size_t)y * (size_t)rs->width + (size_t)x;
-    double sum[3] = {0, 0, 0};
-    if (k0 > 0) memcpy(sum, &job->sums[pixel * 3u], sizeof sum);
-    camera_batch cb;
-    for (int j = 0; j < items; j += CAMERA_BATCH) {
-        int n = items - j < CAMERA_BATCH ? items - j : CAMERA_BATCH;
-        for (int i = 0; i < CAMERA_BATCH; i++) {
-            if (i >= n) { // lanes past the tile's end repeat the first
-                cb.x[i] = cb.x[0], cb.y[i] = cb.y[0], cb.key[i] = cb.key[0], cb.sample[i] = cb.sample[0];
-                continue;
-            }
-            cb.x[i] = gx, cb.y[i] = gy, cb.key[i] = gkey, cb.sample[i] = (uint64_t)gk;
-            if (++gk == k1) {
-                gk = k0;
-                if (++gx == x1) { gx = x0; gy++; }
-                if (gy < y1) gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
-            }
-        }
-        camera_batch_make(s, job->stream, &cb);
-        for (int i = 0; i < n; i++) {
-            if (stop_is_requested()) {
-                store_pixel(job, pixel, sum, k, k1);
-                return false;
-            }
-            rng r = cb.r[i];
-            vec3 c = path_trace(s, cb.o[i], cb.d[i], &r, ts);
-            ts->samples++;
-            atomic_store_explicit(progress, ts->samples, memory_order_relaxed);
-            // A NaN or infinite sample would poison the pixel: drop it (it counts as black), count it, report it.
-            if (!v3_is_finite(c)) ts->discarded_samples++;
-            else {
-                sum[0] += c.x;
-                sum[1] += c.y;
-                sum[2] += c.z;
-            }
-            if (++k < k1) continue;
-            store_pixel(job, pixel, sum, k1, k1); // this pixel's samples of the pass are done
-            k = k0;
-            if (++x == x1) { x = x0; y++; }
-            if (y == y1) return true;
-            pixel = (size_t)y * (size_t)rs->width + (size_t)x;
-            sum[0] = sum[1] = sum[2] = 0.0;
-            if (k0 > 0) memcpy(sum, &job->sums[pixel * 3u], sizeof sum);
-        }
-    }
-    return true;
-}
-
 // Renders one pass of one tile; false when stopped part-way (pixels not reached keep the previous pass's mean).
-static bool render_tile(const render_job *job, int tile, int pass, thread_stats *ts, _Atomic uint64_t *progress) {
+static bool render_tile(render_job *job, int tile, int pass, thread_stats *ts, _Atomic uint64_t *progress) {
     const render_settings *rs = &job->scene->settings;
-    int x0 = (tile % job->tiles_x) * TILE_SIZE, y0 = (tile / job->tiles_x) * TILE_SIZE;
-    int x1 = x0 + TILE_SIZE < rs->width ? x0 + TILE_SIZE : rs->width;
-    int y1 = y0 + TILE_SIZE < rs->height ? y0 + TILE_SIZE : rs->height;
-    int k0 = job->pass_start[pass], k1 = job->pass_start[pass + 1];
-    if (rs->integrator == INTEGRATOR_PATH) return render_tile_path(job, x0, y0, x1, y1, k0, k1, ts, progress);
-    for (int y = y0; y < y1; y++)
-        for (int x = x0; x < x1; x++)
-            if (!render_pixel(job, x, y, k0, k1, ts, progress)) return false;
-    return true;
+    tile_pass tp;
+    tp.x0 = (tile % job->tiles_x) * TILE_SIZE;
+    tp.y0 = (tile / job->tiles_x) * TILE_SIZE;
+    tp.x1 = tp.x0 + TILE_SIZE < rs->width ? tp.x0 + TILE_SIZE : rs->width;
+    tp.y1 = tp.y0 + TILE_SIZE < rs->height ? tp.y0 + TILE_SIZE : rs->height;
+    tp.k0 = job->pass_start[pass];
+    tp.k1 = job->pass_start[pass + 1];
+    tp.stop = &stop_requested;
+    film_tile ft;
+    film_tile_begin(&ft, &job->film, tp.x0, tp.y0, tp.x1, tp.y1, tp.k0, tp.k1, ts, progress);
+    return job->integrator->render_tile(job->integrator, &tp, &ft, ts);
 }
 
 // Wakes the workers waiting for a tile; the waiters count (sequentially consistent, as is the tile store
@@ -304,26 +204,25 @@ static int online_cpus(void) {
     return n > 0 ? (int)n : 1;
 }
 
-// Sets up the job's passes, tiles and buffers; false when out of memory.
-static bool job_init(render_job *job, const glint_scene *s, glint_image *img) {
+// Sets up the job's passes, tiles and film; false when out of memory.
+static bool job_init(render_job *job, const glint_scene *s, const integrator *it) {
     const render_settings *rs = &s->settings;
     memset(job, 0, sizeof *job);
     job->scene = s;
-    job->image = img;
+    job->integrator = it;
     job->tiles_x = (rs->width + TILE_SIZE - 1) / TILE_SIZE;
     job->tile_count = job->tiles_x * ((rs->height + TILE_SIZE - 1) / TILE_SIZE);
     job->pass_count = plan_passes(rs->spp, job->pass_start);
     job->total_samples = (uint64_t)rs->width * (uint64_t)rs->height * (uint64_t)rs->spp;
-    job->stream = rng_seed_stream(rs->seed);
     atomic_init(&job->next_item, 0);
     atomic_init(&job->waiters, 0);
     atomic_init(&job->stopping, 0);
-    if (job->pass_count > 1) {
-        job->sums = malloc((size_t)rs->width * (size_t)rs->height * 3u * sizeof *job->sums);
-        if (!job->sums) return false;
-    }
+    if (!film_init(&job->film, rs->width, rs->height, rs->spp, job->pass_count, rs->transform)) return false;
     job->tile_passes = malloc((size_t)job->tile_count * sizeof *job->tile_passes);
-    if (!job->tile_passes) { free(job->sums); return false; }
+    if (!job->tile_passes) {
+        film_release(&job->film);
+        return false;
+    }
     for (int i = 0; i < job->tile_count; i++) atomic_init(&job->tile_passes[i], 0);
     pthread_mutex_init(&job->lock, NULL);
     pthread_cond_init(&job->tile_finished, NULL);
@@ -334,27 +233,27 @@ static void job_free(render_job *job) {
     pthread_cond_destroy(&job->tile_finished);
     pthread_mutex_destroy(&job->lock);
     free(job->tile_passes);
-    free(job->sums);
+    film_release(&job->film);
 }
 
-glint_status glint_render(glint_scene *s, const glint_render_options *opt, glint_progress_fn progress, void *user,
+glint_status render_scene(const glint_scene *s, const render_options *opt, glint_progress_fn progress, void *user,
                           glint_image **out, glint_render_stats *stats, glint_error *err) {
     *out = NULL;
     double t0 = clock_seconds();
-    glint_status st = scene_prepare(s, err);
+    render_frame frame;
+    glint_status st = frame_build(&frame, s, opt ? &opt->integrator : NULL, err);
     if (st != GLINT_OK) return st;
     double t_built = clock_seconds();
     const render_settings *rs = &s->settings;
     int threads = opt && opt->threads > 0 ? opt->threads : online_cpus();
     if (threads > MAX_THREADS) threads = MAX_THREADS;
 
-    glint_image *img = film_new(rs->width, rs->height, rs->transform);
     render_job job;
-    bool job_ready = img && job_init(&job, s, img);
+    bool job_ready = job_init(&job, s, frame.integrator);
     worker *workers = job_ready ? aligned_alloc(64, sizeof(worker) * (size_t)threads) : NULL;
     if (!workers) {
         if (job_ready) job_free(&job);
-        glint_image_free(img);
+        frame_release(&frame);
         snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image on %d threads", rs->width,
                  rs->height, threads);
         return GLINT_ERR_RENDER;
@@ -393,7 +292,7 @@ glint_status glint_render(glint_scene *s, const glint_render_options *opt, glint
         stats->discarded_samples = total.discarded_samples;
         stats->samples = total.samples;
         accel_stats as;
-        accel_get_stats(s->accel, &as);
+        accel_get_stats(frame.accel, &as);
         stats->bvh_nodes = as.nodes;
         stats->bvh_leaves = as.leaves;
         stats->bvh_depth = as.depth;
@@ -404,9 +303,10 @@ glint_status glint_render(glint_scene *s, const glint_render_options *opt, glint
         stats->threads = started + 1;
     }
     free(workers);
+    *out = film_take_image(&job.film);
     job_free(&job);
+    frame_release(&frame);
     atomic_store(&stop_requested, 0); // this render has answered any stop request made so far
-    *out = img;
     if (total.samples < job.total_samples) {
         snprintf(err->message, sizeof err->message, "interrupted after %llu of %llu samples",
                  (unsigned long long)total.samples, (unsigned long long)job.total_samples);

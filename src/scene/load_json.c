@@ -1811,7 +1811,7 @@ glint_status glint_scene_parse(const char *name, const char *text, size_t length
     cJSON_Delete(root);
     json_index_free(&ix);
     if (!ok) {
-        glint_scene_free(ld.scene);
+        scene_free(ld.scene);
         return ld.status;
     }
     *out = ld.scene;

@@ -1,7 +1,5 @@
-// scene.c — building, overriding, preparing and freeing a scene.
+// scene.c — building, overriding and freeing a scene (plain data: nothing here is built for rendering).
 #include "scene/scene.h"
-#include "accel/accel.h"
-#include "integrator/integrator.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -154,30 +152,6 @@ bool scene_add_warning(glint_scene *s, const char *message) {
     return true;
 }
 
-size_t glint_scene_warning_count(const glint_scene *s) { return s ? s->warning_count : 0; }
-
-const char *glint_scene_warning(const glint_scene *s, size_t i) {
-    return s && i < s->warning_count ? s->warnings[i] : NULL;
-}
-
-glint_status scene_prepare(glint_scene *s, glint_error *err) {
-    camera_prepare(&s->camera, s->settings.width, s->settings.height);
-    if (s->accel) return GLINT_OK;
-    // The path tracer's index of emissive quads depends only on the geometry: built once, with the accel.
-    if (!path_prepare(s)) {
-        snprintf(err->message, sizeof err->message, "%s: out of memory while indexing the emissive surfaces", s->path);
-        return GLINT_ERR_RENDER;
-    }
-    s->accel = accel_build(s, err);
-    return s->accel ? GLINT_OK : GLINT_ERR_RENDER;
-}
-
-void glint_overrides_init(glint_overrides *o) {
-    o->width = o->height = o->spp = o->max_depth = -1;
-    o->seed = -1;
-    o->accel = NULL;
-}
-
 // Checks one integer override against [lo, hi]; writes a message naming the flag otherwise.
 static bool override_in_range(const char *flag, long v, long lo, long hi, glint_error *err) {
     if (v >= lo && v <= hi) return true;
@@ -186,7 +160,7 @@ static bool override_in_range(const char *flag, long v, long lo, long hi, glint_
     return false;
 }
 
-glint_status glint_scene_override(glint_scene *s, const glint_overrides *o, glint_error *err) {
+glint_status scene_override(glint_scene *s, const glint_overrides *o, glint_error *err) {
     render_settings *rs = &s->settings;
     if (o->width >= 0 && !override_in_range("--width", o->width, 1, SCENE_MAX_DIMENSION, err)) return GLINT_ERR_INPUT;
     if (o->height >= 0 && !override_in_range("--height", o->height, 1, SCENE_MAX_DIMENSION, err))
@@ -214,15 +188,8 @@ glint_status glint_scene_override(glint_scene *s, const glint_overrides *o, glin
     return GLINT_OK;
 }
 
-void glint_scene_size(const glint_scene *s, int *width, int *height) {
-    *width = s->settings.width;
-    *height = s->settings.height;
-}
-
-void glint_scene_free(glint_scene *s) {
+void scene_free(glint_scene *s) {
     if (!s) return;
-    if (s->accel) accel_free(s->accel);
-    path_release(s);
     for (size_t i = 0; i < s->material_count; i++) free(s->material_names[i]);
     free(s->material_names);
     free(s->materials);
@@ -244,5 +211,3 @@ void glint_scene_free(glint_scene *s) {
     free(s->path);
     free(s);
 }
-
-const char *glint_version(void) { return GLINT_VERSION; }

@@ -1,12 +1,16 @@
-// scene.h — the scene: plain data read from the scene file, then prepared (accel built) and never mutated.
+// scene.h — the scene: plain data, what the scene file said after the command line's overrides. What a render
+// builds from it (acceleration structure, light index, prepared camera) lives in the render frame, not here.
 #ifndef GLINT_SCENE_H
 #define GLINT_SCENE_H
 
 #include "glint.h"
+#include "accel/accel.h"
 #include "core/vec.h"
 #include "camera/camera.h"
+#include "film/film.h"
 #include "material/material.h"
 #include "light/light.h"
+#include "geometry/instance.h"
 #include "geometry/mesh.h"
 #include "geometry/sphere.h"
 #include "geometry/transform.h"
@@ -20,9 +24,6 @@
 typedef enum integrator_kind { INTEGRATOR_WHITTED, INTEGRATOR_PATH } integrator_kind;
 typedef enum whitted_mode { WHITTED_PAPER, WHITTED_COLOR } whitted_mode;
 typedef enum background_kind { BACKGROUND_CONSTANT, BACKGROUND_SKY } background_kind;
-/// How linear radiance becomes an 8-bit value: none (clamp only), gamma 2 (square root), or sRGB.
-typedef enum output_transform { TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SRGB } output_transform;
-typedef enum accel_kind { ACCEL_BVH, ACCEL_BVH2, ACCEL_NONE } accel_kind;
 
 /// The "render" object of a scene file.
 typedef struct render_settings {
@@ -35,7 +36,6 @@ typedef struct render_settings {
     vec3 sky_horizon, sky_zenith; ///< sky: lerp(horizon, zenith, 0.5 * (dir.y + 1))
     output_transform transform;
     accel_kind accel;
-    bool no_light_sampling;       ///< path tracer: no next-event estimation towards area lights (tests; not in the file format)
 } render_settings;
 
 /// Hard limits on sizes, so that a scene file cannot ask for absurd amounts of memory or time.
@@ -45,21 +45,6 @@ enum {
     SCENE_MAX_DEPTH = 10000,
     SCENE_MAX_NAME = 128,
 };
-
-struct accel; // defined in accel/accel.h
-struct path_lights; // defined in integrator/path.c
-
-/// What an instance places: a mesh (its triangles) or a single sphere, in object space.
-typedef enum instance_kind { INSTANCE_MESH, INSTANCE_SPHERE } instance_kind;
-
-/// One placement of shared geometry with its own transform: meshes are loaded once and placed many
-/// times; a sphere under a transform that is not a similarity becomes an instance too.
-typedef struct instance {
-    instance_kind kind;
-    uint32_t index;   ///< scene meshes[index] or object-space spheres in instance_spheres[index]
-    transform xf;     ///< xf.m: object to world; xf.inv: world to object
-    int32_t material; ///< overrides every triangle's material, or -1: the mesh's own materials
-} instance;
 
 /// A mesh loaded from a file, shared by every instance that places it.
 typedef struct scene_mesh {
@@ -88,7 +73,7 @@ struct glint_scene {
     quad *quads;             ///< world-space parallelograms (boxes are six of them)
     size_t quad_count;
 
-    texture *textures;       ///< material_t.albedo_texture / emission_texture index these
+    texture *textures;       ///< material.albedo_texture / emission_texture index these
     char **texture_names;    ///< NULL entry for anonymous (inline) textures
     size_t texture_count;
 
@@ -101,13 +86,7 @@ struct glint_scene {
 
     char **warnings;         ///< problems the loader worked around ("file:line: warning: ..."); never printed by the library
     size_t warning_count;
-
-    struct accel *accel;   ///< built by scene_prepare
-    struct path_lights *path_lights; ///< area lights indexed for next-event estimation: path_prepare, path_release
 };
-
-/// Builds what rendering needs (the acceleration structure); idempotent.
-glint_status scene_prepare(glint_scene *s, glint_error *err);
 
 /// Appends a material and returns its index, or -1 when out of memory.
 long scene_add_material(glint_scene *s, const material *m, const char *name);
@@ -133,6 +112,10 @@ bool scene_add_instance(glint_scene *s, instance in);
 bool scene_add_warning(glint_scene *s, const char *message);
 /// An empty scene with every render setting at its documented default.
 glint_scene *scene_new(const char *path);
+/// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise).
+glint_status scene_override(glint_scene *s, const glint_overrides *o, glint_error *err);
+/// Frees the scene and everything it owns (NULL is allowed).
+void scene_free(glint_scene *s);
 
 /// The background radiance seen along unit direction d.
 static inline vec3 scene_background(const render_settings *rs, vec3 d) {

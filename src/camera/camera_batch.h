@@ -1,10 +1,12 @@
-// camera_batch.h — the path tracer's camera rays eight samples at a time, for the render loop: every lane
-// computes exactly what rng_for_key and integrator_camera_ray compute for one sample (the same operations in
-// the same order, so the same bits), in loops over the lanes that the compiler turns into vector instructions.
+// camera_batch.h — camera rays eight samples at a time, for the path tracer's tile loop: every lane computes
+// exactly what rng_for_key and camera_sample_ray compute for one sample (the same operations in the same
+// order, so the same bits), in loops over the lanes that the compiler turns into vector instructions.
 #ifndef GLINT_CAMERA_BATCH_H
 #define GLINT_CAMERA_BATCH_H
 
-#include "integrator/integrator.h"
+#include "camera/camera.h"
+#include "core/rng.h"
+#include "core/sampling.h"
 
 #include <stdint.h>
 #include <string.h>
@@ -68,9 +70,8 @@ static inline void batch_sincos_turn(const float u[CAMERA_BATCH], float c[CAMERA
 }
 
 /// Fills b->r, b->o and b->d from the inputs: lane i is rng_for_key(stream, key[i], sample[i]) followed by
-/// integrator_camera_ray(s, x[i], y[i], &r) of the path tracer.
-static inline void camera_batch_make(const glint_scene *s, uint64_t stream, camera_batch *b) {
-    const camera *c = &s->camera;
+/// camera_sample_ray(c, x[i], y[i], &r).
+static inline void camera_batch_make(const camera *c, uint64_t stream, camera_batch *b) {
     uint64_t st[CAMERA_BATCH];
     for (int i = 0; i < CAMERA_BATCH; i++) {
         // rng_for_key: state 0 stepped (to the stream), plus the mixed key, stepped again.

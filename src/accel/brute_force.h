@@ -1,0 +1,13 @@
+// brute_force.h — closest-hit and any-hit queries that test every primitive of an accel_input (private to
+// src/accel and the tests): the reference for the BVHs, and --accel none.
+#ifndef GLINT_BRUTE_FORCE_H
+#define GLINT_BRUTE_FORCE_H
+
+#include "accel/accel.h"
+
+/// Closest hit among the primitives of in by testing every one, ties broken as the BVHs break them.
+bool brute_force_intersect(const accel_input *in, const ray *r, hit *h);
+/// Whether any primitive of in lies on the ray, by testing every one.
+bool brute_force_occluded(const accel_input *in, const ray *r);
+
+#endif

@@ -1,0 +1,99 @@
+// bvh_kernel.h — the scalar pieces every traversal shares (private to src/accel): the ray prepared for slab
+// tests, the lazily made triangle-test constants, and the rule that keeps the better of two hits.
+#ifndef GLINT_BVH_KERNEL_H
+#define GLINT_BVH_KERNEL_H
+
+#include "accel/bvh.h"
+
+#include <math.h>
+
+// Relative widening of every box's exit distance, so that float rounding of the slab test (about 2^-23
+// of t) never culls a box the ray touches; absolute errors are covered by the boxes' padding (sphere_box).
+static const float SLAB_FAR_SCALE = 1.0f + 0x1p-20f;
+// Direction components smaller than this are replaced by it (with their sign): finite inverses.
+static const float DIR_EPSILON = 1e-20f;
+
+/// Stack entry: a node or leaf reference and the distance at which the ray enters its box.
+typedef struct stack_entry {
+    uint32_t ref;
+    float t;
+} stack_entry;
+
+enum { WIDE_STACK = BVH_MAX_DEPTH * (BVH_WIDTH - 1) + 1, BIN_STACK = BVH_MAX_DEPTH + 1 };
+
+// A ray with a NaN coordinate hits nothing (as in sphere_intersect); rejecting it up front also keeps
+// NaN out of the box tests, where min/max would turn it into "every box is hit".
+static inline bool ray_is_nan(const ray *r) {
+    return isnan(r->o.x) || isnan(r->o.y) || isnan(r->o.z) || isnan(r->d.x) || isnan(r->d.y) || isnan(r->d.z);
+}
+
+/// A ray prepared for box tests: t on axis k is box * inv[k] + noi[k] (one FMA); near/far pick the box
+/// row (box[k] lower, box[3 + k] upper) the ray enters and leaves by.
+typedef struct trav_ray {
+    const ray *r;
+    float inv[3], noi[3];
+    int near[3], far[3];
+} trav_ray;
+
+static inline float clamp_dir(float d) { return fabsf(d) < DIR_EPSILON ? copysignf(DIR_EPSILON, d) : d; }
+
+static inline trav_ray trav_setup(const ray *r) {
+    trav_ray tr;
+    tr.r = r;
+    const float o[3] = {r->o.x, r->o.y, r->o.z}, d[3] = {r->d.x, r->d.y, r->d.z};
+    for (int k = 0; k < 3; k++) {
+        float inv = 1.0f / clamp_dir(d[k]);
+        tr.inv[k] = inv;
+        tr.noi[k] = -(o[k] * inv);
+        tr.near[k] = inv < 0.0f ? 3 + k : k;
+        tr.far[k] = inv < 0.0f ? k : 3 + k;
+    }
+    return tr;
+}
+
+// t of a box plane: one fused multiply-add (b - o) / d = b * (1/d) - o * (1/d).
+static inline float slab_t(float b, float inv, float noi) {
+#if defined(__FMA__) || defined(FP_FAST_FMAF)
+    return fmaf(b, inv, noi);
+#else
+    return b * inv + noi; // without FMA hardware fmaf is a slow library call; the box test is conservative anyway
+#endif
+}
+
+// max/min with the operand order of SSE maxps/minps, so the scalar and SIMD paths agree bit for bit.
+static inline float max_sse(float a, float b) { return a > b ? a : b; }
+static inline float min_sse(float a, float b) { return a < b ? a : b; }
+
+/// Per-ray constants of the watertight triangle test, made the first time a quad or triangle needs them.
+typedef struct tri_cache {
+    bool ready;
+    tri_ray tr;
+} tri_cache;
+
+static inline const tri_ray *tri_for(tri_cache *c, const ray *r) {
+    if (!c->ready) {
+        c->tr = tri_ray_make(r);
+        c->ready = true;
+    }
+    return &c->tr;
+}
+
+// Keeps candidate c if it beats *best (bvh_better); true when it did.
+static inline bool offer(hit *best, hit c) {
+    if (!bvh_better(&c, best)) return false;
+    *best = c;
+    return true;
+}
+
+/// How instances are entered: the structure of the BLAS and which traversal path runs it.
+typedef enum trav_mode { MODE_WIDE_SIMD, MODE_WIDE_SCALAR, MODE_BINARY } trav_mode;
+
+/// Tests one primitive of b that is not in a SIMD packet (a quad, a triangle of b's mesh, an instance, or a
+/// sphere of the binary BVH), improving *best; `inst_id` is the instance whose mesh b is, or HIT_NO_INSTANCE.
+/// True when it hit.
+bool bvh_prim_hit(const bvh *b, uint32_t kind, uint32_t index, const ray *r, tri_cache *tc, hit *best,
+                  uint32_t inst_id, bool any, trav_mode mode);
+/// One ray through the binary BVH b from its root, improving *best; true when anything was hit.
+bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any);
+
+#endif

@@ -1,0 +1,139 @@
+// bvh_simd.h — the AVX2 + FMA kernels of the wide BVH (private to src/accel): the ray broadcast into
+// registers, eight box tests at once, and a packet of spheres at once, each lane bit-identical to the scalar
+// test. Included only where BVH_SIMD is 1.
+#ifndef GLINT_BVH_SIMD_H
+#define GLINT_BVH_SIMD_H
+
+#include "accel/bvh_kernel.h"
+
+#include <immintrin.h>
+
+// Lanes of a leaf packet: AVX for 8 primitives, SSE for 4.
+#if BVH_PACKET == 8
+typedef __m256 pk;
+#define PK(op) _mm256_##op
+#elif BVH_PACKET == 4
+typedef __m128 pk;
+#define PK(op) _mm_##op
+#else
+#error "BVH_PACKET must be 4 or 8"
+#endif
+
+/// The ray broadcast into registers.
+typedef struct simd_ray {
+    __m256 inv[3], noi[3];
+    pk ox, oy, oz, dx, dy, dz, a, inv_a, tmin, tmax, tmin_nonneg;
+} simd_ray;
+
+// Computes what trav_setup computes (the same IEEE operations, so the same values); false for a ray with a
+// NaN coordinate. Every traversal pays for it once, so it broadcasts from memory rather than shuffling. The
+// ray was just written field by field: loads that span several of those stores would wait for them to
+// retire (no store-to-load forwarding), so every load here reads one float.
+static inline bool simd_setup(const ray *r, simd_ray *s) {
+    __m128 o = _mm_setr_ps(r->o.x, r->o.y, r->o.z, 0.0f), d = _mm_setr_ps(r->d.x, r->d.y, r->d.z, 1.0f);
+    if (_mm_movemask_ps(_mm_cmpunord_ps(o, d)) != 0) return false;
+    const __m128 sign = _mm_set1_ps(-0.0f), eps = _mm_set1_ps(DIR_EPSILON);
+    __m128 tiny = _mm_cmplt_ps(_mm_andnot_ps(sign, d), eps);
+    __m128 dc = _mm_blendv_ps(d, _mm_or_ps(_mm_and_ps(sign, d), eps), tiny);
+    __m128 inv = _mm_div_ps(_mm_set1_ps(1.0f), dc);
+    __m128 noi = _mm_xor_ps(_mm_mul_ps(o, inv), sign);
+    s->inv[0] = _mm256_broadcastss_ps(inv);
+    s->inv[1] = _mm256_broadcastss_ps(_mm_movehdup_ps(inv));
+    s->inv[2] = _mm256_broadcastss_ps(_mm_movehl_ps(inv, inv));
+    s->noi[0] = _mm256_broadcastss_ps(noi);
+    s->noi[1] = _mm256_broadcastss_ps(_mm_movehdup_ps(noi));
+    s->noi[2] = _mm256_broadcastss_ps(_mm_movehl_ps(noi, noi));
+    s->ox = PK(broadcast_ss)(&r->o.x);
+    s->oy = PK(broadcast_ss)(&r->o.y);
+    s->oz = PK(broadcast_ss)(&r->o.z);
+    s->dx = PK(broadcast_ss)(&r->d.x);
+    s->dy = PK(broadcast_ss)(&r->d.y);
+    s->dz = PK(broadcast_ss)(&r->d.z);
+    s->tmin = PK(broadcast_ss)(&r->tmin);
+    s->tmax = PK(broadcast_ss)(&r->tmax);
+    float a = v3_dot(r->d, r->d);
+    s->a = PK(set1_ps)(a);
+    s->inv_a = PK(set1_ps)(1.0f / a);
+    s->tmin_nonneg = PK(cmp_ps)(s->tmin, PK(setzero_ps)(), _CMP_GE_OQ);
+    return true;
+}
+
+static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, float tlimit, float *tnear) {
+    // Both planes of every slab, the nearer by min and the farther by max: the same values as choosing the
+    // rows by the direction's signs (trav_setup's near and far), without per-ray row offsets to keep live.
+    __m256 lx = _mm256_fmadd_ps(_mm256_load_ps(n->box[0]), s->inv[0], s->noi[0]);
+    __m256 ly = _mm256_fmadd_ps(_mm256_load_ps(n->box[1]), s->inv[1], s->noi[1]);
+    __m256 lz = _mm256_fmadd_ps(_mm256_load_ps(n->box[2]), s->inv[2], s->noi[2]);
+    __m256 hx = _mm256_fmadd_ps(_mm256_load_ps(n->box[3]), s->inv[0], s->noi[0]);
+    __m256 hy = _mm256_fmadd_ps(_mm256_load_ps(n->box[4]), s->inv[1], s->noi[1]);
+    __m256 hz = _mm256_fmadd_ps(_mm256_load_ps(n->box[5]), s->inv[2], s->noi[2]);
+    __m256 nx = _mm256_min_ps(lx, hx), ny = _mm256_min_ps(ly, hy), nz = _mm256_min_ps(lz, hz);
+    __m256 fx = _mm256_max_ps(lx, hx), fy = _mm256_max_ps(ly, hy), fz = _mm256_max_ps(lz, hz);
+#if BVH_PACKET == 8
+    __m256 tmin = s->tmin;
+#else
+    __m256 tmin = _mm256_set_m128(s->tmin, s->tmin);
+#endif
+    // Operand order as in wnode_test_scalar: an empty slot's NaN reaches tn.
+    __m256 tn = _mm256_max_ps(_mm256_max_ps(tmin, nx), _mm256_max_ps(ny, nz));
+    __m256 tf = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(fx, fy), fz), _mm256_set1_ps(SLAB_FAR_SCALE));
+    tf = _mm256_min_ps(tf, _mm256_set1_ps(tlimit));
+    _mm256_storeu_ps(tnear, tn);
+    return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
+}
+
+// A packet of spheres at once, each lane computing exactly what sphere_intersect computes (same
+// operations, same order, same fused multiply-adds), so t is bit-identical to the scalar test.
+// Returns the mask of lanes with a root in (tmin, tmax) and those roots in t_out.
+static inline unsigned spheres_simd(const bvh_sphere_packet *p, const simd_ray *s, pk *t_out) {
+    pk fx = PK(sub_ps)(s->ox, PK(load_ps)(p->cx));
+    pk fy = PK(sub_ps)(s->oy, PK(load_ps)(p->cy));
+    pk fz = PK(sub_ps)(s->oz, PK(load_ps)(p->cz));
+    pk rad = PK(load_ps)(p->radius);
+    const pk sign = PK(set1_ps)(-0.0f), zero = PK(setzero_ps)();
+    // b = -(f.d)
+    pk fd = PK(add_ps)(PK(add_ps)(PK(mul_ps)(fx, s->dx), PK(mul_ps)(fy, s->dy)), PK(mul_ps)(fz, s->dz));
+    pk b = PK(xor_ps)(fd, sign);
+    pk rr = PK(mul_ps)(rad, rad);
+    pk f2 = PK(add_ps)(PK(add_ps)(PK(mul_ps)(fx, fx), PK(mul_ps)(fy, fy)), PK(mul_ps)(fz, fz));
+    pk c = PK(sub_ps)(f2, rr);
+    // From outside (c > 0) and moving away (b < 0) both roots are negative: q < 0, t1 = q (1/a) <= 0 and
+    // t0 = c / q < 0, exact sign facts of the computed values, so no root can lie above tmin >= 0.
+    pk away = PK(and_ps)(PK(and_ps)(PK(cmp_ps)(c, zero, _CMP_GT_OQ), PK(cmp_ps)(b, zero, _CMP_LT_OQ)), s->tmin_nonneg);
+    // Early rejection without the division (the common case: the ray misses every sphere). a c - b^2 is a
+    // times (squared distance from the centre to the line - r^2). Where it exceeds 2^-12 a (|f|^2 + r^2), far
+    // beyond the rounding of it and of the full test below (about 2^-20 of that), the full test finds
+    // disc < 0 too: leaving such lanes out changes no result. NaN lanes (unused) compare false.
+    pk gap = PK(fmsub_ps)(s->a, c, PK(mul_ps)(b, b));
+    pk bound = PK(mul_ps)(PK(mul_ps)(s->a, PK(set1_ps)(0x1p-12f)), PK(add_ps)(f2, rr));
+    if (PK(movemask_ps)(PK(andnot_ps)(away, PK(cmp_ps)(gap, bound, _CMP_LE_OQ))) == 0) return 0;
+    pk ba = PK(mul_ps)(b, s->inv_a);
+    pk lx = PK(fmadd_ps)(s->dx, ba, fx), ly = PK(fmadd_ps)(s->dy, ba, fy), lz = PK(fmadd_ps)(s->dz, ba, fz);
+    pk l2 = PK(add_ps)(PK(add_ps)(PK(mul_ps)(lx, lx), PK(mul_ps)(ly, ly)), PK(mul_ps)(lz, lz));
+    pk disc = PK(sub_ps)(rr, l2);
+    pk ok = PK(andnot_ps)(away, PK(cmp_ps)(disc, zero, _CMP_GE_OQ));
+    if (PK(movemask_ps)(ok) == 0) return 0;
+    pk root = PK(sqrt_ps)(PK(mul_ps)(s->a, disc));
+    pk q = PK(add_ps)(b, PK(or_ps)(PK(andnot_ps)(sign, root), PK(and_ps)(sign, b))); // b + copysign(root, b)
+    pk t0 = PK(div_ps)(c, q), t1 = PK(mul_ps)(q, s->inv_a);
+    t0 = PK(blendv_ps)(t0, t1, PK(cmp_ps)(q, zero, _CMP_EQ_OQ));
+    pk swap = PK(cmp_ps)(t0, t1, _CMP_GT_OQ);
+    pk lo = PK(blendv_ps)(t0, t1, swap), hi = PK(blendv_ps)(t1, t0, swap);
+    pk in0 = PK(and_ps)(PK(cmp_ps)(lo, s->tmin, _CMP_GT_OQ), PK(cmp_ps)(lo, s->tmax, _CMP_LT_OQ));
+    pk in1 = PK(and_ps)(PK(cmp_ps)(hi, s->tmin, _CMP_GT_OQ), PK(cmp_ps)(hi, s->tmax, _CMP_LT_OQ));
+    *t_out = PK(blendv_ps)(hi, lo, in0);
+    return (unsigned)PK(movemask_ps)(PK(and_ps)(ok, PK(or_ps)(in0, in1)));
+}
+
+// Offers the hits of spheres_simd (lanes `mask` of packet p, at distances tv) to *best.
+static inline void offer_spheres(hit *best, const bvh_sphere_packet *p, unsigned mask, pk tv, uint32_t inst_id) {
+    _Alignas(32) float t[BVH_PACKET];
+    PK(store_ps)(t, tv);
+    do {
+        int k = __builtin_ctz(mask);
+        mask &= mask - 1;
+        if (t[k] <= best->t) offer(best, (hit){t[k], p->prim[k], HIT_SPHERE, inst_id, 0.0f, 0.0f});
+    } while (mask);
+}
+
+#endif

@@ -1,0 +1,62 @@
+// glint.c — every function of the public API (include/glint.h), and nothing else: each one checks or adapts
+// its arguments and hands over to the module that does the work (as Lua keeps its whole API in lapi.c).
+#include "glint.h"
+#include "film/film.h"
+#include "io/image_write.h"
+#include "render/render.h"
+#include "scene/scene.h"
+
+#include <stddef.h>
+
+const char *glint_version(void) { return GLINT_VERSION; }
+
+void glint_overrides_init(glint_overrides *o) {
+    o->width = o->height = o->spp = o->max_depth = -1;
+    o->seed = -1;
+    o->accel = NULL;
+}
+
+glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err) {
+    return scene_override(scene, o, err);
+}
+
+void glint_scene_size(const glint_scene *scene, int *width, int *height) {
+    *width = scene->settings.width;
+    *height = scene->settings.height;
+}
+
+size_t glint_scene_warning_count(const glint_scene *scene) { return scene ? scene->warning_count : 0; }
+
+const char *glint_scene_warning(const glint_scene *scene, size_t i) {
+    return scene && i < scene->warning_count ? scene->warnings[i] : NULL;
+}
+
+void glint_scene_free(glint_scene *scene) { scene_free(scene); }
+
+glint_status glint_render(const glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,
+                          void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
+    render_options ro = {.threads = opt ? opt->threads : 0};
+    return render_scene(scene, &ro, progress, user, out, stats, err);
+}
+
+void glint_request_stop(void) { render_request_stop(); }
+
+glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
+    return image_write(img, path, format, err);
+}
+
+glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err) {
+    return image_check_path(path, format, err);
+}
+
+void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb) {
+    *width = img->width;
+    *height = img->height;
+    *rgb = img->rgb;
+}
+
+uint8_t glint_image_byte(const glint_image *img, int x, int y, int c) {
+    return film_encode(img->rgb[((size_t)y * (size_t)img->width + (size_t)x) * 3u + (size_t)c], img->transform);
+}
+
+void glint_image_free(glint_image *img) { film_image_free(img); }

@@ -1,0 +1,82 @@
+// film.c — the rendered image, the running sums behind it, and the conversion of linear values to 8 bits.
+#include "film/film.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+glint_image *film_image_new(int width, int height, output_transform encoding) {
+    glint_image *img = malloc(sizeof *img);
+    if (!img) return NULL;
+    img->width = width;
+    img->height = height;
+    img->transform = encoding;
+    img->rgb = calloc((size_t)width * (size_t)height * 3u, sizeof(float));
+    if (!img->rgb) {
+        free(img);
+        return NULL;
+    }
+    return img;
+}
+
+void film_image_free(glint_image *img) {
+    if (!img) return;
+    free(img->rgb);
+    free(img);
+}
+
+uint8_t film_encode(float v, output_transform encoding) {
+    if (!(v > 0.0f)) return 0; // also maps NaN to black
+    switch (encoding) {
+    case TRANSFORM_LINEAR: break;
+    case TRANSFORM_GAMMA2: v = sqrtf(v); break;
+    case TRANSFORM_SRGB: v = v <= 0.0031308f ? 12.92f * v : 1.055f * powf(v, 1.0f / 2.4f) - 0.055f; break;
+    }
+    if (v >= 1.0f) return 255;
+    return (uint8_t)lrintf(v * 255.0f);
+}
+
+bool film_init(film *f, int width, int height, int spp, int passes, output_transform encoding) {
+    f->spp = spp;
+    f->sums = NULL;
+    f->image = film_image_new(width, height, encoding);
+    if (!f->image) return false;
+    if (passes > 1) {
+        f->sums = malloc((size_t)width * (size_t)height * 3u * sizeof *f->sums);
+        if (!f->sums) {
+            film_release(f);
+            return false;
+        }
+    }
+    return true;
+}
+
+glint_image *film_take_image(film *f) {
+    glint_image *img = f->image;
+    f->image = NULL;
+    return img;
+}
+
+void film_release(film *f) {
+    film_image_free(f->image);
+    free(f->sums);
+    f->image = NULL;
+    f->sums = NULL;
+}
+
+void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *stats,
+                     _Atomic uint64_t *progress) {
+    t->film = f;
+    t->x0 = x0;
+    t->x1 = x1;
+    t->y1 = y1;
+    t->k0 = k0;
+    t->k1 = k1;
+    t->x = x0;
+    t->y = y0;
+    t->k = k0;
+    t->pixel = (size_t)y0 * (size_t)f->image->width + (size_t)x0;
+    t->stats = stats;
+    t->progress = progress;
+    t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
+    if (k0 > 0) memcpy(t->sum, &f->sums[t->pixel * 3u], sizeof t->sum);
+}

@@ -1,0 +1,106 @@
+// film.h — the image being rendered: per-pixel sums of samples taken in index order, the mean of each pixel's
+// completed samples, and the display encoding of linear values.
+#ifndef GLINT_FILM_H
+#define GLINT_FILM_H
+
+#include "glint.h"
+#include "core/stats.h"
+#include "core/vec.h"
+
+#include <stdatomic.h>
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <string.h>
+
+/// How linear radiance becomes an 8-bit value: none (clamp only), gamma 2 (square root), or sRGB.
+typedef enum output_transform { TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SRGB } output_transform;
+
+/// The rendered image (the public glint_image): linear RGB means and how they are displayed.
+struct glint_image {
+    int width, height;
+    float *rgb;                 ///< linear RGB, 3 floats a pixel, row 0 at the top
+    output_transform transform; ///< how rgb becomes 8-bit values
+};
+
+/// A black image; NULL when out of memory.
+glint_image *film_image_new(int width, int height, output_transform encoding);
+/// Frees an image (NULL is allowed).
+void film_image_free(glint_image *img);
+
+/// Display encoding of one linear value: transform, clamp to [0,1], round to nearest of 0..255.
+uint8_t film_encode(float linear, output_transform encoding);
+
+/// A film: the image of means, and each pixel's running sum in double between sample passes, so that the
+/// final mean is bit for bit the plain sum over samples 0..spp-1 in index order divided by spp.
+typedef struct film {
+    glint_image *image;
+    double *sums; ///< RGB sums of the samples completed in earlier passes; NULL when one pass renders them all
+    int spp;      ///< samples per pixel of the whole render
+} film;
+
+/// A black film; `passes` > 1 keeps running sums. False when out of memory (f is then empty).
+bool film_init(film *f, int width, int height, int spp, int passes, output_transform encoding);
+/// Hands the image over to the caller; the film no longer owns it.
+glint_image *film_take_image(film *f);
+/// Frees what the film still owns.
+void film_release(film *f);
+
+/// The samples of one tile pass, delivered in order (rows of pixels, each pixel's samples k0..k1-1 in index
+/// order): film_tile_add sums them, drops NaN and infinite ones (counted), and stores each pixel's mean as
+/// soon as its samples of the pass are complete.
+typedef struct film_tile {
+    film *film;
+    int x0, x1, y1, k0, k1; ///< the pass: pixels [x0, x1) of rows up to y1, samples [k0, k1)
+    int x, y, k;            ///< the next sample's pixel and index
+    size_t pixel;           ///< y * width + x
+    double sum[3];          ///< the current pixel's sum so far
+    thread_stats *stats;    ///< counts samples and discarded samples
+    _Atomic uint64_t *progress; ///< the samples counter the progress reporter reads
+} film_tile;
+
+/// Starts a tile pass: samples [k0, k1) of the pixels [x0, x1) x [y0, y1), counted in *stats and *progress.
+void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *stats,
+                     _Atomic uint64_t *progress);
+
+/// Stores a pixel's state after its samples [0, k) (k1: the end of this pass): its running sum for the next
+/// pass, and the mean of its samples so far in the image.
+static inline void film_store_pixel(film *f, size_t pixel, const double sum[3], int k, int k1) {
+    if (f->sums && k1 < f->spp) memcpy(&f->sums[pixel * 3u], sum, 3 * sizeof *sum);
+    if (k > 0) {
+        float *px = &f->image->rgb[pixel * 3u];
+        double inv = 1.0 / k; // one division for the three channels, at every pass of every pixel
+        for (int c = 0; c < 3; c++) px[c] = (float)(sum[c] * inv);
+    }
+}
+
+/// Adds the next sample of the tile pass; false once the pass is complete.
+static inline bool film_tile_add(film_tile *t, vec3 c) {
+    t->stats->samples++;
+    atomic_store_explicit(t->progress, t->stats->samples, memory_order_relaxed);
+    // A NaN or infinite sample would poison the pixel: drop it (it counts as black), count it, report it.
+    if (!v3_is_finite(c)) t->stats->discarded_samples++;
+    else {
+        t->sum[0] += c.x;
+        t->sum[1] += c.y;
+        t->sum[2] += c.z;
+    }
+    if (++t->k < t->k1) return true;
+    film_store_pixel(t->film, t->pixel, t->sum, t->k1, t->k1); // this pixel's samples of the pass are done
+    t->k = t->k0;
+    if (++t->x == t->x1) {
+        t->x = t->x0;
+        t->y++;
+    }
+    if (t->y == t->y1) return false;
+    t->pixel = (size_t)t->y * (size_t)t->film->image->width + (size_t)t->x;
+    t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
+    if (t->k0 > 0) memcpy(t->sum, &t->film->sums[t->pixel * 3u], sizeof t->sum);
+    return true;
+}
+
+/// Ends a tile pass cut short by a stop request: the current pixel keeps the mean of the samples it completed,
+/// the pixels not reached keep the previous pass's.
+static inline void film_tile_stop(film_tile *t) { film_store_pixel(t->film, t->pixel, t->sum, t->k, t->k1); }
+
+#endif

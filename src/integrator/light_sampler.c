@@ -1,0 +1,190 @@
+// light_sampler.c — building the index of emissive quads and triangles, and the densities of its choices.
+#include "integrator/light_sampler.h"
+#include "material/scatter.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+void light_sampler_release(light_sampler *pl) {
+    free(pl->lights);
+    free(pl->cdf);
+    free(pl->select_pdf);
+    free(pl->tris);
+    free(pl->tri_base);
+    free(pl->tri_select_pdf);
+    memset(pl, 0, sizeof *pl);
+}
+
+// Power of a light of material m and area `area` up to constant factors (area times summed emission), by
+// which lights are chosen; 0 for one that emits nothing. Emission textures scale this, but any positive
+// choice stays unbiased.
+static double light_power(const material *m, double area) {
+    if (m->kind != MAT_DIFFUSE_LIGHT) return 0.0;
+    double e = (double)m->emission.x + m->emission.y + m->emission.z;
+    double p = e * area;
+    return isfinite(p) && p > 0.0 ? p : 0.0;
+}
+
+// A quad light's power (light_power).
+static double quad_light_power(const glint_scene *s, const quad *q) {
+    return light_power(&s->materials[q->material], q->area);
+}
+
+// The scene material of triangle `tri` of mesh instance `in`, as surface_at_general chooses it.
+static uint32_t instance_triangle_material(const glint_scene *s, const instance *in, size_t tri) {
+    const scene_mesh *sm = &s->meshes[in->index];
+    int32_t slot = sm->geometry.triangles[tri].material;
+    if (in->material >= 0) return (uint32_t)in->material;
+    if (slot >= 0 && (size_t)slot < sm->slot_count) return sm->slot_material[slot];
+    return sm->default_material;
+}
+
+// Triangle `tri` of mesh instance `ii` in world space, with its power (light_power; 0: not a light).
+static double tri_light_make(const glint_scene *s, uint32_t ii, uint32_t tri, tri_light *out) {
+    const instance *in = &s->instances[ii];
+    const material *m = &s->materials[instance_triangle_material(s, in, tri)];
+    if (m->kind != MAT_DIFFUSE_LIGHT) return 0.0; // most triangles: skip the transform
+    vec3 p0, p1, p2;
+    mesh_triangle_positions(&s->meshes[in->index].geometry, tri, &p0, &p1, &p2);
+    p0 = mat4_apply_point(&in->xf.m, p0);
+    p1 = mat4_apply_point(&in->xf.m, p1);
+    p2 = mat4_apply_point(&in->xf.m, p2);
+    out->p0 = p0;
+    out->e1 = v3_sub(p1, p0);
+    out->e2 = v3_sub(p2, p0);
+    vec3 c = v3_cross(out->e1, out->e2);
+    float len = sqrtf(v3_len2(c));
+    out->area = 0.5f * len;
+    if (!(len > 0.0f) || !isfinite(len)) return 0.0; // degenerate: BSDF sampling alone finds it (never)
+    out->n = v3_scale(c, 1.0f / len);
+    out->instance = ii;
+    out->tri = tri;
+    out->material = (uint32_t)(m - s->materials);
+    return light_power(m, out->area);
+}
+
+// Adds a light of power p to the cdf under construction; its selection probability (the cdf step, so that
+// sampling and the MIS weights of BSDF hits agree on it).
+static float add_light(light_sampler *pl, light_ref ref, double p, double *sum, double total, size_t count,
+                       float *prev) {
+    *sum += p;
+    size_t k = pl->count++;
+    pl->lights[k] = ref;
+    pl->cdf[k] = pl->count == count ? 1.0f : (float)(*sum / total);
+    float select = pl->cdf[k] - *prev;
+    *prev = pl->cdf[k];
+    return select;
+}
+
+bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
+    memset(pl, 0, sizeof *pl);
+    size_t count = 0, tri_count = 0, tri_slots = 0;
+    double total = 0.0;
+    for (size_t i = 0; i < s->quad_count; i++) {
+        double p = quad_light_power(s, &s->quads[i]);
+        count += p > 0.0;
+        total += p;
+    }
+    for (size_t i = 0; i < s->instance_count; i++) {
+        const instance *in = &s->instances[i];
+        if (in->kind != INSTANCE_MESH) continue;
+        size_t nt = s->meshes[in->index].geometry.triangle_count, here = 0;
+        for (size_t t = 0; t < nt; t++) {
+            tri_light tl;
+            double p = tri_light_make(s, (uint32_t)i, (uint32_t)t, &tl);
+            here += p > 0.0;
+            total += p;
+        }
+        tri_count += here;
+        if (here) tri_slots += nt;
+    }
+    count += tri_count;
+    if (count == 0 || !isfinite(total)) return true; // nothing to sample: BSDF sampling alone
+    pl->lights = malloc(count * sizeof *pl->lights);
+    pl->cdf = malloc(count * sizeof *pl->cdf);
+    pl->select_pdf = calloc(s->quad_count ? s->quad_count : 1, sizeof *pl->select_pdf);
+    bool ok = pl->lights && pl->cdf && pl->select_pdf;
+    if (ok && tri_count) {
+        pl->tris = malloc(tri_count * sizeof *pl->tris);
+        pl->tri_base = malloc(s->instance_count * sizeof *pl->tri_base);
+        pl->tri_select_pdf = calloc(tri_slots, sizeof *pl->tri_select_pdf);
+        ok = pl->tris && pl->tri_base && pl->tri_select_pdf;
+    }
+    if (!ok) {
+        light_sampler_release(pl);
+        return false;
+    }
+    double sum = 0.0;
+    float prev = 0.0f;
+    for (size_t i = 0; i < s->quad_count; i++) {
+        double p = quad_light_power(s, &s->quads[i]);
+        if (!(p > 0.0)) continue;
+        pl->select_pdf[i] = add_light(pl, (light_ref){false, (uint32_t)i}, p, &sum, total, count, &prev);
+    }
+    pl->quad_count = s->quad_count;
+    if (!tri_count) return true;
+    size_t slot = 0;
+    for (size_t i = 0; i < s->instance_count; i++) {
+        const instance *in = &s->instances[i];
+        pl->tri_base[i] = SIZE_MAX;
+        if (in->kind != INSTANCE_MESH) continue;
+        size_t nt = s->meshes[in->index].geometry.triangle_count;
+        for (size_t t = 0; t < nt; t++) {
+            tri_light tl;
+            double p = tri_light_make(s, (uint32_t)i, (uint32_t)t, &tl);
+            if (!(p > 0.0)) continue;
+            if (pl->tri_base[i] == SIZE_MAX) {
+                pl->tri_base[i] = slot;
+                slot += nt;
+            }
+            uint32_t k = (uint32_t)pl->tri_count++;
+            pl->tris[k] = tl;
+            pl->tri_select_pdf[pl->tri_base[i] + t] = add_light(pl, (light_ref){true, k}, p, &sum, total, count, &prev);
+        }
+    }
+    pl->instance_count = s->instance_count;
+    return true;
+}
+
+// Probability density, per unit solid angle, with which next-event estimation would have chosen the point
+// where a ray of unit direction d hit an emissive quad or mesh triangle at distance t; 0 when it is not an
+// indexed light.
+float light_sampler_pdf(const light_sampler *pl, const glint_scene *s, const surface *sf, vec3 d, float t) {
+    if (sf->kind == HIT_TRIANGLE) {
+        if (sf->instance >= pl->instance_count || pl->tri_base[sf->instance] == SIZE_MAX) return 0.0f;
+        float select = pl->tri_select_pdf[pl->tri_base[sf->instance] + sf->prim];
+        if (!(select > 0.0f)) return 0.0f;
+        // The light's record, found by binary search: its entries are sorted by (instance, triangle).
+        size_t lo = 0, hi = pl->tri_count - 1;
+        while (lo < hi) {
+            size_t mid = lo + (hi - lo) / 2;
+            const tri_light *tm = &pl->tris[mid];
+            if (tm->instance < sf->instance || (tm->instance == sf->instance && tm->tri < sf->prim)) lo = mid + 1;
+            else hi = mid;
+        }
+        const tri_light *tl = &pl->tris[lo];
+        float cos_l = fabsf(v3_dot(d, tl->n));
+        if (!(cos_l > 0.0f)) return 0.0f;
+        return select * t * t / (cos_l * tl->area);
+    }
+    if (sf->kind != HIT_QUAD || sf->instance != HIT_NO_INSTANCE || sf->prim >= pl->quad_count) return 0.0f;
+    float select = pl->select_pdf[sf->prim];
+    if (!(select > 0.0f)) return 0.0f;
+    const quad *q = &s->quads[sf->prim];
+    float cos_l = fabsf(v3_dot(d, q->normal));
+    if (!(cos_l > 0.0f)) return 0.0f;
+    return select * t * t / (cos_l * q->area);
+}
+
+// The emitted radiance of triangle light tl at barycentrics (b1, b2), point x, towards unit direction wi
+// (from the receiver to the light): the side and texture coordinates as surface_at_general gives them to a
+// ray that hits it there, so that both strategies see the same emission.
+vec3 light_sampler_tri_emitted(const glint_scene *s, const tri_light *tl, float b1, float b2, vec3 x, vec3 wi) {
+    const instance *in = &s->instances[tl->instance];
+    tri_hit th = {0.0f, 1.0f - b1 - b2, b1, b2};
+    mesh_shading sh = mesh_shade(&s->meshes[in->index].geometry, tl->tri, &th);
+    vec3 ng = mat4_apply_normal(&in->xf.inv, sh.ng);
+    bool front = v3_dot(wi, ng) < 0.0f;
+    return mat_emitted(&s->materials[tl->material], s->textures, front, sh.u, sh.v, x);
+}

@@ -1,0 +1,55 @@
+// light_sampler.h — the path tracer's index of a scene's emissive quads and mesh triangles for next-event
+// estimation: lights chosen in proportion to their power, and the density with which a point was chosen.
+#ifndef GLINT_LIGHT_SAMPLER_H
+#define GLINT_LIGHT_SAMPLER_H
+
+#include "core/vec.h"
+#include "integrator/surface.h"
+#include "scene/scene.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+
+/// An emissive triangle of a mesh instance, in world space (placed by the instance's transform at prepare time).
+typedef struct tri_light {
+    vec3 p0, e1, e2;   ///< corner and the edges to the other two corners
+    vec3 n;            ///< unit normal of the world-space triangle, either side (for the area-to-solid-angle factor)
+    float area;
+    uint32_t instance; ///< scene instance, and the triangle in its mesh: for emission sides and texture coordinates
+    uint32_t tri;
+    uint32_t material;
+} tri_light;
+
+/// One light of the index: a scene quad, or a triangle of tris.
+typedef struct light_ref {
+    bool is_tri;
+    uint32_t index; ///< into s->quads, or into light_sampler.tris
+} light_ref;
+
+/// The scene's emissive quads and mesh triangles, indexed for next-event estimation (built by light_sampler_build).
+typedef struct light_sampler {
+    light_ref *lights;      ///< the lights, quads first in scene order, then triangles by instance and triangle
+    float *cdf;             ///< cdf[i]: probability of choosing one of lights[0..i]; the last is 1
+    float *select_pdf;      ///< per scene quad: probability of choosing it, 0 for a quad that is not a light
+    size_t count;           ///< lights
+    size_t quad_count;      ///< scene quads when indexed (select_pdf's length)
+    tri_light *tris;        ///< the emissive triangles
+    size_t tri_count;
+    size_t *tri_base;       ///< per scene instance: its first triangle's entry in tri_select_pdf, or SIZE_MAX
+    float *tri_select_pdf;  ///< per triangle of each instance with a tri_base: probability of choosing it, or 0
+    size_t instance_count;  ///< scene instances when indexed (tri_base's length)
+} light_sampler;
+
+/// Indexes the emissive quads and mesh-instance triangles of s (world space). An empty sampler (count 0)
+/// when nothing emits. False when out of memory (ls is then empty).
+bool light_sampler_build(light_sampler *ls, const glint_scene *s);
+/// Frees what the sampler owns and leaves it empty.
+void light_sampler_release(light_sampler *ls);
+/// Probability density, per unit solid angle, with which next-event estimation would have chosen the point
+/// where a ray of unit direction d hit surface sf at distance t; 0 when it is not an indexed light.
+float light_sampler_pdf(const light_sampler *ls, const glint_scene *s, const surface *sf, vec3 d, float t);
+/// The emitted radiance of triangle light tl at barycentrics (b1, b2), point x, towards unit direction wi.
+vec3 light_sampler_tri_emitted(const glint_scene *s, const tri_light *tl, float b1, float b2, vec3 x, vec3 wi);
+
+#endif

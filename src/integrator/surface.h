@@ -1,0 +1,65 @@
+// surface.h — what shading needs to know of a closest hit: the point, the normals facing the ray, the
+// material and texture coordinates, and a bound on the point's error for offsetting spawned rays.
+#ifndef GLINT_SURFACE_H
+#define GLINT_SURFACE_H
+
+#include "accel/accel.h"
+#include "core/vec.h"
+#include "scene/scene.h"
+
+#include <math.h>
+#include <stdbool.h>
+#include <stdint.h>
+
+/// Where a ray met a surface, with what shading needs.
+typedef struct surface {
+    vec3 p;        ///< hit point
+    vec3 n;        ///< unit shading normal facing against the incoming ray
+    vec3 ng;       ///< unit geometric normal on the same side as n (for offsets and emission sides)
+    bool front;    ///< the ray arrived on the side the outward (geometric) normal points to
+    uint32_t material;
+    float u, v;    ///< texture coordinates
+    float error;   ///< bound on the distance of p from the true surface, for offsetting spawned rays
+    hit_kind kind; ///< what was hit, for primitive-specific refinement (sphere re-projection)
+    uint32_t prim, instance;
+} surface;
+
+/// Shading data of a hit on anything but a world-space sphere (quads, triangles, instances).
+surface surface_at_general(const glint_scene *s, const ray *r, const hit *h);
+
+/// Where ray r meets sphere sp at distance t: the point re-projected onto the sphere, c + q |r| / |q| with
+/// q = p - c (pbrt's refinement: its error is then a few ulps of |r| and of p, whatever the error of t;
+/// spawned rays are offset by that), and the unit normal q / |q|, outward (inward for a negative radius),
+/// from the same reciprocal length: one square root and one division for both.
+static inline void sphere_hit_frame(const sphere *sp, const ray *r, float t, vec3 *p, vec3 *outward) {
+    vec3 q = v3_sub(ray_at(r, t), sp->center);
+    float len = sqrtf(v3_len2(q));
+    float inv = len > 0.0f ? 1.0f / len : 0.0f;
+    *p = v3_fma(sp->center, q, fabsf(sp->radius) * inv);
+    *outward = v3_scale(q, copysignf(inv, sp->radius));
+}
+
+/// Shading data of a closest hit found by accel_intersect for ray r.
+static inline surface surface_at(const glint_scene *s, const ray *r, const hit *h) {
+    if (h->kind != HIT_SPHERE || h->instance != HIT_NO_INSTANCE) return surface_at_general(s, r, h);
+    surface out;
+    const sphere *sp = &s->spheres[h->prim];
+    vec3 outward;
+    sphere_hit_frame(sp, r, h->t, &out.p, &outward);
+    out.front = v3_dot(r->d, outward) < 0.0f;
+    out.n = out.front ? outward : v3_neg(outward);
+    out.ng = out.n;
+    out.material = sp->material;
+    // Texture coordinates cost an acos and an atan2: only for materials that look them up.
+    const material *m = &s->materials[sp->material];
+    out.u = out.v = 0.0f;
+    if (m->albedo_texture >= 0 || m->emission_texture >= 0)
+        sphere_uv(sp->radius < 0.0f ? v3_neg(outward) : outward, &out.u, &out.v);
+    out.error = 0.0f;
+    out.kind = HIT_SPHERE;
+    out.prim = h->prim;
+    out.instance = HIT_NO_INSTANCE;
+    return out;
+}
+
+#endif

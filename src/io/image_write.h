@@ -1,0 +1,14 @@
+// image_write.h — writing a rendered image as PNG (libpng), binary or ASCII PPM, or PFM: through a temporary
+// file renamed into place, so that a failed or interrupted write never leaves a partial file behind.
+#ifndef GLINT_IMAGE_WRITE_H
+#define GLINT_IMAGE_WRITE_H
+
+#include "glint.h"
+
+/// Writes img to path in the format (GLINT_FORMAT_AUTO: from the extension); "-" writes PPM to standard output.
+glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err);
+/// Checks before a render that an image can be written at path: GLINT_ERR_INPUT for an unknown extension,
+/// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory.
+glint_status image_check_path(const char *path, glint_format format, glint_error *err);
+
+#endif

@@ -1,0 +1,27 @@
+// frame.h — the render frame: everything a render builds from a const scene (pbrt-v4's aggregate and lights):
+// the acceleration structure over the scene's geometry arrays, and the integrator with its light index and
+// the camera prepared for the image size. Built per render, so a change to the scene between renders counts.
+#ifndef GLINT_FRAME_H
+#define GLINT_FRAME_H
+
+#include "glint.h"
+#include "accel/accel.h"
+#include "integrator/integrator.h"
+#include "scene/scene.h"
+
+/// What one render of a scene reads besides the scene itself; immutable once built, shared by every thread.
+typedef struct render_frame {
+    accel *accel;
+    integrator *integrator;
+} render_frame;
+
+/// Builds the frame of scene s (which must outlive it). On failure returns GLINT_ERR_RENDER with a message
+/// and leaves f empty.
+glint_status frame_build(render_frame *f, const glint_scene *s, const integrator_options *o, glint_error *err);
+/// The acceleration structure the scene's settings choose, over its geometry; NULL (message in *err) when out
+/// of memory. The scene must outlive it.
+accel *frame_accel_build(const glint_scene *s, glint_error *err);
+/// Frees what the frame built and leaves it empty.
+void frame_release(render_frame *f);
+
+#endif

@@ -1,0 +1,22 @@
+// render.h — the render loop: progressive sample passes over tiles on N threads, into a film.
+#ifndef GLINT_RENDER_H
+#define GLINT_RENDER_H
+
+#include "glint.h"
+#include "integrator/integrator.h"
+#include "scene/scene.h"
+
+/// Options of one render (the public glint_render_options and what only tests set).
+typedef struct render_options {
+    int threads;                   ///< worker threads; 0 = all online CPUs
+    integrator_options integrator; ///< choices of the integrator that are not in the scene
+} render_options;
+
+/// Builds the render frame of s, renders every sample into a new image (*out), and frees the frame. On
+/// GLINT_ERR_INTERRUPTED *out holds the mean of each pixel's completed samples.
+glint_status render_scene(const glint_scene *s, const render_options *o, glint_progress_fn progress, void *user,
+                          glint_image **out, glint_render_stats *stats, glint_error *err);
+/// Asks running renders to stop soon; async-signal-safe (it stores one atomic flag).
+void render_request_stop(void);
+
+#endif
