@@ -1,4 +1,4 @@
-// test_instances.c — instanced and non-instanced copies render identical images (issue 5): a mesh file
+// test_instances.c — instanced and non-instanced copies render identical images: a mesh file
 // placed three times (one shared BVH) against three files with the same content (three BVHs); an identity transform
 // against none; a box of world-space quads against the same triangles as a mesh; a translated mesh against
 // one whose vertices were moved in the file; a sphere under a similarity (baked into a sphere) against the

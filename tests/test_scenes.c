@@ -1,5 +1,5 @@
 // test_scenes.c — every scene file in scenes/ loads, and every path-traced one renders at a tiny size; the
-// seeds' scenes carry the seeds' own settings (issue 3) and come out the right way up.
+// seeds' scenes carry the seeds' own settings and come out the right way up.
 #include "check.h"
 #include "glint.h"
 #include "scene/scene.h"
@@ -24,7 +24,7 @@ static glint_scene *load(const char *name) {
 
 static bool vec_is(vec3 v, float x, float y, float z) { return v.x == x && v.y == y && v.z == z; }
 
-// The settings issue 3 lists for each of the seeds' scenes.
+// The settings of each of the seeds' scenes, as the seeds give them.
 typedef struct expected {
     const char *file;
     int width, height, spp, max_depth;
@@ -74,7 +74,7 @@ static void test_seed_settings(void) {
              vec_is(c->lookat, e->lookat.x, e->lookat.y, e->lookat.z) && vec_is(c->vup, e->vup.x, e->vup.y, e->vup.z) &&
              c->vfov_degrees == e->vfov && c->defocus_angle_degrees == e->defocus &&
              (e->focus == 0 || c->focus_distance == e->focus);
-        if (!ok) fprintf(stderr, "%s: settings differ from issue 3\n", e->file);
+        if (!ok) fprintf(stderr, "%s: settings differ from the seed's\n", e->file);
         CHECK(ok);
         glint_scene_free(s);
     }

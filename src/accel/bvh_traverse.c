@@ -83,7 +83,8 @@ bool bvh_prim_hit(const bvh *b, uint32_t kind, uint32_t index, const ray *r, tri
 static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr, float tlimit, float *tnear) {
     unsigned mask = 0;
     for (int i = 0; i < BVH_WIDTH; i++) {
-        // Same operations in the same order as the SIMD path.
+        // The same values as the SIMD path: it takes both planes of a slab by min and max where this picks the
+        // rows by the direction's signs (trav_setup), and keeps the order of the max/min operations below.
         float nx = slab_t(n->box[tr->near[0]][i], tr->inv[0], tr->noi[0]);
         float ny = slab_t(n->box[tr->near[1]][i], tr->inv[1], tr->noi[1]);
         float nz = slab_t(n->box[tr->near[2]][i], tr->inv[2], tr->noi[2]);

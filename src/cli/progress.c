@@ -61,7 +61,7 @@ void cli_print_stats(const glint_render_stats *st) {
     double wall = st->render_seconds > 1e-9 ? st->render_seconds : 1e-9;
     char samples[32], rays[32], bvh[96], build[32];
     format_rate((double)st->samples / wall * 1e-6, samples, sizeof samples);
-    // Every ray query counts, closest-hit and shadow alike (issue 4's definition of rays/s).
+    // Every ray query counts, closest-hit and shadow alike (the benchmarks' definition of rays/s).
     format_rate((double)(st->rays + st->shadow_rays) / wall * 1e-6, rays, sizeof rays);
     if (st->bvh_nodes > 0 || st->bvh_leaves > 0) // a small scene may be one leaf and no inner node
         snprintf(bvh, sizeof bvh, "BVH %" PRIu64 " nodes %" PRIu64 " leaves depth %" PRIu64, st->bvh_nodes,

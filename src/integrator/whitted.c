@@ -14,7 +14,7 @@
 #endif
 
 // ---------------------------------------------------------------------------------------------------
-// Paper mode: what the paper's OCaml program computes (issue 2, "Facts"), operation for operation.
+// Paper mode: what the paper's OCaml program computes, operation for operation.
 // The program knows spheres only: paper mode sees the scene's world-space spheres and ignores quads,
 // meshes, instances and textures (its colours are the materials' constant ones).
 // ---------------------------------------------------------------------------------------------------
