@@ -4,6 +4,9 @@
 // json_scan checks the syntax and records where every value starts; cJSON builds the tree and
 // unescapes strings. Both list values in document order, so the reader walks the cJSON tree and the
 // token index side by side (jval = node + token) and can point at any value it rejects.
+#include "core/array.h"
+#include "core/filepath.h"
+#include "core/strmap.h"
 #include "scene/json_scan.h"
 #include "scene/load_obj.h"
 #include "scene/scene.h"
@@ -37,17 +40,19 @@ typedef struct jval {
     uint32_t tok;
 } jval;
 
-/// Name -> material or texture index, so that resolving references stays linear in the scene size.
-typedef struct name_slot {
-    const char *name; ///< owned by the scene or the cJSON tree, both alive while the scene is read
-    uint32_t index, tok;
-    uint32_t order;   ///< definition order, for listing names in messages
-} name_slot;
+/// A name defined in "materials" or "textures".
+typedef struct named {
+    const char *name; ///< owned by the cJSON tree, alive while the scene is read
+    uint32_t index;   ///< the scene material or texture
+    uint32_t tok;     ///< where it is defined
+} named;
 
-typedef struct name_map {
-    name_slot *slot;
-    size_t cap, count;
-} name_map;
+/// Name -> material or texture index, so that resolving references stays linear in the scene size.
+typedef struct name_table {
+    strmap map;  ///< name -> position in list
+    named *list; ///< in definition order, for listing names in messages
+    size_t count, cap;
+} name_table;
 
 /// The identity of a file (device and inode): two spellings of one path are the same file.
 typedef struct file_id {
@@ -78,8 +83,8 @@ typedef struct loader {
     glint_scene *scene;
     glint_error *err;
     glint_status status; ///< GLINT_ERR_INPUT, or GLINT_ERR_RENDER when memory ran out
-    name_map materials;
-    name_map textures;
+    name_table materials;
+    name_table textures;
     mesh_entry *meshes;
     size_t mesh_count, mesh_cap;
     image_entry *images;
@@ -544,45 +549,26 @@ static bool read_enum(loader *ld, const jobj *o, const char *key, const char *co
 // ---------------------------------------------------------------------------------------------
 // The material name table
 
-static uint64_t hash_name(const char *s) {
-    uint64_t h = 1469598103934665603u; // FNV-1a
-    for (; *s; s++) h = (h ^ (unsigned char)*s) * 1099511628211u;
-    return h;
+static const named *names_find(const name_table *t, const char *name) {
+    size_t i;
+    return strmap_get(&t->map, name, strlen(name), &i) ? &t->list[i] : NULL;
 }
 
-static name_slot *map_find(const name_map *m, const char *name) {
-    if (!m->cap) return NULL;
-    for (size_t i = hash_name(name) & (m->cap - 1);; i = (i + 1) & (m->cap - 1)) {
-        if (!m->slot[i].name) return NULL;
-        if (strcmp(m->slot[i].name, name) == 0) return &m->slot[i];
-    }
-}
-
-static bool map_add(name_map *m, const char *name, uint32_t index, uint32_t tok) {
-    if ((m->count + 1) * 2 > m->cap) {
-        // Keep the table at most half full so probes stay short.
-        size_t cap = m->cap ? m->cap * 2 : 16;
-        name_slot *slot = calloc(cap, sizeof *slot);
-        if (!slot) return false;
-        for (size_t i = 0; i < m->cap; i++) {
-            if (!m->slot[i].name) continue;
-            size_t j = hash_name(m->slot[i].name) & (cap - 1);
-            while (slot[j].name) j = (j + 1) & (cap - 1);
-            slot[j] = m->slot[i];
-        }
-        free(m->slot);
-        m->slot = slot;
-        m->cap = cap;
-    }
-    size_t j = hash_name(name) & (m->cap - 1);
-    while (m->slot[j].name) j = (j + 1) & (m->cap - 1);
-    m->slot[j] = (name_slot){name, index, tok, (uint32_t)m->count};
-    m->count++;
+static bool names_add(name_table *t, const char *name, uint32_t index, uint32_t tok) {
+    if (!array_reserve((void **)&t->list, &t->cap, t->count + 1, sizeof *t->list) ||
+        !strmap_put(&t->map, name, strlen(name), t->count))
+        return false;
+    t->list[t->count++] = (named){name, index, tok};
     return true;
 }
 
+static void names_free(name_table *t) {
+    strmap_free(&t->map);
+    free(t->list);
+}
+
 /// Checks the key at kt as a new name for `map`: 1 to SCENE_MAX_NAME bytes, no control characters, unused.
-static bool check_new_name(loader *ld, const name_map *map, uint32_t kt, const char *name, const char *kind) {
+static bool check_new_name(loader *ld, const name_table *map, uint32_t kt, const char *name, const char *kind) {
     char got[96];
     size_t n = strlen(name);
     if (n == 0 || n > SCENE_MAX_NAME)
@@ -592,7 +578,7 @@ static bool check_new_name(loader *ld, const name_map *map, uint32_t kt, const c
         if ((unsigned char)name[i] < 0x20)
             return fail_at(ld, offset_of(ld, kt), "%s name %s must not contain control characters", kind,
                            key_source(ld, kt, got, sizeof got));
-    const name_slot *prev = map_find(map, name);
+    const named *prev = names_find(map, name);
     if (prev) {
         size_t line, col;
         json_line_col(ld->text, ld->len, offset_of(ld, prev->tok), &line, &col);
@@ -603,16 +589,12 @@ static bool check_new_name(loader *ld, const name_map *map, uint32_t kt, const c
 }
 
 /// "material "blu" is not defined (defined: red, green)": lists the first few names in definition order.
-static bool fail_undefined(loader *ld, jval v, const name_map *map, const char *kind) {
+static bool fail_undefined(loader *ld, jval v, const name_table *map, const char *kind) {
     char names[512], got[96];
     size_t n = 0, listed = 0;
     names[0] = '\0';
-    for (uint32_t order = 0; order < map->count && listed < LOAD_LIST_NAMES; order++) {
-        const char *name = NULL;
-        for (size_t i = 0; i < map->cap && !name; i++)
-            if (map->slot[i].name && map->slot[i].order == order) name = map->slot[i].name;
-        if (!name) break;
-        int w = snprintf(names + n, sizeof names - n, "%s%s", listed ? ", " : "", name);
+    for (size_t i = 0; i < map->count && listed < LOAD_LIST_NAMES; i++) {
+        int w = snprintf(names + n, sizeof names - n, "%s%s", listed ? ", " : "", map->list[i].name);
         if (w < 0 || (size_t)w >= sizeof names - n) break;
         n += (size_t)w;
         listed++;
@@ -629,21 +611,10 @@ static bool fail_undefined(loader *ld, jval v, const name_map *map, const char *
 // ---------------------------------------------------------------------------------------------
 // Files the scene refers to (meshes, images): paths relative to the scene file's directory
 
-// The length of the directory part of the scene's name ("scenes/" of "scenes/a.json"; 0 for "a.json").
-static size_t dir_length(const char *name) {
-    const char *slash = strrchr(name, '/');
-    return slash ? (size_t)(slash - name) + 1 : 0;
-}
-
 /// `file` as a path usable from the current directory: absolute paths as they are, others joined to the
 /// scene file's directory. NULL when out of memory.
 static char *resolve_path(const loader *ld, const char *file) {
-    size_t d = file[0] == '/' ? 0 : dir_length(ld->name), n = strlen(file);
-    char *p = malloc(d + n + 1);
-    if (!p) return NULL;
-    memcpy(p, ld->name, d);
-    memcpy(p + d, file, n + 1);
-    return p;
+    return filepath_join(ld->name, filepath_dir_length(ld->name), file, strlen(file));
 }
 
 // " (resolved/path)" when the path opened differs from the one written, else "".
@@ -698,18 +669,6 @@ static const char *strip_path(const char *message, const char *path) {
     return strncmp(message, path, n) == 0 && message[n] == ':' && message[n + 1] == ' ' ? message + n + 2 : message;
 }
 
-static bool reserve(void **arr, size_t *cap, size_t n, size_t size) {
-    if (n <= *cap) return true;
-    size_t c = *cap ? *cap * 2 : 8;
-    if (c < n) c = n;
-    if (c > SIZE_MAX / size) return false;
-    void *p = realloc(*arr, c * size);
-    if (!p) return false;
-    *arr = p;
-    *cap = c;
-    return true;
-}
-
 /// The scene texture of image file `path` (id), decoded on first use; `where` is blamed for failures, and
 /// `prefix` (may be "") opens their message.
 static bool load_image(loader *ld, size_t where, const char *prefix, const char *written, const char *path,
@@ -729,7 +688,7 @@ static bool load_image(loader *ld, size_t where, const char *prefix, const char 
                        resolved_note(written, path, note, sizeof note), strip_path(err.message, path));
     }
     long i = scene_add_texture(ld->scene, &t, NULL);
-    if (i < 0 || !reserve((void **)&ld->images, &ld->image_cap, ld->image_count + 1, sizeof *ld->images))
+    if (i < 0 || !array_reserve((void **)&ld->images, &ld->image_cap, ld->image_count + 1, sizeof *ld->images))
         return fail_oom(ld);
     ld->images[ld->image_count++] = (image_entry){id, (uint32_t)i};
     *index = (uint32_t)i;
@@ -771,7 +730,7 @@ LOAD_PRINTF(3, 4) static void warn_at(loader *ld, size_t offset, const char *fmt
 typedef bool (*named_reader)(loader *ld, jval v, const char *what, const char *name, uint32_t *index);
 
 /// Reads "<kind>s", an object mapping names to items of that kind, adding each name to `map`.
-static bool read_named(loader *ld, jval v, const char *kind, name_map *map, named_reader read) {
+static bool read_named(loader *ld, jval v, const char *kind, name_table *map, named_reader read) {
     char got[96], what[64 + SCENE_MAX_NAME];
     if (!cJSON_IsObject(v.item))
         return fail_at(ld, offset_of(ld, v.tok), "\"%ss\" must be a JSON object mapping names to %ss, got %s", kind,
@@ -787,7 +746,7 @@ static bool read_named(loader *ld, jval v, const char *kind, name_map *map, name
         snprintf(what, sizeof what, "%s \"%s\"", kind, name);
         uint32_t index;
         if (!read(ld, val, what, name, &index)) return false;
-        if (!map_add(map, name, index, kt)) return fail_oom(ld);
+        if (!names_add(map, name, index, kt)) return fail_oom(ld);
     }
     return r == 0;
 }
@@ -938,7 +897,7 @@ static bool read_material_color(loader *ld, const jobj *o, const char *key, cons
         return check_color(ld, v, key, sp, color);
     uint32_t index;
     if (cJSON_IsString(v.item)) {
-        const name_slot *s = map_find(&ld->textures, v.item->valuestring);
+        const named *s = names_find(&ld->textures, v.item->valuestring);
         if (!s) return fail_undefined(ld, v, &ld->textures, "texture");
         index = s->index;
     } else if (cJSON_IsObject(v.item)) {
@@ -1049,7 +1008,7 @@ static bool read_material_ref(loader *ld, const jobj *o, const char *owner, uint
         return fail_at(ld, offset_of(ld, v.tok),
                        "\"material\" must be the name of a material in \"materials\" or a material object, got %s",
                        describe(ld, v, got, sizeof got));
-    const name_slot *s = map_find(&ld->materials, v.item->valuestring);
+    const named *s = names_find(&ld->materials, v.item->valuestring);
     if (s) {
         *index = s->index;
         return true;
@@ -1440,7 +1399,7 @@ static bool read_mesh(loader *ld, const jobj *o, const char *what) {
             ld->meshes[i].face_normals == face_normals)
             entry = &ld->meshes[i];
     if (ok && !entry) {
-        if (!reserve((void **)&ld->meshes, &ld->mesh_cap, ld->mesh_count + 1, sizeof *ld->meshes)) {
+        if (!array_reserve((void **)&ld->meshes, &ld->mesh_cap, ld->mesh_count + 1, sizeof *ld->meshes)) {
             ok = fail_oom(ld);
         } else {
             entry = &ld->meshes[ld->mesh_count];
@@ -1804,8 +1763,8 @@ glint_status glint_scene_parse(const char *name, const char *text, size_t length
     } else {
         ok = read_scene(&ld, (jval){root, 0});
     }
-    free(ld.materials.slot);
-    free(ld.textures.slot);
+    names_free(&ld.materials);
+    names_free(&ld.textures);
     free(ld.meshes);
     free(ld.images);
     cJSON_Delete(root);
