@@ -7,6 +7,7 @@
 #include "core/array.h"
 #include "core/filepath.h"
 #include "core/strmap.h"
+#include "io/image_read.h"
 #include "scene/json_scan.h"
 #include "scene/load_obj.h"
 #include "scene/scene.h"
@@ -680,13 +681,15 @@ static bool load_image(loader *ld, size_t where, const char *prefix, const char 
         }
     if (ld->scene->texture_count >= LOAD_MAX_ITEMS)
         return fail_at(ld, where, "too many textures (the limit is %d)", LOAD_MAX_ITEMS);
-    texture t;
+    // The file is decoded here (io/), and the texture module only takes the pixels.
+    image_rgb img;
     glint_error err;
-    if (texture_image_load(path, &t, &err) != GLINT_OK) {
+    if (image_read(path, &img, &err) != GLINT_OK) {
         char note[420];
         return fail_at(ld, where, "%simage file \"%.300s\"%s: %s", prefix, written,
                        resolved_note(written, path, note, sizeof note), strip_path(err.message, path));
     }
+    texture t = texture_image(img);
     long i = scene_add_texture(ld->scene, &t, NULL);
     if (i < 0 || !array_reserve((void **)&ld->images, &ld->image_cap, ld->image_count + 1, sizeof *ld->images))
         return fail_oom(ld);
