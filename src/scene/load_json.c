@@ -1025,14 +1025,6 @@ static bool read_material_ref(loader *ld, const jobj *o, const char *owner, uint
 static const char *const transform_op_keys[] = {"translate", "rotate", "scale", "matrix", NULL};
 static const char *const rotate_keys[] = {"axis", "degrees", NULL};
 
-// Determinant of the linear (upper-left 3x3) part, in double.
-static double linear_det(const mat4 *a) {
-    const float(*m)[4] = a->m;
-    return (double)m[0][0] * ((double)m[1][1] * m[2][2] - (double)m[1][2] * m[2][1]) -
-           (double)m[0][1] * ((double)m[1][0] * m[2][2] - (double)m[1][2] * m[2][0]) +
-           (double)m[0][2] * ((double)m[1][0] * m[2][1] - (double)m[1][1] * m[2][0]);
-}
-
 // {"rotate": {"axis": [x, y, z], "degrees": a}}: right-handed, counter-clockwise looking down the axis.
 static bool read_rotate(loader *ld, jval v, const char *what, mat4 *out) {
     jobj o;
@@ -1081,7 +1073,7 @@ static bool read_matrix(loader *ld, jval v, mat4 *out) {
     mat4 inv;
     if (!mat4_invert(out, &inv))
         return fail_at(ld, offset_of(ld, v.tok),
-                       "\"matrix\" is singular (determinant %g); expected an invertible matrix", linear_det(out));
+                       "\"matrix\" is singular (determinant %g); expected an invertible matrix", mat4_linear_det(out));
     return true;
 }
 
@@ -1137,26 +1129,7 @@ static bool read_transform(loader *ld, const jobj *o, transform *xf, bool *given
         return fail_at(ld, offset_of(ld, v.tok),
                        "\"transform\" is singular or too close to it to invert in single precision (determinant "
                        "%g)",
-                       linear_det(&acc));
-    return true;
-}
-
-// Whether the linear part of m is a rotation (or a mirror) times a uniform scale; *s is that scale.
-static bool similarity_scale(const mat4 *m, double *s) {
-    double c[3][3];
-    for (int j = 0; j < 3; j++)
-        for (int i = 0; i < 3; i++) c[j][i] = m->m[i][j];
-    double n[3], d[3];
-    for (int j = 0; j < 3; j++) n[j] = c[j][0] * c[j][0] + c[j][1] * c[j][1] + c[j][2] * c[j][2];
-    for (int j = 0; j < 3; j++) {
-        const double *a = c[j], *b = c[(j + 1) % 3];
-        d[j] = a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    }
-    // Columns of equal length, pairwise orthogonal, up to the float rounding of a composed rotation.
-    double tol = 1e-5 * n[0];
-    for (int j = 0; j < 3; j++)
-        if (fabs(n[j] - n[0]) > tol || fabs(d[j]) > tol) return false;
-    *s = sqrt((n[0] + n[1] + n[2]) / 3.0);
+                       mat4_linear_det(&acc));
     return true;
 }
 
@@ -1182,7 +1155,7 @@ static bool read_sphere(loader *ld, const jobj *o, const char *what) {
     double scale;
     const material *m = &ld->scene->materials[s.material];
     bool textured = m->albedo_texture >= 0 || m->emission_texture >= 0;
-    if (!textured && similarity_scale(&xf.m, &scale)) {
+    if (!textured && mat4_similarity_scale(&xf.m, &scale)) {
         sphere w = s;
         w.center = mat4_apply_point(&xf.m, s.center);
         w.radius = (float)(s.radius * scale);
@@ -1197,26 +1170,11 @@ static bool read_sphere(loader *ld, const jobj *o, const char *what) {
     return scene_add_instance(ld->scene, in) || fail_oom(ld);
 }
 
-/// The quad q under m: its corners transformed as points (so corners shared by quads stay shared, and a box
-/// stays watertight), with u and v swapped under a mirror so that the front stays the front.
-static bool transform_quad(const quad *q, const mat4 *m, quad *out) {
-    vec3 p[4];
-    for (int k = 0; k < 4; k++) p[k] = mat4_apply_point(m, q->p[k]);
-    if (linear_det(m) < 0.0) {
-        vec3 tmp = p[1];
-        p[1] = p[3];
-        p[3] = tmp;
-    }
-    if (!quad_make(p[0], v3_sub(p[1], p[0]), v3_sub(p[3], p[0]), q->material, out)) return false;
-    for (int k = 0; k < 4; k++) out->p[k] = p[k];
-    return true;
-}
-
 // Adds quads (count of them) under xf if `moved`, pointing at "transform" when the result degenerates.
 static bool add_quads(loader *ld, const jobj *o, const quad *q, int count, const transform *xf, bool moved) {
     for (int i = 0; i < count; i++) {
         quad w = q[i];
-        if (moved && !transform_quad(&q[i], &xf->m, &w))
+        if (moved && !quad_transform(&q[i], &xf->m, &w))
             return fail_at(ld, offset_of_member(ld, o, "transform"),
                            "the transformed shape has no area or is not representable in single precision");
         if (!scene_add_quad(ld->scene, w)) return fail_oom(ld);
