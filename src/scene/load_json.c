@@ -8,8 +8,8 @@
 #include "core/filepath.h"
 #include "core/strmap.h"
 #include "io/image_read.h"
-#include "scene/json_scan.h"
-#include "scene/load_obj.h"
+#include "io/json_scan.h"
+#include "io/obj.h"
 #include "scene/scene.h"
 
 #include <cjson/cJSON.h>

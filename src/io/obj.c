@@ -1,5 +1,5 @@
-// load_obj.c — the OBJ/MTL reader: one pass over the text, no allocation per line, faces triangulated as read.
-#include "scene/load_obj.h"
+// obj.c — the OBJ/MTL reader: one pass over the text, no allocation per line, faces triangulated as read.
+#include "io/obj.h"
 #include "core/array.h"
 #include "core/filepath.h"
 #include "core/strmap.h"
@@ -362,7 +362,7 @@ static float max3(vec3 v) { return fmaxf(v.x, fmaxf(v.y, v.z)); }
 static float clamp01(float x) { return fminf(1.0f, fmaxf(0.0f, x)); }
 static vec3 clamp01v(vec3 v) { return v3(clamp01(v.x), clamp01(v.y), clamp01(v.z)); }
 
-// The documented MTL -> glint mapping (see load_obj.h).
+// The documented MTL -> glint mapping (see obj.h).
 static material mtl_to_material(const mtl_block *b) {
     if (b->has_ke && max3(b->ke) > 0.0f) {
         material m = material_default(MAT_DIFFUSE_LIGHT);
