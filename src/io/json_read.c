@@ -175,7 +175,7 @@ static size_t list_count(const char *const *list) {
 static bool fail_not_object(json_reader *rd, jr_val v, const char *what) {
     char got[96];
     return jr_fail_at(rd, jr_offset(rd, v.tok), "%s must be a JSON object, got %s", what,
-                   jr_describe(rd, v, got, sizeof got));
+                      jr_describe(rd, v, got, sizeof got));
 }
 
 /// Checks v is an object whose keys all belong to `keys` (NULL-terminated), each at most once.
@@ -194,14 +194,14 @@ bool jr_open(json_reader *rd, jr_val v, const char *what, const char *const *key
         if (!in_list(keys, key)) {
             list_names(keys, list_count(keys), sizeof *keys, false, list, sizeof list);
             return jr_fail_at(rd, jr_offset(rd, kt), "unknown key %s in %s; expected one of: %s",
-                           jr_key_source(rd, kt, src, sizeof src), what, list);
+                              jr_key_source(rd, kt, src, sizeof src), what, list);
         }
         for (size_t i = 0; i < o->count; i++) {
             if (strcmp(o->m[i].key, key) != 0) continue;
             size_t line, col;
             json_line_col(rd->text, rd->len, jr_offset(rd, o->m[i].key_tok), &line, &col);
             return jr_fail_at(rd, jr_offset(rd, kt), "duplicate key %s in %s (first given at %zu:%zu)",
-                           jr_key_source(rd, kt, src, sizeof src), what, line, col);
+                              jr_key_source(rd, kt, src, sizeof src), what, line, col);
         }
         if (o->count == JR_MAX_KEYS) return jr_fail_internal(rd, kt);
         o->m[o->count++] = (jr_member){key, kt, val};
@@ -246,7 +246,7 @@ bool jr_open_typed(json_reader *rd, jr_val v, const char *what, const void *tabl
         if (cJSON_IsString(val.item) && (*type = jr_find_name(table, count, stride, val.item->valuestring)) < count)
             return true;
         return jr_fail_at(rd, jr_offset(rd, val.tok), "\"type\" must be %s, got %s", names,
-                       jr_describe(rd, val, got, sizeof got));
+                          jr_describe(rd, val, got, sizeof got));
     }
     if (r < 0) return false;
     return jr_fail_at(rd, jr_offset(rd, v.tok), "missing required key \"type\" in %s; expected one of %s", what, names);
@@ -291,7 +291,7 @@ bool jr_check_number(json_reader *rd, jr_val v, const char *key, int index, cons
     }
     char name[96], got[96];
     return jr_fail_at(rd, jr_offset(rd, v.tok), "%s must be %s, got %s", param_name(key, index, name, sizeof name),
-                   sp->desc, jr_describe(rd, v, got, sizeof got));
+                      sp->desc, jr_describe(rd, v, got, sizeof got));
 }
 
 // Exactly n numbers in an array; `shape` completes "must be an array of ...", e.g. "3 numbers (x, y, z)".
@@ -300,7 +300,7 @@ bool jr_check_numbers(json_reader *rd, jr_val v, const char *key, size_t n, cons
     char got[96];
     if (!cJSON_IsArray(v.item) || (size_t)cJSON_GetArraySize(v.item) != n)
         return jr_fail_at(rd, jr_offset(rd, v.tok), "\"%s\" must be an array of %s, got %s", key, shape,
-                       jr_describe(rd, v, got, sizeof got));
+                          jr_describe(rd, v, got, sizeof got));
     jr_iter it = jr_iter_begin(rd, v);
     jr_val e;
     int r;
@@ -331,7 +331,7 @@ bool jr_check_color(json_reader *rd, jr_val v, const char *key, const jr_numspec
     }
     char got[96];
     return jr_fail_at(rd, jr_offset(rd, v.tok), "\"%s\" must be %s or an array of 3 such numbers [r, g, b], got %s", key,
-                   sp->desc, jr_describe(rd, v, got, sizeof got));
+                      sp->desc, jr_describe(rd, v, got, sizeof got));
 }
 
 // The member readers: an absent optional key leaves *out as it is (the default); an absent
@@ -371,7 +371,7 @@ bool jr_read_int(json_reader *rd, const jr_obj *o, const char *key, bool require
     }
     char got[96];
     return jr_fail_at(rd, jr_offset(rd, m->val.tok), "\"%s\" must be an integer in [%lld, %lld], got %s", key, lo, hi,
-                   jr_describe(rd, m->val, got, sizeof got));
+                      jr_describe(rd, m->val, got, sizeof got));
 }
 
 bool jr_read_vec3(json_reader *rd, const jr_obj *o, const char *key, bool required, const jr_numspec *sp, vec3 *out) {
@@ -396,7 +396,7 @@ bool jr_read_bool(json_reader *rd, const jr_obj *o, const char *key, bool *out) 
     }
     char got[96];
     return jr_fail_at(rd, jr_offset(rd, m->val.tok), "\"%s\" must be true or false, got %s", key,
-                   jr_describe(rd, m->val, got, sizeof got));
+                      jr_describe(rd, m->val, got, sizeof got));
 }
 
 /// One of the strings `names` (count of them); *out is its index.

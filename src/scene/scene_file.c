@@ -71,17 +71,17 @@ static bool check_new_name(sf_loader *ld, const sf_names *map, uint32_t kt, cons
     size_t n = strlen(name);
     if (n == 0 || n > SCENE_MAX_NAME)
         return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "%s name %s must be 1 to %d bytes long", kind,
-                       jr_key_source(&ld->r, kt, got, sizeof got), SCENE_MAX_NAME);
+                          jr_key_source(&ld->r, kt, got, sizeof got), SCENE_MAX_NAME);
     for (size_t i = 0; i < n; i++)
         if ((unsigned char)name[i] < 0x20)
             return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "%s name %s must not contain control characters", kind,
-                           jr_key_source(&ld->r, kt, got, sizeof got));
+                              jr_key_source(&ld->r, kt, got, sizeof got));
     const sf_name *prev = sf_names_find(map, name);
     if (prev) {
         size_t line, col;
         json_line_col(ld->r.text, ld->r.len, jr_offset(&ld->r, prev->tok), &line, &col);
         return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "duplicate %s name \"%s\" (first defined at %zu:%zu)", kind, name, line,
-                       col);
+                          col);
     }
     return true;
 }
@@ -102,7 +102,7 @@ bool sf_fail_undefined(sf_loader *ld, jr_val v, const sf_names *map, const char 
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (no named %ss are defined)", kind, what, kind);
     if (listed < map->count)
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (defined: %s and %zu more)", kind, what, names,
-                       map->count - listed);
+                          map->count - listed);
     return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (defined: %s)", kind, what, names);
 }
 
@@ -143,8 +143,8 @@ bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const ch
     jr_val v = *where = m->val;
     if (!cJSON_IsString(v.item) || v.item->valuestring[0] == '\0')
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"%s\" must be a non-empty string (a path relative to the scene file), got %s", key,
-                       jr_describe(&ld->r, v, got, sizeof got));
+                          "\"%s\" must be a non-empty string (a path relative to the scene file), got %s", key,
+                          jr_describe(&ld->r, v, got, sizeof got));
     const char *written = v.item->valuestring;
     char *p = resolve_path(ld, written);
     if (!p) return sf_fail_oom(ld);
@@ -152,7 +152,7 @@ bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const ch
     int e = sf_file_problem(p, &st);
     if (e != 0) {
         jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s file %s%s: cannot open: %s", kind, jr_describe(&ld->r, v, got, sizeof got),
-                sf_resolved_note(written, p, note, sizeof note), sf_file_problem_text(e));
+                   sf_resolved_note(written, p, note, sizeof note), sf_file_problem_text(e));
         free(p);
         return false;
     }
@@ -172,7 +172,7 @@ static bool read_named(sf_loader *ld, jr_val v, const char *kind, sf_names *map,
     char got[96], what[64 + SCENE_MAX_NAME];
     if (!cJSON_IsObject(v.item))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "\"%ss\" must be a JSON object mapping names to %ss, got %s", kind,
-                       kind, jr_describe(&ld->r, v, got, sizeof got));
+                          kind, jr_describe(&ld->r, v, got, sizeof got));
     jr_iter it = jr_iter_begin(&ld->r, v);
     uint32_t kt = 0;
     jr_val val;
@@ -197,7 +197,7 @@ static bool read_array(sf_loader *ld, jr_val v, const char *key, element_reader 
     char got[96];
     if (!cJSON_IsArray(v.item))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "\"%s\" must be an array of objects, got %s", key,
-                       jr_describe(&ld->r, v, got, sizeof got));
+                          jr_describe(&ld->r, v, got, sizeof got));
     jr_iter it = jr_iter_begin(&ld->r, v);
     jr_val e;
     int r;
@@ -241,13 +241,13 @@ static bool read_lookat(sf_loader *ld, const jr_obj *o, camera *c) {
     float d2 = v3_len2(d);
     if (!(d2 > 0.0f) || !isfinite(d2))
         return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, jr_get(o, "lookat") ? "lookat" : "lookfrom"),
-                       "\"lookfrom\" and \"lookat\" must be different points%s",
-                       d2 > 0.0f ? " not so far apart that their distance overflows" : "");
+                          "\"lookfrom\" and \"lookat\" must be different points%s",
+                          d2 > 0.0f ? " not so far apart that their distance overflows" : "");
     float up2 = v3_len2(c->vup);
     vec3 side = v3_cross(c->vup, v3_unit(d));
     if (!isfinite(up2) || !(v3_len2(side) > 1e-12f * up2))
         return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "vup"),
-                       "\"vup\" must be a non-zero vector not parallel to the view direction (lookat - lookfrom)");
+                          "\"vup\" must be a non-zero vector not parallel to the view direction (lookat - lookfrom)");
     return true;
 }
 
@@ -323,8 +323,8 @@ static bool read_integrator(sf_loader *ld, jr_val v, render_settings *rs) {
     }
     if (!cJSON_IsObject(v.item))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"integrator\" must be \"whitted\", \"path\" or an object with a \"type\", got %s",
-                       jr_describe(&ld->r, v, got, sizeof got));
+                          "\"integrator\" must be \"whitted\", \"path\" or an object with a \"type\", got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
     size_t t;
     if (!jr_open_typed(&ld->r, v, "integrator", integrator_types, 2, sizeof integrator_types[0], &t)) return false;
     char typed[64];
@@ -351,9 +351,9 @@ static bool read_background(sf_loader *ld, jr_val v, render_settings *rs) {
     }
     if (!cJSON_IsObject(v.item))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"background\" must be a colour (a number or [r, g, b]), \"sky\" or an object with a \"type\", "
-                       "got %s",
-                       jr_describe(&ld->r, v, got, sizeof got));
+                          "\"background\" must be a colour (a number or [r, g, b]), \"sky\" or an object with a \"type\", "
+                          "got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
     size_t t;
     if (!jr_open_typed(&ld->r, v, "background", background_types, 2, sizeof background_types[0], &t)) return false;
     char typed[64];
@@ -411,7 +411,7 @@ static bool read_scene(sf_loader *ld, jr_val root) {
     if (!cJSON_IsObject(root.item)) {
         char got[96];
         return jr_fail_at(&ld->r, jr_offset(&ld->r, root.tok), "the scene must be a JSON object, got %s",
-                       jr_describe(&ld->r, root, got, sizeof got));
+                          jr_describe(&ld->r, root, got, sizeof got));
     }
     if (!jr_open(&ld->r, root, "the scene", scene_keys, &o)) return false;
     const jr_member *m;

@@ -37,7 +37,7 @@ bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *
     if (image_read(path, &img, &err) != GLINT_OK) {
         char note[420];
         return jr_fail_at(&ld->r, where, "%simage file \"%.300s\"%s: %s", prefix, written,
-                       sf_resolved_note(written, path, note, sizeof note), strip_path(err.message, path));
+                          sf_resolved_note(written, path, note, sizeof note), strip_path(err.message, path));
     }
     texture t = texture_image(img);
     long i = scene_add_texture(ld->scene, &t, NULL);
@@ -92,7 +92,7 @@ static bool read_checker(sf_loader *ld, const jr_obj *o, int variant, const char
         const jr_member *m = jr_get(o, "scale");
         char got[96];
         return jr_fail_at(&ld->r, jr_offset(&ld->r, m->val.tok), "\"scale\" must be at least %g, got %s", (double)FLT_MIN,
-                       jr_describe(&ld->r, m->val, got, sizeof got));
+                          jr_describe(&ld->r, m->val, got, sizeof got));
     }
     texture t = texture_checker(scale, even, odd);
     return add_texture(ld, o, &t, name, index);
@@ -183,15 +183,15 @@ static bool read_material_color(sf_loader *ld, const jr_obj *o, const char *key,
         if (!sf_read_texture(ld, v, what, NULL, &index)) return false;
     } else {
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"%s\" must be %s, an array of 3 such numbers [r, g, b], a texture name or a texture object, "
-                       "got %s",
-                       key, sp->desc, jr_describe(&ld->r, v, got, sizeof got));
+                          "\"%s\" must be %s, an array of 3 such numbers [r, g, b], a texture name or a texture object, "
+                          "got %s",
+                          key, sp->desc, jr_describe(&ld->r, v, got, sizeof got));
     }
     float peak = texture_peak(&ld->scene->textures[index]);
     if (peak > sp->hi)
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"%s\" must stay in [0, %g], but this texture has colour components up to %g", key, sp->hi,
-                       (double)peak);
+                          "\"%s\" must stay in [0, %g], but this texture has colour components up to %g", key, sp->hi,
+                          (double)peak);
     *tex = (int32_t)index;
     return true;
 }
@@ -283,8 +283,8 @@ bool sf_read_material_ref(sf_loader *ld, const jr_obj *o, const char *owner, uin
     }
     if (!cJSON_IsString(v.item))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"material\" must be the name of a material in \"materials\" or a material object, got %s",
-                       jr_describe(&ld->r, v, got, sizeof got));
+                          "\"material\" must be the name of a material in \"materials\" or a material object, got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
     const sf_name *s = sf_names_find(&ld->materials, v.item->valuestring);
     if (s) {
         *index = s->index;

@@ -62,7 +62,7 @@ static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model
             snprintf(prefix, sizeof prefix, "mesh file \"%.200s\": material \"%.100s\": ", written, om->name);
             if (e)
                 return jr_fail_at(&ld->r, where, "%simage file \"%.300s\": cannot open: %s", prefix, om->diffuse_map,
-                               sf_file_problem_text(e));
+                                  sf_file_problem_text(e));
             uint32_t t;
             if (!sf_load_image(ld, where, prefix, om->diffuse_map, om->diffuse_map, (sf_file_id){st.st_dev, st.st_ino}, &t))
                 return false;
@@ -92,7 +92,7 @@ static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id i
     char got[96], note[420];
     if (obj_load(path, &opt, &model, &err) != GLINT_OK)
         return jr_fail_at(&ld->r, jr_offset(&ld->r, file.tok), "mesh file %s%s: %s", jr_describe(&ld->r, file, got, sizeof got),
-                       sf_resolved_note(file.item->valuestring, path, note, sizeof note), err.message);
+                          sf_resolved_note(file.item->valuestring, path, note, sizeof note), err.message);
     if (ld->warning_oom) {
         obj_model_free(&model);
         return sf_fail_oom(ld);
@@ -163,9 +163,9 @@ bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
     if (!override && entry->needs_fallback && !entry->warned) {
         entry->warned = true;
         sf_warn_at(ld, jr_offset(&ld->r, file.tok),
-                "some faces of mesh file %s have no material (no usemtl, or one no material library defines); they "
-                "are grey Lambertian unless the object gives a \"material\"",
-                jr_describe(&ld->r, file, got, sizeof got));
+                   "some faces of mesh file %s have no material (no usemtl, or one no material library defines); they "
+                   "are grey Lambertian unless the object gives a \"material\"",
+                   jr_describe(&ld->r, file, got, sizeof got));
     }
     instance in = {INSTANCE_MESH, entry->mesh, xf, override ? (int32_t)mat : -1};
     return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);

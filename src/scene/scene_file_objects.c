@@ -24,7 +24,7 @@ static bool read_rotate(sf_loader *ld, jr_val v, const char *what, mat4 *out) {
         const jr_member *m = jr_get(&o, "axis");
         char got[96];
         return jr_fail_at(&ld->r, jr_offset(&ld->r, m->val.tok), "\"axis\" must be a non-zero vector, got %s",
-                       jr_describe(&ld->r, m->val, got, sizeof got));
+                          jr_describe(&ld->r, m->val, got, sizeof got));
     }
     *out = mat4_rotate(axis, degrees);
     return true;
@@ -41,8 +41,8 @@ static bool read_scale(sf_loader *ld, jr_val v, mat4 *out) {
     } else {
         char got[96];
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"scale\" must be a finite non-zero number or an array of 3 such numbers [x, y, z], got %s",
-                       jr_describe(&ld->r, v, got, sizeof got));
+                          "\"scale\" must be a finite non-zero number or an array of 3 such numbers [x, y, z], got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
     }
     *out = mat4_scale(v3((float)d[0], (float)d[1], (float)d[2]));
     return true;
@@ -55,12 +55,12 @@ static bool read_matrix(sf_loader *ld, jr_val v, mat4 *out) {
     for (int i = 0; i < 16; i++) out->m[i / 4][i % 4] = (float)d[i];
     if (!(d[12] == 0.0 && d[13] == 0.0 && d[14] == 0.0 && d[15] == 1.0))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"matrix\" must be affine: its last row must be [0, 0, 0, 1], got [%g, %g, %g, %g]", d[12],
-                       d[13], d[14], d[15]);
+                          "\"matrix\" must be affine: its last row must be [0, 0, 0, 1], got [%g, %g, %g, %g]", d[12],
+                          d[13], d[14], d[15]);
     mat4 inv;
     if (!mat4_invert(out, &inv))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"matrix\" is singular (determinant %g); expected an invertible matrix", mat4_linear_det(out));
+                          "\"matrix\" is singular (determinant %g); expected an invertible matrix", mat4_linear_det(out));
     return true;
 }
 
@@ -74,9 +74,9 @@ bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *give
     char got[96];
     if (!cJSON_IsArray(v.item))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"transform\" must be an array of operations ({\"translate\": ...}, {\"rotate\": ...}, "
-                       "{\"scale\": ...} or {\"matrix\": ...}), got %s",
-                       jr_describe(&ld->r, v, got, sizeof got));
+                          "\"transform\" must be an array of operations ({\"translate\": ...}, {\"rotate\": ...}, "
+                          "{\"scale\": ...} or {\"matrix\": ...}), got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
     mat4 acc = mat4_identity();
     jr_iter it = jr_iter_begin(&ld->r, v);
     jr_val e;
@@ -88,9 +88,9 @@ bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *give
         if (!jr_open(&ld->r, e, what, transform_op_keys, &op)) return false;
         if (op.count != 1)
             return jr_fail_at(&ld->r, jr_offset(&ld->r, e.tok),
-                           "%s must hold exactly one operation (translate, rotate, scale or matrix), got %zu; put "
-                           "each in its own element, they apply in array order",
-                           what, op.count);
+                              "%s must hold exactly one operation (translate, rotate, scale or matrix), got %zu; put "
+                              "each in its own element, they apply in array order",
+                              what, op.count);
         const jr_member *opm = &op.m[0];
         mat4 step;
         if (strcmp(opm->key, "translate") == 0) {
@@ -114,9 +114,9 @@ bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *give
     if (r < 0) return false;
     if (!transform_make(&acc, xf))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                       "\"transform\" is singular or too close to it to invert in single precision (determinant "
-                       "%g)",
-                       mat4_linear_det(&acc));
+                          "\"transform\" is singular or too close to it to invert in single precision (determinant "
+                          "%g)",
+                          mat4_linear_det(&acc));
     return true;
 }
 
@@ -148,7 +148,7 @@ static bool read_sphere(sf_loader *ld, const jr_obj *o, const char *what) {
         w.radius = (float)(s.radius * scale);
         if (!v3_is_finite(w.center) || !isfinite(w.radius) || w.radius == 0.0f)
             return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "transform"),
-                           "the transformed sphere is not representable in single precision");
+                              "the transformed sphere is not representable in single precision");
         return scene_add_sphere(ld->scene, w) || sf_fail_oom(ld);
     }
     long i = scene_add_instance_sphere(ld->scene, s);
@@ -163,7 +163,7 @@ static bool add_quads(sf_loader *ld, const jr_obj *o, const quad *q, int count, 
         quad w = q[i];
         if (moved && !quad_transform(&q[i], &xf->m, &w))
             return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "transform"),
-                           "the transformed shape has no area or is not representable in single precision");
+                              "the transformed shape has no area or is not representable in single precision");
         if (!scene_add_quad(ld->scene, w)) return sf_fail_oom(ld);
     }
     return true;
@@ -183,7 +183,7 @@ static bool read_quad(sf_loader *ld, const jr_obj *o, const char *what) {
         vec3 n = v3_cross(u, v);
         if (v3_is_finite(n) && n.x == 0.0f && n.y == 0.0f && n.z == 0.0f)
             return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "v"),
-                           "\"u\" and \"v\" must be non-zero and not parallel (the quad has no area)");
+                              "\"u\" and \"v\" must be non-zero and not parallel (the quad has no area)");
         return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "v"), "the quad is too large: its area overflows single precision");
     }
     return add_quads(ld, o, &qd, 1, &xf, moved);
@@ -200,9 +200,9 @@ static bool read_box(sf_loader *ld, const jr_obj *o, const char *what) {
         float a = v3_comp(lo, k), b = v3_comp(hi, k);
         if (!(a < b))
             return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "max"),
-                           "\"max\" must be greater than \"min\" in every coordinate, but \"max\"[%d] = %g <= "
-                           "\"min\"[%d] = %g",
-                           k, (double)b, k, (double)a);
+                              "\"max\" must be greater than \"min\" in every coordinate, but \"max\"[%d] = %g <= "
+                              "\"min\"[%d] = %g",
+                              k, (double)b, k, (double)a);
     }
     if (!sf_read_material_ref(ld, o, what, &mat) || !sf_read_transform(ld, o, &xf, &moved)) return false;
     quad faces[6];
@@ -274,7 +274,7 @@ bool sf_read_light(sf_loader *ld, jr_val v, size_t i) {
             const jr_member *m = jr_get(&o, "direction");
             char got[96];
             return jr_fail_at(&ld->r, jr_offset(&ld->r, m->val.tok), "\"direction\" must be a non-zero vector, got %s",
-                           jr_describe(&ld->r, m->val, got, sizeof got));
+                              jr_describe(&ld->r, m->val, got, sizeof got));
         }
     }
     return scene_add_light(ld->scene, l) || sf_fail_oom(ld);
