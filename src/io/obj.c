@@ -295,10 +295,12 @@ static char *join_path(const char *dir, size_t dir_len, const char *name, size_t
         name += 2; // "./x" is "x"
         n -= 2;
     }
-    char *p = filepath_join(dir, windows_absolute ? 0 : dir_len, name, n);
+    size_t d = windows_absolute || filepath_is_absolute(name, n) ? 0 : dir_len;
+    char *p = filepath_join(dir, d, name, n);
     if (!p) return NULL;
-    for (char *q = p + strlen(p) - n; *q; q++)
-        if (*q == '\\') *q = '/';
+    // By count, not up to a NUL: a malformed file may put NUL bytes in a name.
+    for (size_t i = d; i < d + n; i++)
+        if (p[i] == '\\') p[i] = '/';
     return p;
 }
 
