@@ -4,7 +4,7 @@
 #include "check.h"
 #include "test_util.h"
 #include "core/rng.h"
-#include "scene/load_obj.h"
+#include "io/obj.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -192,9 +192,9 @@ static void test_png(void) {
     CHECK_NEAR(img.pixels[1], 0.25, 0.01);
     CHECK_NEAR(img.pixels[2], 1.0, 0.0);
     image_rgb_free(&img);
-    // Through the texture API.
-    texture t;
-    CHECK(texture_image_load(tmp_path("rgb.png"), &t, &err) == GLINT_OK);
+    // Decoded by io/, sampled by the texture, which takes the pixels.
+    CHECK(image_read(tmp_path("rgb.png"), &img, &err) == GLINT_OK);
+    texture t = texture_image(img);
     // Width 3: texel centres are exact only to rounding (and a fused multiply-add rounds differently).
     vec3 c = texture_value(&t, 0.5f / 3, 0.75f, v3s(0)); // top-left texel: red
     CHECK_NEAR(c.x, 1.0, 1e-6);
@@ -352,11 +352,10 @@ static void test_errors(void) {
     CHECK(patched);
     write_bytes(tmp_path("huge.jpg"), jpg, n);
     check_error(tmp_path("huge.jpg"), "image size 65000x65000 is not supported, expected at most 67108864 pixels");
-    texture t;
     glint_error err;
-    CHECK(texture_image_load(tmp_path("missing.png"), &t, &err) == GLINT_ERR_INPUT);
-    // From memory: the name appears in messages.
     image_rgb img;
+    CHECK(image_read(tmp_path("missing.png"), &img, &err) == GLINT_ERR_INPUT);
+    // From memory: the name appears in messages.
     CHECK(image_read_memory("mem.png", (const unsigned char *)"xx", 2, &img, &err) == GLINT_ERR_INPUT);
     CHECK(strcmp(err.message, "mem.png: not a PNG or JPEG image, expected a file starting with a PNG or JPEG signature") == 0);
 }

@@ -1,5 +1,5 @@
-// test_transform.c — affine matrices: inverses, rotations of known vectors, normals under non-uniform
-// scale, composition order, transformed rays and bounding boxes, baked mesh transforms.
+// test_transform.c — affine matrices: determinants, similarity detection, inverses, rotations of known vectors,
+// normals under non-uniform scale, composition order, transformed rays and bounding boxes, baked mesh transforms.
 #include "check.h"
 #include "core/rng.h"
 #include "geometry/mesh.h"
@@ -206,7 +206,50 @@ static void test_mesh_transform(void) {
     CHECK(m.bounds.hi.x == 2.0f && m.bounds.lo.z == 0.0f);
 }
 
+// The linear determinant: the product of scale factors, with the sign of a mirror; translation does not count.
+static void test_linear_det(void) {
+    mat4 s = mat4_scale(v3(2, 3, 4)), t = mat4_translate(v3(10, -20, 30));
+    CHECK(mat4_linear_det(&s) == 24.0);
+    mat4 ts = mat4_mul(&t, &s);
+    CHECK(mat4_linear_det(&ts) == 24.0);
+    mat4 mirror = mat4_scale(v3(-1, 1, 1));
+    CHECK(mat4_linear_det(&mirror) == -1.0);
+    rng r = rng_for_sample(4, 5, 6);
+    for (int k = 0; k < 100; k++) {
+        // det(a b) = det(a) det(b), and a rotation's determinant is 1.
+        mat4 a = random_affine(&r), b = random_affine(&r), ab = mat4_mul(&a, &b);
+        double da = mat4_linear_det(&a), db = mat4_linear_det(&b);
+        CHECK_NEAR(mat4_linear_det(&ab), da * db, 1e-4 * fabs(da * db));
+        mat4 rot = mat4_rotate(v3(rng_range(&r, -1, 1), 1, rng_range(&r, -1, 1)), rng_range(&r, -360, 360));
+        CHECK_NEAR(mat4_linear_det(&rot), 1.0, 1e-5);
+    }
+    mat4 flat = mat4_scale(v3(1, 0, 1));
+    CHECK(mat4_linear_det(&flat) == 0.0);
+}
+
+// Similarities (rotation, mirror, uniform scale, any translation) are recognised with their scale; others not.
+static void test_similarity_scale(void) {
+    double s = 0;
+    mat4 id = mat4_identity();
+    CHECK(mat4_similarity_scale(&id, &s) && s == 1.0);
+    mat4 rot = mat4_rotate(v3(1, 2, 3), 37), sc = mat4_scale(v3(-2.5f, 2.5f, 2.5f)), t = mat4_translate(v3(5, 6, 7));
+    mat4 rs = mat4_mul(&rot, &sc), trs = mat4_mul(&t, &rs);
+    CHECK(mat4_similarity_scale(&trs, &s));
+    CHECK_NEAR(s, 2.5, 1e-6);
+    mat4 stretch = mat4_scale(v3(1, 1, 1.01f));
+    s = -1;
+    CHECK(!mat4_similarity_scale(&stretch, &s));
+    CHECK(s == -1); // untouched when false
+    // A shear keeps column lengths equal but not orthogonal.
+    mat4 shear = mat4_identity();
+    shear.m[0][1] = 0.5f;
+    shear.m[1][0] = 0.5f;
+    CHECK(!mat4_similarity_scale(&shear, &s));
+}
+
 int main(void) {
+    test_linear_det();
+    test_similarity_scale();
     test_inverse();
     test_rotation();
     test_normals();

@@ -351,6 +351,39 @@ static void test_quad(void) {
     CHECK_NEAR(q.normal.y, -1.0, 0);
 }
 
+static bool same_point(vec3 a, vec3 b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+// Transformed quads: corners as points, the front kept under a mirror, degenerate results refused.
+static void test_quad_transform(void) {
+    quad q, w;
+    CHECK(quad_make(v3(0, 0, 0), v3(2, 0, 0), v3(0, 3, 0), 5, &q));
+    mat4 t = mat4_translate(v3(1, 2, 3));
+    CHECK(quad_transform(&q, &t, &w));
+    CHECK(same_point(w.p[0], v3(1, 2, 3)) && same_point(w.p[2], v3(3, 5, 3)));
+    CHECK(w.material == 5 && w.normal.z == 1.0f && w.area == 6.0f);
+    // A mirror in x leaves the +z side in front, but would flip u x v to -z unless u and v swap.
+    mat4 mx = mat4_scale(v3(-1, 1, 1));
+    CHECK(quad_transform(&q, &mx, &w));
+    CHECK(w.normal.z == 1.0f);
+    CHECK(same_point(w.p[1], v3(0, 3, 0)) && same_point(w.p[3], v3(-2, 0, 0)));
+    // A mirror in z takes the front side along: the normal follows it to -z.
+    mat4 mz = mat4_scale(v3(1, 1, -1));
+    CHECK(quad_transform(&q, &mz, &w));
+    CHECK(w.normal.z == -1.0f);
+    // The corners of a transformed box are the transformed corners, so shared corners stay shared.
+    quad box[6], moved[6];
+    CHECK(quad_box(v3(0, 0, 0), v3(1, 1, 1), 0, box));
+    mat4 rot = mat4_rotate(v3(1, 1, 0), 30);
+    bool same = true;
+    for (int i = 0; i < 6; i++) {
+        same = same && quad_transform(&box[i], &rot, &moved[i]);
+        for (int k = 0; k < 4; k++) same = same && same_point(moved[i].p[k], mat4_apply_point(&rot, box[i].p[k]));
+    }
+    CHECK(same);
+    mat4 flat = mat4_scale(v3(1, 0, 1)); // the xy quad becomes a segment
+    CHECK(!quad_transform(&q, &flat, &w));
+}
+
 static void test_shading(void) {
     mesh m;
     memset(&m, 0, sizeof m);
@@ -410,6 +443,7 @@ int main(void) {
     test_watertight_cube();
     test_watertight_box();
     test_quad();
+    test_quad_transform();
     test_shading();
     test_compute_normals();
     return check_summary();

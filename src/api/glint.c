@@ -7,6 +7,7 @@
 #include "scene/scene.h"
 
 #include <stddef.h>
+#include <stdio.h>
 
 const char *glint_version(void) { return GLINT_VERSION; }
 
@@ -14,6 +15,23 @@ void glint_overrides_init(glint_overrides *o) {
     o->width = o->height = o->spp = o->max_depth = -1;
     o->seed = -1;
     o->accel = NULL;
+}
+
+glint_status glint_scene_load(const char *path, glint_scene **out, glint_error *err) {
+    glint_error scratch;
+    if (!err) err = &scratch;
+    if (!out) return glint_scene_parse(path, NULL, 0, out, err);
+    return scene_file_load(path, out, err);
+}
+
+glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err) {
+    glint_error scratch;
+    if (!err) err = &scratch;
+    if (!out) {
+        snprintf(err->message, sizeof err->message, "glint_scene_parse: no place to store the scene");
+        return GLINT_ERR_INPUT;
+    }
+    return scene_file_parse(name ? name : "<scene>", text, text ? length : 0, out, err);
 }
 
 glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err) {

@@ -48,3 +48,16 @@ bounds3 quad_bounds(const quad *q) {
     for (int k = 0; k < 4; k++) b = bounds3_add(b, q->p[k]);
     return b;
 }
+
+bool quad_transform(const quad *q, const mat4 *m, quad *out) {
+    vec3 p[4];
+    for (int k = 0; k < 4; k++) p[k] = mat4_apply_point(m, q->p[k]);
+    if (mat4_linear_det(m) < 0.0) {
+        vec3 tmp = p[1];
+        p[1] = p[3];
+        p[3] = tmp;
+    }
+    if (!quad_make(p[0], v3_sub(p[1], p[0]), v3_sub(p[3], p[0]), q->material, out)) return false;
+    for (int k = 0; k < 4; k++) out->p[k] = p[k];
+    return true;
+}

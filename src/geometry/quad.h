@@ -30,6 +30,10 @@ bool quad_make(vec3 q, vec3 u, vec3 v, uint32_t material, quad *out);
 /// with corners snapped to exactly the box's coordinates so that the box is watertight.
 /// False when the box is flat along some axis or not finite.
 bool quad_box(vec3 a, vec3 b, uint32_t material, quad out[6]);
+/// The quad q under affine m: its corners transformed as points (so corners shared by quads stay shared,
+/// and a box stays watertight), u and v swapped under a mirror so that the front stays the front.
+/// False when the result has no area or is not finite.
+bool quad_transform(const quad *q, const mat4 *m, quad *out);
 /// Bounds of a quad.
 bounds3 quad_bounds(const quad *q);
 

@@ -140,6 +140,31 @@ bounds3 mat4_apply_bounds(const mat4 *a, bounds3 b) {
     return (bounds3){v3(lo[0], lo[1], lo[2]), v3(hi[0], hi[1], hi[2])};
 }
 
+double mat4_linear_det(const mat4 *a) {
+    const float(*m)[4] = a->m;
+    return (double)m[0][0] * ((double)m[1][1] * m[2][2] - (double)m[1][2] * m[2][1]) -
+           (double)m[0][1] * ((double)m[1][0] * m[2][2] - (double)m[1][2] * m[2][0]) +
+           (double)m[0][2] * ((double)m[1][0] * m[2][1] - (double)m[1][1] * m[2][0]);
+}
+
+bool mat4_similarity_scale(const mat4 *a, double *scale) {
+    double c[3][3]; // the columns: the images of the axes
+    for (int j = 0; j < 3; j++)
+        for (int i = 0; i < 3; i++) c[j][i] = a->m[i][j];
+    double n[3], d[3];
+    for (int j = 0; j < 3; j++) n[j] = c[j][0] * c[j][0] + c[j][1] * c[j][1] + c[j][2] * c[j][2];
+    for (int j = 0; j < 3; j++) {
+        const double *x = c[j], *y = c[(j + 1) % 3];
+        d[j] = x[0] * y[0] + x[1] * y[1] + x[2] * y[2];
+    }
+    // Columns of equal length, pairwise orthogonal, up to the float rounding of a composed rotation.
+    double tol = 1e-5 * n[0];
+    for (int j = 0; j < 3; j++)
+        if (fabs(n[j] - n[0]) > tol || fabs(d[j]) > tol) return false;
+    *scale = sqrt((n[0] + n[1] + n[2]) / 3.0);
+    return true;
+}
+
 bool transform_make(const mat4 *m, transform *out) {
     mat4 inv;
     if (!mat4_invert(m, &inv)) return false;

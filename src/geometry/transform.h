@@ -82,6 +82,11 @@ mat4 mat4_transpose(const mat4 *a);
 bool mat4_is_affine(const mat4 *a);
 /// Inverse of an affine matrix, computed in double; false (and *out untouched) when it is not affine or singular.
 bool mat4_invert(const mat4 *a, mat4 *out);
+/// Determinant of the linear (upper-left 3x3) part, in double: its sign says whether M mirrors.
+double mat4_linear_det(const mat4 *a);
+/// Whether the linear part of M is a rotation (or a mirror) times a uniform scale, up to the float rounding
+/// of a composed rotation; *scale is that scale factor.
+bool mat4_similarity_scale(const mat4 *a, double *scale);
 /// A box holding the image under M of every point of b (Arvo 1990), computed in double and padded by the
 /// rounding error of mat4_apply_point, so that float-transformed points of b are inside too.
 bounds3 mat4_apply_bounds(const mat4 *a, bounds3 b);

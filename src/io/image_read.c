@@ -29,12 +29,6 @@ float image_srgb_to_linear(unsigned char c) {
     return (float)(x <= 0.04045 ? x / 12.92 : pow((x + 0.055) / 1.055, 2.4));
 }
 
-void image_rgb_free(image_rgb *img) {
-    free(img->pixels);
-    img->pixels = NULL;
-    img->width = img->height = 0;
-}
-
 // Whether a w x h image is within IMAGE_READ_MAX_PIXELS; sets the message when it is not.
 static bool size_ok(const char *name, size_t w, size_t h, glint_error *err) {
     if (w > 0 && h > 0 && w <= IMAGE_READ_MAX_PIXELS && h <= IMAGE_READ_MAX_PIXELS / w) return true;

@@ -3,17 +3,12 @@
 #define GLINT_IMAGE_READ_H
 
 #include "glint.h"
+#include "core/image_rgb.h"
 
 #include <stddef.h>
 
 /// Largest image accepted, in pixels (8192 x 8192): a texture must not exhaust memory.
 #define IMAGE_READ_MAX_PIXELS ((size_t)1 << 26)
-
-/// A decoded image: width x height pixels of linear RGB (3 floats each), row 0 at the top.
-typedef struct image_rgb {
-    int width, height;
-    float *pixels;
-} image_rgb;
 
 /// Reads a PNG or JPEG file (recognised by its first bytes, not its name), decodes sRGB to linear.
 /// On failure returns GLINT_ERR_INPUT with "path: what is wrong" in *err and leaves *out empty.
@@ -21,8 +16,6 @@ glint_status image_read(const char *path, image_rgb *out, glint_error *err);
 /// The same from memory; `name` is used in messages.
 glint_status image_read_memory(const char *name, const unsigned char *data, size_t size, image_rgb *out,
                                glint_error *err);
-/// Frees the pixels and leaves an empty image.
-void image_rgb_free(image_rgb *img);
 /// The linear value of an 8-bit sRGB-encoded component (the exact sRGB curve).
 float image_srgb_to_linear(unsigned char c);
 

@@ -97,14 +97,6 @@ texture texture_image(image_rgb img) {
     return t;
 }
 
-glint_status texture_image_load(const char *path, texture *out, glint_error *err) {
-    image_rgb img;
-    glint_status st = image_read(path, &img, err);
-    if (st != GLINT_OK) return st;
-    *out = texture_image(img);
-    return GLINT_OK;
-}
-
 void texture_free(texture *t) {
     free(t->perlin);
     image_rgb_free(&t->image);

@@ -3,9 +3,8 @@
 #ifndef GLINT_TEXTURE_H
 #define GLINT_TEXTURE_H
 
-#include "glint.h"
 #include "core/vec.h"
-#include "io/image_read.h"
+#include "core/image_rgb.h"
 
 #include <stdbool.h>
 #include <stdint.h>
@@ -49,8 +48,6 @@ texture texture_checker(float scale, vec3 even, vec3 odd);
 bool texture_noise(noise_kind kind, float scale, int depth, vec3 color, uint64_t seed, texture *out);
 /// An image texture that takes ownership of img's pixels.
 texture texture_image(image_rgb img);
-/// An image texture read from a PNG or JPEG file (sRGB decoded to linear); GLINT_ERR_INPUT with a message on failure.
-glint_status texture_image_load(const char *path, texture *out, glint_error *err);
 /// Releases what the texture owns and makes it a black solid texture.
 void texture_free(texture *t);
 

@@ -1,5 +1,6 @@
 // scene.c — building, overriding and freeing a scene (plain data: nothing here is built for rendering).
 #include "scene/scene.h"
+#include "core/array.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -35,21 +36,12 @@ glint_scene *scene_new(const char *path) {
     return s;
 }
 
-// Grows *arr (of *count elements of `size` bytes) by one; amortised doubling keyed on powers of two.
-static void *grow(void *arr, size_t count, size_t size) {
-    if (count & (count - 1)) return arr; // not a power of two: capacity is already larger
-    size_t cap = count ? count * 2 : 4;
-    if (cap > SIZE_MAX / size) return NULL;
-    return realloc(arr, cap * size);
-}
+// Makes room for one more element in an array of the scene (core/array.h: one growth policy everywhere).
+#define SCENE_RESERVE(s, field, count) array_reserve((void **)&(s)->field, &(s)->capacity.field, (count) + 1, sizeof *(s)->field)
 
 long scene_add_material(glint_scene *s, const material *m, const char *name) {
-    material *mats = grow(s->materials, s->material_count, sizeof *mats);
-    if (!mats) return -1;
-    s->materials = mats;
-    char **names = grow(s->material_names, s->material_count, sizeof *names);
-    if (!names) return -1;
-    s->material_names = names;
+    if (!SCENE_RESERVE(s, materials, s->material_count) || !SCENE_RESERVE(s, material_names, s->material_count))
+        return -1;
     char *copy = NULL;
     if (name && !(copy = dup_string(name))) return -1;
     s->materials[s->material_count] = *m;
@@ -64,36 +56,27 @@ long scene_find_material(const glint_scene *s, const char *name) {
 }
 
 bool scene_add_sphere(glint_scene *s, sphere sp) {
-    sphere *arr = grow(s->spheres, s->sphere_count, sizeof *arr);
-    if (!arr) return false;
-    s->spheres = arr;
+    if (!SCENE_RESERVE(s, spheres, s->sphere_count)) return false;
     s->spheres[s->sphere_count++] = sp;
     return true;
 }
 
 bool scene_add_light(glint_scene *s, light l) {
-    light *arr = grow(s->lights, s->light_count, sizeof *arr);
-    if (!arr) return false;
-    s->lights = arr;
+    if (!SCENE_RESERVE(s, lights, s->light_count)) return false;
     s->lights[s->light_count++] = l;
     return true;
 }
 
 bool scene_add_quad(glint_scene *s, quad q) {
-    quad *arr = grow(s->quads, s->quad_count, sizeof *arr);
-    if (!arr) return false;
-    s->quads = arr;
+    if (!SCENE_RESERVE(s, quads, s->quad_count)) return false;
     s->quads[s->quad_count++] = q;
     return true;
 }
 
 long scene_add_texture(glint_scene *s, texture *t, const char *name) {
-    texture *arr = grow(s->textures, s->texture_count, sizeof *arr);
-    if (arr) s->textures = arr;
-    char **names = arr ? grow(s->texture_names, s->texture_count, sizeof *names) : NULL;
-    if (names) s->texture_names = names;
+    bool room = SCENE_RESERVE(s, textures, s->texture_count) && SCENE_RESERVE(s, texture_names, s->texture_count);
     char *copy = NULL;
-    if (!names || (name && !(copy = dup_string(name)))) {
+    if (!room || (name && !(copy = dup_string(name)))) {
         texture_free(t);
         return -1;
     }
@@ -116,36 +99,28 @@ static void scene_mesh_free(scene_mesh *m) {
 }
 
 long scene_add_mesh(glint_scene *s, scene_mesh *m) {
-    scene_mesh *arr = grow(s->meshes, s->mesh_count, sizeof *arr);
-    if (!arr) {
+    if (!SCENE_RESERVE(s, meshes, s->mesh_count)) {
         scene_mesh_free(m);
         return -1;
     }
-    s->meshes = arr;
     s->meshes[s->mesh_count] = *m;
     return (long)s->mesh_count++;
 }
 
 long scene_add_instance_sphere(glint_scene *s, sphere sp) {
-    sphere *arr = grow(s->instance_spheres, s->instance_sphere_count, sizeof *arr);
-    if (!arr) return -1;
-    s->instance_spheres = arr;
+    if (!SCENE_RESERVE(s, instance_spheres, s->instance_sphere_count)) return -1;
     s->instance_spheres[s->instance_sphere_count] = sp;
     return (long)s->instance_sphere_count++;
 }
 
 bool scene_add_instance(glint_scene *s, instance in) {
-    instance *arr = grow(s->instances, s->instance_count, sizeof *arr);
-    if (!arr) return false;
-    s->instances = arr;
+    if (!SCENE_RESERVE(s, instances, s->instance_count)) return false;
     s->instances[s->instance_count++] = in;
     return true;
 }
 
 bool scene_add_warning(glint_scene *s, const char *message) {
-    char **arr = grow(s->warnings, s->warning_count, sizeof *arr);
-    if (!arr) return false;
-    s->warnings = arr;
+    if (!SCENE_RESERVE(s, warnings, s->warning_count)) return false;
     char *copy = dup_string(message);
     if (!copy) return false;
     s->warnings[s->warning_count++] = copy;

@@ -86,6 +86,12 @@ struct glint_scene {
 
     char **warnings;         ///< problems the loader worked around ("file:line: warning: ..."); never printed by the library
     size_t warning_count;
+
+    /// Room allocated in each array above (core/array.h), in elements; the counts say how many are used.
+    struct {
+        size_t materials, material_names, spheres, lights, quads, textures, texture_names, meshes, instance_spheres,
+            instances, warnings;
+    } capacity;
 };
 
 /// Appends a material and returns its index, or -1 when out of memory.
@@ -114,6 +120,11 @@ bool scene_add_warning(glint_scene *s, const char *message);
 glint_scene *scene_new(const char *path);
 /// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise).
 glint_status scene_override(glint_scene *s, const glint_overrides *o, glint_error *err);
+/// Reads a JSON scene from memory (docs/scene-format.md); `name` is used in messages and to resolve relative
+/// paths. On failure *out is NULL and *err says "file:line:col: what is wrong, what was expected".
+glint_status scene_file_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err);
+/// Reads a JSON scene file (at most 256 MiB).
+glint_status scene_file_load(const char *path, glint_scene **out, glint_error *err);
 /// Frees the scene and everything it owns (NULL is allowed).
 void scene_free(glint_scene *s);
 

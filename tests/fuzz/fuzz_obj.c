@@ -2,7 +2,7 @@
 // a crash, a leak, a hang or undefined behaviour. Whatever loads is then used as a renderer would use it.
 // Build with -DGLINT_FUZZ=ON and CC=clang; run: build/tests/fuzz_obj -dict=tests/fuzz/obj.dict NEWDIR tests/fuzz/corpus_obj
 #include "geometry/mesh.h"
-#include "scene/load_obj.h"
+#include "io/obj.h"
 
 #include <stddef.h>
 #include <stdint.h>

@@ -1,4 +1,4 @@
-// load_obj.h — a strict, fast Wavefront OBJ/MTL reader producing a glint triangle mesh and its materials.
+// obj.h — a strict, fast Wavefront OBJ/MTL reader producing a glint triangle mesh and its materials.
 //
 // OBJ: `v x y z [w | r g b [a]]` (extra numbers ignored), `vt u [v [w]]`, `vn x y z`, and faces `f` of 3 or
 // more corners in any of the forms v, v/vt, v//vn, v/vt/vn, with positive (1-based) or negative (relative)
@@ -34,8 +34,8 @@
 //     (a Windows-style absolute path is retried as its file name in the MTL file's directory);
 //   - unsupported statements (`l`, `p`, curves, ...): ignored, reported once per keyword;
 //   - a file without faces.
-#ifndef GLINT_LOAD_OBJ_H
-#define GLINT_LOAD_OBJ_H
+#ifndef GLINT_OBJ_H
+#define GLINT_OBJ_H
 
 #include "glint.h"
 #include "geometry/mesh.h"

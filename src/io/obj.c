@@ -1,5 +1,8 @@
-// load_obj.c — the OBJ/MTL reader: one pass over the text, no allocation per line, faces triangulated as read.
-#include "scene/load_obj.h"
+// obj.c — the OBJ/MTL reader: one pass over the text, no allocation per line, faces triangulated as read.
+#include "io/obj.h"
+#include "core/array.h"
+#include "core/filepath.h"
+#include "core/strmap.h"
 
 #include <errno.h>
 #include <math.h>
@@ -271,22 +274,7 @@ static bool parse_index(const char *s, size_t n, int64_t *out) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Small containers
-
-// Grows *arr so that it holds at least `need` elements of `size` bytes (doubling); false when out of memory.
-static bool reserve(void **arr, size_t *cap, size_t need, size_t size) {
-    if (need <= *cap) return true;
-    size_t c = *cap ? *cap : 16;
-    while (c < need) {
-        if (c > SIZE_MAX / 2 / size) return false;
-        c *= 2;
-    }
-    void *p = realloc(*arr, c * size);
-    if (!p) return false;
-    *arr = p;
-    *cap = c;
-    return true;
-}
+// Strings
 
 static char *dup_n(const char *s, size_t n) {
     char *d = malloc(n + 1);
@@ -296,83 +284,23 @@ static char *dup_n(const char *s, size_t n) {
     return d;
 }
 
-/// A name -> index hash table (open addressing); keys point to strings owned elsewhere.
-typedef struct name_entry {
-    const char *key;
-    size_t len;
-    int32_t value;
-} name_entry;
-
-typedef struct name_map {
-    name_entry *e;
-    size_t cap, count;
-} name_map;
-
-static uint64_t hash_name(const char *s, size_t n) {
-    uint64_t h = UINT64_C(14695981039346656037); // FNV-1a
-    for (size_t i = 0; i < n; i++) h = (h ^ (unsigned char)s[i]) * UINT64_C(1099511628211);
-    return h;
-}
-
-static int32_t map_get(const name_map *m, const char *s, size_t n) {
-    if (!m->cap) return -1;
-    for (size_t i = hash_name(s, n) & (m->cap - 1);; i = (i + 1) & (m->cap - 1)) {
-        const name_entry *e = &m->e[i];
-        if (!e->key) return -1;
-        if (e->len == n && memcmp(e->key, s, n) == 0) return e->value;
-    }
-}
-
-static bool map_put(name_map *m, const char *key, size_t len, int32_t value) {
-    if ((m->count + 1) * 2 > m->cap) {
-        // Rehash into twice the room: the table stays at most half full, so probes stay short.
-        size_t cap = m->cap ? m->cap * 2 : 16;
-        name_entry *e = calloc(cap, sizeof *e);
-        if (!e) return false;
-        for (size_t i = 0; i < m->cap; i++) {
-            if (!m->e[i].key) continue;
-            size_t j = hash_name(m->e[i].key, m->e[i].len) & (cap - 1);
-            while (e[j].key) j = (j + 1) & (cap - 1);
-            e[j] = m->e[i];
-        }
-        free(m->e);
-        m->e = e;
-        m->cap = cap;
-    }
-    size_t j = hash_name(key, len) & (m->cap - 1);
-    while (m->e[j].key) j = (j + 1) & (m->cap - 1);
-    m->e[j] = (name_entry){key, len, value};
-    m->count++;
-    return true;
-}
-
-static void map_free(name_map *m) {
-    free(m->e);
-    memset(m, 0, sizeof *m);
-}
-
 // ---------------------------------------------------------------------------------------------------------
 // Files and paths
 
-// The directory part of a path including its final '/', or "" (a new string).
-static char *dir_of(const char *path) {
-    const char *slash = strrchr(path, '/');
-    return dup_n(path, slash ? (size_t)(slash - path + 1) : 0);
-}
-
-// dir + name, with the name's Windows separators turned into '/'; absolute names are kept as they are.
-static char *join_path(const char *dir, const char *name, size_t n) {
-    bool absolute = n > 0 && (name[0] == '/' || name[0] == '\\');
-    while (!absolute && n > 2 && name[0] == '.' && (name[1] == '/' || name[1] == '\\')) {
+// dir + name (dir_len bytes of dir: the directory of the OBJ or MTL file), with the name's Windows separators
+// turned into '/' and a leading "./" dropped; absolute names ('/' or '\\' first) are kept as they are.
+static char *join_path(const char *dir, size_t dir_len, const char *name, size_t n) {
+    bool windows_absolute = n > 0 && name[0] == '\\';
+    while (!windows_absolute && n > 2 && name[0] == '.' && (name[1] == '/' || name[1] == '\\')) {
         name += 2; // "./x" is "x"
         n -= 2;
     }
-    size_t d = absolute ? 0 : strlen(dir);
-    char *p = malloc(d + n + 1);
+    size_t d = windows_absolute || filepath_is_absolute(name, n) ? 0 : dir_len;
+    char *p = filepath_join(dir, d, name, n);
     if (!p) return NULL;
-    memcpy(p, dir, d);
-    for (size_t i = 0; i < n; i++) p[d + i] = name[i] == '\\' ? '/' : name[i];
-    p[d + n] = '\0';
+    // By count, not up to a NUL: a malformed file may put NUL bytes in a name.
+    for (size_t i = d; i < d + n; i++)
+        if (p[i] == '\\') p[i] = '/';
     return p;
 }
 
@@ -395,7 +323,7 @@ static char *read_file(const char *path, size_t *len, int *errnum) {
     size_t cap = 0, n = 0;
     char *buf = NULL;
     for (;;) {
-        if (!reserve((void **)&buf, &cap, n + 65536 + 1, 1)) {
+        if (!array_reserve((void **)&buf, &cap, n + 65536 + 1, 1)) {
             *errnum = ENOMEM;
             break;
         }
@@ -436,7 +364,7 @@ static float max3(vec3 v) { return fmaxf(v.x, fmaxf(v.y, v.z)); }
 static float clamp01(float x) { return fminf(1.0f, fmaxf(0.0f, x)); }
 static vec3 clamp01v(vec3 v) { return v3(clamp01(v.x), clamp01(v.y), clamp01(v.z)); }
 
-// The documented MTL -> glint mapping (see load_obj.h).
+// The documented MTL -> glint mapping (see obj.h).
 static material mtl_to_material(const mtl_block *b) {
     if (b->has_ke && max3(b->ke) > 0.0f) {
         material m = material_default(MAT_DIFFUSE_LIGHT);
@@ -467,10 +395,11 @@ static material mtl_to_material(const mtl_block *b) {
 
 typedef struct mtl_parser {
     reporter rep;
-    const char *dir;
+    const char *dir; // the MTL file's name: its first dir_len bytes are its directory
+    size_t dir_len;
     obj_material *out;
     size_t count, cap;
-    name_map names;
+    strmap names; // material name -> index in out
     mtl_block cur;
     bool in_block;
 } mtl_parser;
@@ -485,7 +414,7 @@ static bool mtl_finish_block(mtl_parser *ps) {
         free(b->map_kd);
         return true;
     }
-    if (ps->count >= MAX_ELEMENTS || !reserve((void **)&ps->out, &ps->cap, ps->count + 1, sizeof *ps->out)) {
+    if (ps->count >= MAX_ELEMENTS || !array_reserve((void **)&ps->out, &ps->cap, ps->count + 1, sizeof *ps->out)) {
         free(b->name);
         free(b->map_kd);
         return fail(&ps->rep, "out of memory");
@@ -496,7 +425,7 @@ static bool mtl_finish_block(mtl_parser *ps) {
     m->mat = mtl_to_material(b);
     m->diffuse_map = b->map_kd;
     m->line = b->line;
-    if (!map_put(&ps->names, m->name, b->name_len, (int32_t)ps->count)) {
+    if (!strmap_put(&ps->names, m->name, b->name_len, ps->count)) {
         m->name = NULL;
         free(b->name);
         free(b->map_kd);
@@ -573,14 +502,14 @@ static bool mtl_map_kd(mtl_parser *ps, cursor *c) {
     size_t n;
     rest_of_line(c, &file, &n);
     if (n == 0) return fail(&ps->rep, "'map_Kd' needs a file name");
-    char *path = join_path(ps->dir, file, n);
+    char *path = join_path(ps->dir, ps->dir_len, file, n);
     if (!path) return fail(&ps->rep, "out of memory");
     if (!ps->rep.opt || !ps->rep.opt->skip_files) {
         int e = check_file(path);
         if (e) {
             // Exporters on Windows write absolute paths: try the bare file name next to the MTL file.
             const char *slash = strrchr(path, '/');
-            char *alt = slash ? join_path(ps->dir, slash + 1, strlen(slash + 1)) : NULL;
+            char *alt = slash ? join_path(ps->dir, ps->dir_len, slash + 1, strlen(slash + 1)) : NULL;
             if (alt && check_file(alt) == 0) {
                 free(path);
                 path = alt;
@@ -615,7 +544,7 @@ static bool mtl_statement(mtl_parser *ps, cursor *c) {
         ps->cur.line = ps->rep.line;
         ps->cur.illum = -1;
         ps->in_block = true;
-        if (map_get(&ps->names, name, n) >= 0) {
+        if (strmap_get(&ps->names, name, n, NULL)) {
             ps->cur.duplicate = true;
             warn_at(&ps->rep, ps->rep.line, "material '%s' is defined again; the first definition is used",
                     quote(name, n).s);
@@ -704,16 +633,14 @@ static glint_status mtl_parse_counted(const char *name, const char *text, size_t
     ps.rep.opt = opt;
     ps.rep.err = err;
     ps.rep.warnings = warnings;
-    char *dir = dir_of(name);
-    ps.dir = dir;
-    bool ok = dir ? for_each_line(text, length, &ps.rep, mtl_line, &ps) && mtl_finish_block(&ps)
-                  : fail(&ps.rep, "out of memory");
+    ps.dir = name;
+    ps.dir_len = filepath_dir_length(name);
+    bool ok = for_each_line(text, length, &ps.rep, mtl_line, &ps) && mtl_finish_block(&ps);
     if (ps.in_block) { // a failure inside a block
         free(ps.cur.name);
         free(ps.cur.map_kd);
     }
-    free(dir);
-    map_free(&ps.names);
+    strmap_free(&ps.names);
     if (!ok) {
         obj_materials_free(ps.out, ps.count);
         *out = NULL;
@@ -749,13 +676,14 @@ typedef struct obj_parser {
     int *next, *prev; // the remaining polygon while ear clipping
     size_t scratch_cap;
     int32_t material; // current slot, -1 before any usemtl
-    name_map slots;
+    strmap slots; // material name -> slot in model->materials
     obj_material *defs; // everything the material libraries define
     size_t def_count, def_cap;
-    name_map def_names;
+    strmap def_names; // material name -> index in defs
     char **libs; // libraries read so far, so that a repeated mtllib is read once
     size_t lib_count, lib_cap;
-    char *dir;
+    const char *dir; // the OBJ file's name: its first dir_len bytes are its directory
+    size_t dir_len;
     long first_zero_line;
     bool warned_fan, warned_bad_polygon;
 } obj_parser;
@@ -771,7 +699,7 @@ static bool obj_vertex(obj_parser *ps, cursor *c) {
     if (count < 3 || count > 7) return fail(&ps->rep, "'v' has %d numbers, expected 3 (x y z) to 7", count);
     mesh *m = &ps->model->mesh;
     if (m->position_count >= MAX_ELEMENTS) return too_many(&ps->rep, "vertices");
-    if (!reserve((void **)&m->positions, &ps->pos_cap, m->position_count + 1, sizeof *m->positions))
+    if (!array_reserve((void **)&m->positions, &ps->pos_cap, m->position_count + 1, sizeof *m->positions))
         return fail(&ps->rep, "out of memory");
     m->positions[m->position_count++] = v3(v[0], v[1], v[2]);
     return true;
@@ -784,7 +712,7 @@ static bool obj_normal(obj_parser *ps, cursor *c) {
     if (count != 3) return fail(&ps->rep, "'vn' has %d numbers, expected 3 (x y z)", count);
     mesh *m = &ps->model->mesh;
     if (m->normal_count >= MAX_ELEMENTS) return too_many(&ps->rep, "normals");
-    if (!reserve((void **)&m->normals, &ps->nrm_cap, m->normal_count + 1, sizeof *m->normals))
+    if (!array_reserve((void **)&m->normals, &ps->nrm_cap, m->normal_count + 1, sizeof *m->normals))
         return fail(&ps->rep, "out of memory");
     m->normals[m->normal_count++] = v3(v[0], v[1], v[2]);
     return true;
@@ -797,7 +725,7 @@ static bool obj_texcoord(obj_parser *ps, cursor *c) {
     if (count < 1 || count > 3) return fail(&ps->rep, "'vt' has %d numbers, expected 1 to 3 (u [v [w]])", count);
     mesh *m = &ps->model->mesh;
     if (m->uv_count >= MAX_ELEMENTS) return too_many(&ps->rep, "texture coordinates");
-    if (!reserve((void **)&m->uvs, &ps->uv_cap, m->uv_count + 1, sizeof *m->uvs)) return fail(&ps->rep, "out of memory");
+    if (!array_reserve((void **)&m->uvs, &ps->uv_cap, m->uv_count + 1, sizeof *m->uvs)) return fail(&ps->rep, "out of memory");
     m->uvs[m->uv_count++] = (uv2){v[0], count > 1 ? v[1] : 0.0f};
     return true;
 }
@@ -863,7 +791,7 @@ static bool emit(obj_parser *ps, const corner *a, const corner *b, const corner 
     mesh *m = &ps->model->mesh;
     if (zero_area(m, a, b, c)) return true;
     if (m->triangle_count >= MAX_ELEMENTS) return too_many(&ps->rep, "triangles");
-    if (!reserve((void **)&m->triangles, &ps->tri_cap, m->triangle_count + 1, sizeof *m->triangles))
+    if (!array_reserve((void **)&m->triangles, &ps->tri_cap, m->triangle_count + 1, sizeof *m->triangles))
         return fail(&ps->rep, "out of memory");
     mesh_triangle *t = &m->triangles[m->triangle_count++];
     const corner *k[3] = {a, b, c};
@@ -973,8 +901,8 @@ static bool triangulate(obj_parser *ps, size_t n) {
     if (n > ps->scratch_cap) {
         // All four scratch arrays share one capacity; each reserve grows its own copy of it.
         size_t c1 = ps->scratch_cap, c2 = c1, c3 = c1, c4 = c1;
-        if (!reserve((void **)&ps->px, &c1, n, sizeof *ps->px) || !reserve((void **)&ps->py, &c2, n, sizeof *ps->py) ||
-            !reserve((void **)&ps->next, &c3, n, sizeof *ps->next) || !reserve((void **)&ps->prev, &c4, n, sizeof *ps->prev))
+        if (!array_reserve((void **)&ps->px, &c1, n, sizeof *ps->px) || !array_reserve((void **)&ps->py, &c2, n, sizeof *ps->py) ||
+            !array_reserve((void **)&ps->next, &c3, n, sizeof *ps->next) || !array_reserve((void **)&ps->prev, &c4, n, sizeof *ps->prev))
             return fail(&ps->rep, "out of memory");
         ps->scratch_cap = c1;
     }
@@ -1005,7 +933,7 @@ static bool obj_face(obj_parser *ps, cursor *c) {
     const char *tok;
     size_t len, n = 0;
     while (next_token(c, &tok, &len)) {
-        if (!reserve((void **)&ps->corners, &ps->corner_cap, n + 1, sizeof *ps->corners))
+        if (!array_reserve((void **)&ps->corners, &ps->corner_cap, n + 1, sizeof *ps->corners))
             return fail(&ps->rep, "out of memory");
         if (!parse_corner(ps, tok, len, &ps->corners[n])) return false;
         n++;
@@ -1019,11 +947,12 @@ static bool obj_usemtl(obj_parser *ps, cursor *c) {
     size_t n;
     rest_of_line(c, &name, &n);
     if (n == 0) return fail(&ps->rep, "'usemtl' needs a material name");
-    int32_t slot = map_get(&ps->slots, name, n);
+    size_t found;
+    int32_t slot = strmap_get(&ps->slots, name, n, &found) ? (int32_t)found : -1;
     if (slot < 0) {
         obj_model *mo = ps->model;
         if (mo->material_count >= MAX_ELEMENTS) return too_many(&ps->rep, "materials");
-        if (!reserve((void **)&mo->materials, &ps->slot_cap, mo->material_count + 1, sizeof *mo->materials))
+        if (!array_reserve((void **)&mo->materials, &ps->slot_cap, mo->material_count + 1, sizeof *mo->materials))
             return fail(&ps->rep, "out of memory");
         obj_material *m = &mo->materials[mo->material_count];
         memset(m, 0, sizeof *m);
@@ -1032,7 +961,7 @@ static bool obj_usemtl(obj_parser *ps, cursor *c) {
         m->mat = material_default(MAT_LAMBERTIAN);
         m->line = ps->rep.line;
         slot = (int32_t)mo->material_count++;
-        if (!map_put(&ps->slots, m->name, n, slot)) return fail(&ps->rep, "out of memory");
+        if (!strmap_put(&ps->slots, m->name, n, (size_t)slot)) return fail(&ps->rep, "out of memory");
     }
     ps->material = slot;
     return true;
@@ -1051,7 +980,7 @@ static bool obj_library(obj_parser *ps, const char *path, const char *shown, siz
         return true;
     }
     char *copy = dup_n(path, strlen(path));
-    if (!copy || !reserve((void **)&ps->libs, &ps->lib_cap, ps->lib_count + 1, sizeof *ps->libs)) {
+    if (!copy || !array_reserve((void **)&ps->libs, &ps->lib_cap, ps->lib_count + 1, sizeof *ps->libs)) {
         free(copy);
         free(text);
         return fail(&ps->rep, "out of memory");
@@ -1067,10 +996,10 @@ static bool obj_library(obj_parser *ps, const char *path, const char *shown, siz
         obj_material *d = &defs[i];
         size_t nl = strlen(d->name);
         // A name that an earlier library defined keeps that first definition.
-        bool keep = ok && map_get(&ps->def_names, d->name, nl) < 0;
+        bool keep = ok && !strmap_get(&ps->def_names, d->name, nl, NULL);
         if (keep && (ps->def_count >= MAX_ELEMENTS ||
-                     !reserve((void **)&ps->defs, &ps->def_cap, ps->def_count + 1, sizeof *ps->defs) ||
-                     !map_put(&ps->def_names, d->name, nl, (int32_t)ps->def_count)))
+                     !array_reserve((void **)&ps->defs, &ps->def_cap, ps->def_count + 1, sizeof *ps->defs) ||
+                     !strmap_put(&ps->def_names, d->name, nl, ps->def_count)))
             keep = ok = fail(&ps->rep, "out of memory");
         if (keep) {
             ps->defs[ps->def_count++] = *d; // the strings now belong to ps->defs
@@ -1089,7 +1018,7 @@ static bool obj_mtllib(obj_parser *ps, cursor *c) {
     rest_of_line(c, &names, &n);
     if (n == 0) return fail(&ps->rep, "'mtllib' needs a file name");
     if (ps->opt && ps->opt->skip_files) return true;
-    char *whole = join_path(ps->dir, names, n);
+    char *whole = join_path(ps->dir, ps->dir_len, names, n);
     if (!whole) return fail(&ps->rep, "out of memory");
     // The whole argument may be one name with blanks; otherwise it is a list of names.
     bool single = check_file(whole) == 0 || (!memchr(names, ' ', n) && !memchr(names, '\t', n));
@@ -1103,7 +1032,7 @@ static bool obj_mtllib(obj_parser *ps, cursor *c) {
     const char *tok;
     size_t len;
     while (next_token(&list, &tok, &len)) {
-        char *path = join_path(ps->dir, tok, len);
+        char *path = join_path(ps->dir, ps->dir_len, tok, len);
         if (!path) return fail(&ps->rep, "out of memory");
         bool ok = obj_library(ps, path, tok, len);
         free(path);
@@ -1149,8 +1078,8 @@ static bool resolve_materials(obj_parser *ps) {
     obj_model *mo = ps->model;
     for (size_t i = 0; i < mo->material_count; i++) {
         obj_material *slot = &mo->materials[i];
-        int32_t d = map_get(&ps->def_names, slot->name, strlen(slot->name));
-        if (d < 0) {
+        size_t d;
+        if (!strmap_get(&ps->def_names, slot->name, strlen(slot->name), &d)) {
             warn_at(&ps->rep, slot->line, "material '%s' is not defined in any material library; using the default material",
                     quote(slot->name, strlen(slot->name)).s);
             continue;
@@ -1177,8 +1106,9 @@ glint_status obj_parse(const char *name, const char *text, size_t length, const 
     ps.model = out;
     ps.opt = opt;
     ps.material = -1;
-    ps.dir = dir_of(name);
-    bool ok = ps.dir ? for_each_line(text, length, &ps.rep, obj_line, &ps) : fail(&ps.rep, "out of memory");
+    ps.dir = name;
+    ps.dir_len = filepath_dir_length(name);
+    bool ok = for_each_line(text, length, &ps.rep, obj_line, &ps);
     if (ok) ok = resolve_materials(&ps);
     if (ok) {
         if (out->zero_area_faces > 1)
@@ -1192,12 +1122,11 @@ glint_status obj_parse(const char *name, const char *text, size_t length, const 
     free(ps.py);
     free(ps.next);
     free(ps.prev);
-    map_free(&ps.slots);
-    map_free(&ps.def_names);
+    strmap_free(&ps.slots);
+    strmap_free(&ps.def_names);
     obj_materials_free(ps.defs, ps.def_count);
     for (size_t i = 0; i < ps.lib_count; i++) free(ps.libs[i]);
     free(ps.libs);
-    free(ps.dir);
     if (!ok) {
         obj_model_free(out);
         return GLINT_ERR_INPUT;

@@ -2,7 +2,7 @@
 // cJSON accepts more than JSON (leading zeros, raw control characters, "\u0000", any byte <= 32 as
 // whitespace), stops at 1000 nesting levels and gives no line numbers; this pass runs first, so that
 // every syntax error is precise and cJSON only ever sees text it reads the same way we do.
-#include "scene/json_scan.h"
+#include "io/json_scan.h"
 
 #include <stdarg.h>
 #include <stdio.h>

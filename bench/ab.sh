@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# bench/ab.sh — is one glint binary faster than another? Runs them alternately (A, B, A, B, ...) on one
+# render, so both see the same machine state, and prints the median of the per-pair ratios of their render
+# loop's Mrays/s (B over A: above 1 means B is faster). An A/A run gives about 1.000; single pairs scatter
+# by several percent on a shared machine, so use tens of pairs to resolve a 1-2% difference.
+#
+# usage: bash bench/ab.sh A_BINARY B_BINARY [PAIRS] [-- GLINT ARGS]
+#   default render: scenes/rtiow-final.json at 200x112, 10 spp, one thread (pinned to CPU 1 when taskset exists)
+set -euo pipefail
+ROOT=$(cd "$(dirname "$0")/.." && pwd)
+A=${1:?usage: ab.sh A_BINARY B_BINARY [PAIRS] [-- GLINT ARGS]}
+B=${2:?usage: ab.sh A_BINARY B_BINARY [PAIRS] [-- GLINT ARGS]}
+shift 2
+PAIRS=21
+if [ $# -gt 0 ] && [ "$1" != "--" ]; then PAIRS=$1; shift; fi
+[ $# -gt 0 ] && [ "$1" = "--" ] && shift
+ARGS=("$@")
+[ ${#ARGS[@]} -gt 0 ] || ARGS=("$ROOT/scenes/rtiow-final.json" --width 200 --height 112 --spp 10 --threads 1)
+PIN=()
+command -v taskset >/dev/null && [ "$(nproc)" -gt 1 ] && PIN=(taskset -c 1)
+OUT=$(mktemp -d "${TMPDIR:-/tmp}/glint-ab.XXXXXX")
+trap 'rm -rf "$OUT"' EXIT
+
+# mrays BINARY: the Mrays/s of one render, from glint's statistics line.
+mrays() {
+    "${PIN[@]}" "$1" "${ARGS[@]}" -o "$OUT/image.ppm" 2>&1 >/dev/null | sed -n 's/.* \([0-9.]*\) Mrays\/s.*/\1/p' | tail -1
+}
+median() { sort -g | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+
+for ((i = 0; i < PAIRS; i++)); do
+    a=$(mrays "$A") b=$(mrays "$B")
+    [ -n "$a" ] && [ -n "$b" ] || { echo "ab.sh: a run printed no statistics line" >&2; exit 1; }
+    echo "$a $b" >>"$OUT/pairs"
+done
+awk '{ print $2 / $1 }' "$OUT/pairs" | median >"$OUT/ratio"
+printf 'A %s Mrays/s, B %s Mrays/s (medians of %d alternating pairs); median B/A ratio %.3f\n' \
+    "$(cut -d' ' -f1 "$OUT/pairs" | median)" "$(cut -d' ' -f2 "$OUT/pairs" | median)" "$PAIRS" "$(cat "$OUT/ratio")"

@@ -1,0 +1,553 @@
+// scene_file.c — the strict JSON scene reader's entry points (scene_file_parse, scene_file_load), the
+// scene's top level, its "render" and "camera" sections, and what every section shares: messages, names,
+// files. A scene file becomes a glint_scene, or one message "file:line:col: what is wrong, what was
+// expected" (docs/scene-format.md documents every key).
+#include "scene/scene_file.h"
+#include "core/array.h"
+#include "core/filepath.h"
+#include "io/json_scan.h"
+
+#include <cjson/cJSON.h>
+#include <errno.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+// ---------------------------------------------------------------------------------------------
+// Messages
+
+bool sf_fail_oom(sf_loader *ld) {
+    snprintf(ld->r.err->message, sizeof ld->r.err->message, "%s: out of memory while reading the scene", ld->r.name);
+    ld->r.status = GLINT_ERR_RENDER;
+    return false;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Warnings: collected in the scene (the library prints nothing); the command line shows them
+
+void sf_add_warning(sf_loader *ld, const char *message) {
+    if (ld->scene->warning_count >= SF_MAX_WARNINGS) {
+        ld->warnings_dropped++;
+        return;
+    }
+    if (!scene_add_warning(ld->scene, message)) ld->warning_oom = true;
+}
+
+void sf_warn_at(sf_loader *ld, size_t offset, const char *fmt, ...) {
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    jr_vformat(&ld->r, msg, sizeof msg, offset, "warning: ", fmt, ap);
+    va_end(ap);
+    sf_add_warning(ld, msg);
+}
+
+// ---------------------------------------------------------------------------------------------
+// The material name table
+
+const sf_name *sf_names_find(const sf_names *t, const char *name) {
+    size_t i;
+    return strmap_get(&t->map, name, strlen(name), &i) ? &t->list[i] : NULL;
+}
+
+static bool names_add(sf_names *t, const char *name, uint32_t index, uint32_t tok) {
+    if (!array_reserve((void **)&t->list, &t->cap, t->count + 1, sizeof *t->list) ||
+        !strmap_put(&t->map, name, strlen(name), t->count))
+        return false;
+    t->list[t->count++] = (sf_name){name, index, tok};
+    return true;
+}
+
+static void names_free(sf_names *t) {
+    strmap_free(&t->map);
+    free(t->list);
+}
+
+/// Checks the key at kt as a new name for `map`: 1 to SCENE_MAX_NAME bytes, no control characters, unused.
+static bool check_new_name(sf_loader *ld, const sf_names *map, uint32_t kt, const char *name, const char *kind) {
+    char got[96];
+    size_t n = strlen(name);
+    if (n == 0 || n > SCENE_MAX_NAME)
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "%s name %s must be 1 to %d bytes long", kind,
+                          jr_key_source(&ld->r, kt, got, sizeof got), SCENE_MAX_NAME);
+    for (size_t i = 0; i < n; i++)
+        if ((unsigned char)name[i] < 0x20)
+            return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "%s name %s must not contain control characters", kind,
+                              jr_key_source(&ld->r, kt, got, sizeof got));
+    const sf_name *prev = sf_names_find(map, name);
+    if (prev) {
+        size_t line, col;
+        json_line_col(ld->r.text, ld->r.len, jr_offset(&ld->r, prev->tok), &line, &col);
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "duplicate %s name \"%s\" (first defined at %zu:%zu)", kind, name, line,
+                          col);
+    }
+    return true;
+}
+
+/// "material "blu" is not defined (defined: red, green)": lists the first few names in definition order.
+bool sf_fail_undefined(sf_loader *ld, jr_val v, const sf_names *map, const char *kind) {
+    char names[512], got[96];
+    size_t n = 0, listed = 0;
+    names[0] = '\0';
+    for (size_t i = 0; i < map->count && listed < SF_LIST_NAMES; i++) {
+        int w = snprintf(names + n, sizeof names - n, "%s%s", listed ? ", " : "", map->list[i].name);
+        if (w < 0 || (size_t)w >= sizeof names - n) break;
+        n += (size_t)w;
+        listed++;
+    }
+    const char *what = jr_describe(&ld->r, v, got, sizeof got);
+    if (map->count == 0)
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (no named %ss are defined)", kind, what, kind);
+    if (listed < map->count)
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (defined: %s and %zu more)", kind, what, names,
+                          map->count - listed);
+    return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (defined: %s)", kind, what, names);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Files the scene refers to (meshes, images): paths relative to the scene file's directory
+
+/// `file` as a path usable from the current directory: absolute paths as they are, others joined to the
+/// scene file's directory. NULL when out of memory.
+static char *resolve_path(const sf_loader *ld, const char *file) {
+    return filepath_join(ld->r.name, filepath_dir_length(ld->r.name), file, strlen(file));
+}
+
+// " (resolved/path)" when the path opened differs from the one written, else "".
+const char *sf_resolved_note(const char *written, const char *path, char *buf, size_t size) {
+    if (strcmp(written, path) == 0) return "";
+    snprintf(buf, size, " (%.400s)", path);
+    return buf;
+}
+
+// Why `path` cannot be read as a file: 0 when it is a regular file (*st then holds its identity), an errno
+// value, or -1 for a special file (device, FIFO, socket), which could block or never end.
+int sf_file_problem(const char *path, struct stat *st) {
+    if (stat(path, st) != 0) return errno ? errno : ENOENT;
+    if (S_ISDIR(st->st_mode)) return EISDIR;
+    return S_ISREG(st->st_mode) ? 0 : -1;
+}
+
+const char *sf_file_problem_text(int e) { return e > 0 ? strerror(e) : "not a regular file"; }
+
+/// Reads the required path `key` of o, resolves it (*path, malloc'd) and checks that it names a regular
+/// file (*id). `kind` ("mesh", "image") names the file in messages: `image file "a.png": cannot open: reason`.
+bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const char *kind, char **path, sf_file_id *id,
+                           jr_val *where) {
+    const jr_member *m;
+    char got[96], note[420];
+    *path = NULL;
+    if (!jr_lookup(&ld->r, o, key, true, &m)) return false;
+    jr_val v = *where = m->val;
+    if (!cJSON_IsString(v.item) || v.item->valuestring[0] == '\0')
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"%s\" must be a non-empty string (a path relative to the scene file), got %s", key,
+                          jr_describe(&ld->r, v, got, sizeof got));
+    const char *written = v.item->valuestring;
+    char *p = resolve_path(ld, written);
+    if (!p) return sf_fail_oom(ld);
+    struct stat st;
+    int e = sf_file_problem(p, &st);
+    if (e != 0) {
+        jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s file %s%s: cannot open: %s", kind, jr_describe(&ld->r, v, got, sizeof got),
+                   sf_resolved_note(written, p, note, sizeof note), sf_file_problem_text(e));
+        free(p);
+        return false;
+    }
+    *path = p;
+    *id = (sf_file_id){st.st_dev, st.st_ino};
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The two shapes of a top-level collection: an object mapping names to items, an array of items
+
+/// Reads one named ("textures", "materials") or inline item into the scene; *index is its number.
+typedef bool (*named_reader)(sf_loader *ld, jr_val v, const char *what, const char *name, uint32_t *index);
+
+/// Reads "<kind>s", an object mapping names to items of that kind, adding each name to `map`.
+static bool read_named(sf_loader *ld, jr_val v, const char *kind, sf_names *map, named_reader read) {
+    char got[96], what[64 + SCENE_MAX_NAME];
+    if (!cJSON_IsObject(v.item))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "\"%ss\" must be a JSON object mapping names to %ss, got %s", kind,
+                          kind, jr_describe(&ld->r, v, got, sizeof got));
+    jr_iter it = jr_iter_begin(&ld->r, v);
+    uint32_t kt = 0;
+    jr_val val;
+    int r;
+    while ((r = jr_iter_next(&ld->r, &it, &kt, &val)) > 0) {
+        // The key string lives in the cJSON tree for the whole parse: the map may point at it.
+        const char *name = val.item->string;
+        if (!check_new_name(ld, map, kt, name, kind)) return false;
+        snprintf(what, sizeof what, "%s \"%s\"", kind, name);
+        uint32_t index;
+        if (!read(ld, val, what, name, &index)) return false;
+        if (!names_add(map, name, index, kt)) return sf_fail_oom(ld);
+    }
+    return r == 0;
+}
+
+/// Reads element i of an array ("objects", "lights") into the scene.
+typedef bool (*element_reader)(sf_loader *ld, jr_val v, size_t i);
+
+/// Reads `key`, an array of at most SF_MAX_ITEMS objects.
+static bool read_array(sf_loader *ld, jr_val v, const char *key, element_reader read) {
+    char got[96];
+    if (!cJSON_IsArray(v.item))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "\"%s\" must be an array of objects, got %s", key,
+                          jr_describe(&ld->r, v, got, sizeof got));
+    jr_iter it = jr_iter_begin(&ld->r, v);
+    jr_val e;
+    int r;
+    for (size_t i = 0; (r = jr_iter_next(&ld->r, &it, NULL, &e)) > 0; i++) {
+        if (i >= SF_MAX_ITEMS)
+            return jr_fail_at(&ld->r, jr_offset(&ld->r, e.tok), "too many %s (the limit is %d)", key, SF_MAX_ITEMS);
+        if (!read(ld, e, i)) return false;
+    }
+    return r == 0;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Camera
+
+static const jr_numspec NUM_VFOV = {0.0, 180.0, JR_FLOAT | JR_LO_OPEN | JR_HI_OPEN, "a number in (0, 180)"};
+static const jr_numspec NUM_DEFOCUS = {0.0, 180.0, JR_FLOAT | JR_HI_OPEN, "a number in [0, 180)"};
+
+static const char *const viewport_keys[] = {"type", "position", "viewport", "distance", NULL};
+static const char *const lookat_keys[] = {"type",          "lookfrom",       "lookat", "vup", "vfov",
+                                          "defocus_angle", "focus_distance", NULL};
+
+static const struct camera_type {
+    const char *name;
+    camera_kind kind;
+    const char *const *keys;
+} camera_types[] = {
+    {"viewport", CAMERA_VIEWPORT, viewport_keys},
+    {"lookat", CAMERA_LOOKAT, lookat_keys},
+};
+
+static bool read_lookat(sf_loader *ld, const jr_obj *o, camera *c) {
+    if (!jr_read_vec3(&ld->r, o, "lookfrom", false, &JR_FINITE, &c->lookfrom) ||
+        !jr_read_vec3(&ld->r, o, "lookat", false, &JR_FINITE, &c->lookat) ||
+        !jr_read_vec3(&ld->r, o, "vup", false, &JR_FINITE, &c->vup) ||
+        !jr_read_float(&ld->r, o, "vfov", false, &NUM_VFOV, &c->vfov_degrees) ||
+        !jr_read_float(&ld->r, o, "defocus_angle", false, &NUM_DEFOCUS, &c->defocus_angle_degrees) ||
+        !jr_read_float(&ld->r, o, "focus_distance", false, &JR_NONNEG, &c->focus_distance))
+        return false;
+    // The camera basis (camera_prepare, in float) needs a view direction and an up vector not along it.
+    vec3 d = v3_sub(c->lookfrom, c->lookat);
+    float d2 = v3_len2(d);
+    if (!(d2 > 0.0f) || !isfinite(d2))
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, jr_get(o, "lookat") ? "lookat" : "lookfrom"),
+                          "\"lookfrom\" and \"lookat\" must be different points%s",
+                          d2 > 0.0f ? " not so far apart that their distance overflows" : "");
+    float up2 = v3_len2(c->vup);
+    vec3 side = v3_cross(c->vup, v3_unit(d));
+    if (!isfinite(up2) || !(v3_len2(side) > 1e-12f * up2))
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "vup"),
+                          "\"vup\" must be a non-zero vector not parallel to the view direction (lookat - lookfrom)");
+    return true;
+}
+
+static bool read_viewport(sf_loader *ld, const jr_obj *o, camera *c) {
+    const jr_member *m = jr_get(o, "position");
+    if (m && !jr_check_numbers(&ld->r, m->val, "position", 3, "3 numbers (x, y, z)", &JR_FINITE_DOUBLE, c->position))
+        return false;
+    m = jr_get(o, "viewport");
+    double size[2];
+    if (m) {
+        if (!jr_check_numbers(&ld->r, m->val, "viewport", 2, "2 numbers (width, height)", &JR_POSITIVE_DOUBLE, size))
+            return false;
+        c->viewport_width = size[0];
+        c->viewport_height = size[1];
+    }
+    return jr_read_double(&ld->r, o, "distance", false, &JR_POSITIVE_DOUBLE, &c->distance);
+}
+
+static bool read_camera(sf_loader *ld, jr_val v) {
+    size_t t;
+    if (!jr_open_typed(&ld->r, v, "camera", camera_types, 2, sizeof camera_types[0], &t)) return false;
+    char typed[64];
+    snprintf(typed, sizeof typed, "camera (%s)", camera_types[t].name);
+    jr_obj o;
+    if (!jr_open(&ld->r, v, typed, camera_types[t].keys, &o)) return false;
+    camera *c = &ld->scene->camera;
+    *c = camera_default();
+    c->kind = camera_types[t].kind;
+    if (c->kind == CAMERA_VIEWPORT) {
+        c->position[0] = c->position[1] = c->position[2] = 0.0;
+        c->viewport_width = c->viewport_height = c->distance = 1.0;
+        return read_viewport(ld, &o, c);
+    }
+    return read_lookat(ld, &o, c);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Render settings
+
+static const char *const render_keys[] = {"width",      "height",     "spp",    "max_depth", "seed",
+                                          "integrator", "background", "output", "accel",     NULL};
+static const char *const whitted_keys[] = {"type", "mode", NULL};
+static const char *const path_keys[] = {"type", NULL};
+static const char *const sky_keys[] = {"type", "horizon", "zenith", NULL};
+static const char *const constant_keys[] = {"type", "color", NULL};
+
+static const struct integrator_type {
+    const char *name;
+    integrator_kind kind;
+    const char *const *keys;
+} integrator_types[] = {
+    {"whitted", INTEGRATOR_WHITTED, whitted_keys},
+    {"path", INTEGRATOR_PATH, path_keys},
+};
+
+static const struct background_type {
+    const char *name;
+    background_kind kind;
+    const char *const *keys;
+} background_types[] = {
+    {"constant", BACKGROUND_CONSTANT, constant_keys},
+    {"sky", BACKGROUND_SKY, sky_keys},
+};
+
+static bool read_integrator(sf_loader *ld, jr_val v, render_settings *rs) {
+    char got[96];
+    if (cJSON_IsString(v.item)) {
+        size_t t = jr_find_name(integrator_types, 2, sizeof integrator_types[0], v.item->valuestring);
+        if (t < 2) {
+            rs->integrator = integrator_types[t].kind;
+            return true;
+        }
+    }
+    if (!cJSON_IsObject(v.item))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"integrator\" must be \"whitted\", \"path\" or an object with a \"type\", got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
+    size_t t;
+    if (!jr_open_typed(&ld->r, v, "integrator", integrator_types, 2, sizeof integrator_types[0], &t)) return false;
+    char typed[64];
+    snprintf(typed, sizeof typed, "integrator (%s)", integrator_types[t].name);
+    jr_obj o;
+    if (!jr_open(&ld->r, v, typed, integrator_types[t].keys, &o)) return false;
+    rs->integrator = integrator_types[t].kind;
+    static const char *const modes[] = {"paper", "color"};
+    int mode = rs->whitted_mode == WHITTED_PAPER ? 0 : 1;
+    if (!jr_read_enum(&ld->r, &o, "mode", modes, 2, &mode)) return false;
+    rs->whitted_mode = mode == 0 ? WHITTED_PAPER : WHITTED_COLOR;
+    return true;
+}
+
+static bool read_background(sf_loader *ld, jr_val v, render_settings *rs) {
+    char got[96];
+    if (cJSON_IsNumber(v.item) || cJSON_IsArray(v.item)) {
+        rs->background = BACKGROUND_CONSTANT;
+        return jr_check_color(&ld->r, v, "background", &JR_NONNEG, &rs->background_color);
+    }
+    if (cJSON_IsString(v.item) && strcmp(v.item->valuestring, "sky") == 0) {
+        rs->background = BACKGROUND_SKY;
+        return true;
+    }
+    if (!cJSON_IsObject(v.item))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"background\" must be a colour (a number or [r, g, b]), \"sky\" or an object with a \"type\", "
+                          "got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
+    size_t t;
+    if (!jr_open_typed(&ld->r, v, "background", background_types, 2, sizeof background_types[0], &t)) return false;
+    char typed[64];
+    snprintf(typed, sizeof typed, "background (%s)", background_types[t].name);
+    jr_obj o;
+    if (!jr_open(&ld->r, v, typed, background_types[t].keys, &o)) return false;
+    rs->background = background_types[t].kind;
+    if (rs->background == BACKGROUND_CONSTANT)
+        return jr_read_color(&ld->r, &o, "color", true, &JR_NONNEG, &rs->background_color);
+    return jr_read_color(&ld->r, &o, "horizon", false, &JR_NONNEG, &rs->sky_horizon) &&
+           jr_read_color(&ld->r, &o, "zenith", false, &JR_NONNEG, &rs->sky_zenith);
+}
+
+static bool read_render(sf_loader *ld, jr_val v) {
+    jr_obj o;
+    if (!jr_open(&ld->r, v, "render", render_keys, &o)) return false;
+    render_settings *rs = &ld->scene->settings;
+    long long width = rs->width, height = rs->height, spp = rs->spp, depth = -1, seed = (long long)rs->seed;
+    if (!jr_read_int(&ld->r, &o, "width", false, 1, SCENE_MAX_DIMENSION, &width) ||
+        !jr_read_int(&ld->r, &o, "height", false, 1, SCENE_MAX_DIMENSION, &height) ||
+        !jr_read_int(&ld->r, &o, "spp", false, 1, SCENE_MAX_SPP, &spp) ||
+        !jr_read_int(&ld->r, &o, "max_depth", false, 0, SCENE_MAX_DEPTH, &depth) ||
+        !jr_read_int(&ld->r, &o, "seed", false, 0, 9007199254740992LL, &seed))
+        return false;
+    const jr_member *m = jr_get(&o, "integrator");
+    if (m && !read_integrator(ld, m->val, rs)) return false;
+    m = jr_get(&o, "background");
+    if (m && !read_background(ld, m->val, rs)) return false;
+    static const char *const transforms[] = {"linear", "gamma2", "srgb"};
+    static const output_transform transform_kinds[] = {TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SRGB};
+    static const char *const accels[] = {"bvh", "bvh2", "none"};
+    static const accel_kind accel_kinds[] = {ACCEL_BVH, ACCEL_BVH2, ACCEL_NONE};
+    int output = -1, structure = -1;
+    if (!jr_read_enum(&ld->r, &o, "output", transforms, 3, &output) ||
+        !jr_read_enum(&ld->r, &o, "accel", accels, 3, &structure))
+        return false;
+    if (output >= 0) rs->transform = transform_kinds[output];
+    if (structure >= 0) rs->accel = accel_kinds[structure];
+    rs->width = (int)width;
+    rs->height = (int)height;
+    rs->spp = (int)spp;
+    rs->seed = (uint64_t)seed;
+    // Without "max_depth" each integrator gets its own default: the paper's 3 bounces, the book's 50.
+    if (depth >= 0) rs->max_depth = (int)depth;
+    else rs->max_depth = rs->integrator == INTEGRATOR_PATH ? 50 : 3;
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// The scene
+
+static const char *const scene_keys[] = {"render", "camera", "textures", "materials", "objects", "lights", NULL};
+
+static bool read_scene(sf_loader *ld, jr_val root) {
+    jr_obj o;
+    if (!cJSON_IsObject(root.item)) {
+        char got[96];
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, root.tok), "the scene must be a JSON object, got %s",
+                          jr_describe(&ld->r, root, got, sizeof got));
+    }
+    if (!jr_open(&ld->r, root, "the scene", scene_keys, &o)) return false;
+    const jr_member *m;
+    // Textures before materials before objects, so that each can refer to the one before it whatever the
+    // key order in the file.
+    if ((m = jr_get(&o, "render")) && !read_render(ld, m->val)) return false;
+    if ((m = jr_get(&o, "camera")) && !read_camera(ld, m->val)) return false;
+    if ((m = jr_get(&o, "textures")) && !read_named(ld, m->val, "texture", &ld->textures, sf_read_texture)) return false;
+    if ((m = jr_get(&o, "materials")) && !read_named(ld, m->val, "material", &ld->materials, sf_read_material))
+        return false;
+    if ((m = jr_get(&o, "objects")) && !read_array(ld, m->val, "objects", sf_read_object)) return false;
+    if ((m = jr_get(&o, "lights")) && !read_array(ld, m->val, "lights", sf_read_light)) return false;
+    if (ld->warnings_dropped) {
+        char msg[256];
+        snprintf(msg, sizeof msg, "%s: warning: %zu more warnings not listed", ld->r.name, ld->warnings_dropped);
+        ld->warnings_dropped = 0;
+        if (!scene_add_warning(ld->scene, msg)) ld->warning_oom = true;
+    }
+    return !ld->warning_oom || sf_fail_oom(ld);
+}
+
+glint_status scene_file_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err) {
+    *out = NULL;
+    if (!name) name = "<scene>";
+    if (!text) length = 0;
+    if (length > (size_t)SF_MAX_FILE_BYTES) {
+        snprintf(err->message, sizeof err->message,
+                 "%s: the scene is %zu bytes; at most %d bytes (256 MiB) are allowed", name, length,
+                 SF_MAX_FILE_BYTES);
+        return GLINT_ERR_INPUT;
+    }
+    if (!text) text = "";
+    json_index ix;
+    json_scan_error se;
+    json_result jr = json_scan(text, length, &ix, &se);
+    if (jr != JSON_SCAN_OK) {
+        size_t line, col;
+        json_line_col(text, length, se.offset, &line, &col);
+        if (jr == JSON_SCAN_NOMEM)
+            snprintf(err->message, sizeof err->message, "%s: out of memory while reading the scene", name);
+        else snprintf(err->message, sizeof err->message, "%s:%zu:%zu: %s", name, line, col, se.message);
+        return jr == JSON_SCAN_NOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
+    }
+    // cJSON skips a byte-order mark itself, but handing it the text after one keeps both readers aligned.
+    size_t bom = length >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithLengthOpts(text + bom, length - bom, &end, 0);
+    sf_loader ld;
+    memset(&ld, 0, sizeof ld);
+    ld.r = (json_reader){name, text, length, &ix, err, GLINT_ERR_INPUT};
+    ld.fallback_material = -1;
+    bool ok = false;
+    jr_val top;
+    if (!root) {
+        // The scanner accepted the text, so this is cJSON running out of memory (or a cJSON bug).
+        size_t line, col;
+        json_line_col(text, length, end ? (size_t)(end - text) : 0, &line, &col);
+        snprintf(err->message, sizeof err->message,
+                 "%s:%zu:%zu: the JSON library could not read the scene here (out of memory?)", name, line, col);
+        ld.r.status = GLINT_ERR_RENDER;
+    } else if (!jr_root(&ld.r, root, &top)) {
+        // jr_root wrote the message
+    } else if (!(ld.scene = scene_new(name))) {
+        sf_fail_oom(&ld);
+    } else {
+        ok = read_scene(&ld, top);
+    }
+    names_free(&ld.materials);
+    names_free(&ld.textures);
+    free(ld.meshes);
+    free(ld.images);
+    cJSON_Delete(root);
+    json_index_free(&ix);
+    if (!ok) {
+        scene_free(ld.scene);
+        return ld.r.status;
+    }
+    *out = ld.scene;
+    return GLINT_OK;
+}
+
+glint_status scene_file_load(const char *path, glint_scene **out, glint_error *err) {
+    *out = NULL;
+    FILE *f = fopen(path, "rb");
+    if (!f) {
+        snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, strerror(errno));
+        return GLINT_ERR_INPUT;
+    }
+    struct stat st;
+    size_t cap = 1 << 16;
+    if (fstat(fileno(f), &st) == 0) {
+        if (S_ISDIR(st.st_mode)) {
+            fclose(f);
+            snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, strerror(EISDIR));
+            return GLINT_ERR_INPUT;
+        }
+        // A regular file's size is known: read it in one piece (files of other kinds grow the buffer).
+        if (S_ISREG(st.st_mode) && st.st_size >= 0 && (unsigned long long)st.st_size <= SF_MAX_FILE_BYTES)
+            cap = (size_t)st.st_size + 1;
+    }
+    char *buf = malloc(cap);
+    size_t n = 0;
+    glint_status status = GLINT_OK;
+    while (buf) {
+        n += fread(buf + n, 1, cap - n, f);
+        if (n > (size_t)SF_MAX_FILE_BYTES) {
+            snprintf(err->message, sizeof err->message, "%s: the scene file is larger than %d bytes (256 MiB)", path,
+                     SF_MAX_FILE_BYTES);
+            status = GLINT_ERR_INPUT;
+            break;
+        }
+        if (n < cap) {
+            if (ferror(f)) {
+                snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, strerror(errno));
+                status = GLINT_ERR_INPUT;
+            }
+            break;
+        }
+        // Full: grow, up to one byte more than the limit so that a too-large file is noticed.
+        size_t bigger = cap * 2 > (size_t)SF_MAX_FILE_BYTES + 1 ? (size_t)SF_MAX_FILE_BYTES + 1 : cap * 2;
+        char *grown = realloc(buf, bigger);
+        if (!grown) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        buf = grown;
+        cap = bigger;
+    }
+    fclose(f);
+    if (!buf) {
+        snprintf(err->message, sizeof err->message, "%s: out of memory while reading the scene file", path);
+        return GLINT_ERR_RENDER;
+    }
+    if (status == GLINT_OK) status = scene_file_parse(path, buf, n, out, err);
+    free(buf);
+    return status;
+}

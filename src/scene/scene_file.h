@@ -1,0 +1,127 @@
+// scene_file.h — private to the scene-file reader (scene_file*.c): the reader's state and the helpers its
+// sections share. Prefix sf_ ("scene file"). The entry points, scene_file_parse/_load, are in scene.h.
+//
+// The reader embeds io/json_read's json_reader (positions, messages, typed values) and adds what only a
+// scene has: the scene being built, the material and texture names, and the caches of files already read.
+#ifndef GLINT_SCENE_FILE_H
+#define GLINT_SCENE_FILE_H
+
+#include "core/strmap.h"
+#include "io/json_read.h"
+#include "scene/scene.h"
+
+#include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <sys/stat.h>
+
+enum {
+    SF_MAX_FILE_BYTES = 256 << 20, ///< larger scene files are refused before parsing
+    SF_MAX_ITEMS = 10000000,       ///< at most this many objects, materials and lights each
+    SF_LIST_NAMES = 10,            ///< material names listed in an "is not defined" message
+    SF_MAX_WARNINGS = 100,         ///< warnings kept in the scene; the rest are counted in one more
+    SF_MAX_NOISE_DEPTH = 32,       ///< octaves of turbulence (2^32 p is already far beyond any detail)
+};
+
+/// A name defined in "materials" or "textures".
+typedef struct sf_name {
+    const char *name; ///< owned by the cJSON tree, alive while the scene is read
+    uint32_t index;   ///< the scene material or texture
+    uint32_t tok;     ///< where it is defined
+} sf_name;
+
+/// Name -> material or texture index, so that resolving references stays linear in the scene size.
+typedef struct sf_names {
+    strmap map;    ///< name -> position in list
+    sf_name *list; ///< in definition order, for listing names in messages
+    size_t count, cap;
+} sf_names;
+
+/// The identity of a file (device and inode): two spellings of one path are the same file.
+typedef struct sf_file_id {
+    dev_t dev;
+    ino_t ino;
+} sf_file_id;
+
+/// A mesh file already loaded: placing it again adds an instance, not a copy.
+typedef struct sf_mesh_entry {
+    sf_file_id id;
+    bool face_normals;   ///< the mesh's normals depend on this, so it is part of the key
+    bool needs_fallback; ///< some faces have no material of their own (the grey fallback)
+    bool warned;         ///< the missing-material warning was given
+    uint32_t mesh;
+} sf_mesh_entry;
+
+/// An image file already decoded into a texture.
+typedef struct sf_image_entry {
+    sf_file_id id;
+    uint32_t texture;
+} sf_image_entry;
+
+/// The reader of one scene file. r.status is GLINT_ERR_INPUT, or GLINT_ERR_RENDER when memory ran out.
+typedef struct sf_loader {
+    json_reader r; ///< the document, positions and the message of a failure
+    glint_scene *scene;
+    sf_names materials;
+    sf_names textures;
+    sf_mesh_entry *meshes;
+    size_t mesh_count, mesh_cap;
+    sf_image_entry *images;
+    size_t image_count, image_cap;
+    long fallback_material;  ///< the grey Lambertian of faces without a material, once created; else -1
+    size_t warnings_dropped; ///< warnings past SF_MAX_WARNINGS
+    bool warning_oom;        ///< a warning could not be stored
+} sf_loader;
+
+// scene_file.c: messages, names, files
+
+/// "name: out of memory while reading the scene", status GLINT_ERR_RENDER; false.
+bool sf_fail_oom(sf_loader *ld);
+/// Keeps a warning in the scene (at most SF_MAX_WARNINGS; the rest are counted).
+void sf_add_warning(sf_loader *ld, const char *message);
+/// Keeps the warning "name:line:col: warning: message" for the byte at `offset`.
+JR_PRINTF(3, 4) void sf_warn_at(sf_loader *ld, size_t offset, const char *fmt, ...);
+/// The entry of a defined name, or NULL.
+const sf_name *sf_names_find(const sf_names *t, const char *name);
+/// "material "blu" is not defined (defined: red, green)", pointing at v; false.
+bool sf_fail_undefined(sf_loader *ld, jr_val v, const sf_names *map, const char *kind);
+/// " (resolved/path)" when the path opened differs from the one written, else "".
+const char *sf_resolved_note(const char *written, const char *path, char *buf, size_t size);
+/// Why `path` cannot be read as a file: 0 for a regular file (*st then holds its identity), an errno value,
+/// or -1 for a special file (device, FIFO, socket), which could block or never end.
+int sf_file_problem(const char *path, struct stat *st);
+/// The text of an sf_file_problem value.
+const char *sf_file_problem_text(int e);
+/// Reads the required path `key` of o, resolves it against the scene file's directory (*path, malloc'd)
+/// and checks that it names a regular file (*id); `kind` ("mesh", "image") names it in messages.
+bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const char *kind, char **path,
+                       sf_file_id *id, jr_val *where);
+
+// scene_file_materials.c: textures, images, materials
+
+/// The scene texture of image file `path` (id), decoded on first use; `where` is blamed for failures, and
+/// `prefix` (may be "") opens their message.
+bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *written, const char *path,
+                   sf_file_id id, uint32_t *index);
+/// Reads a texture object and adds it to the scene (named, or anonymous when name is NULL).
+bool sf_read_texture(sf_loader *ld, jr_val v, const char *what, const char *name, uint32_t *index);
+/// Reads a material object and adds it to the scene (named, or anonymous when name is NULL).
+bool sf_read_material(sf_loader *ld, jr_val v, const char *what, const char *name, uint32_t *index);
+/// The "material" of an object: a name defined in "materials", or an inline material object.
+bool sf_read_material_ref(sf_loader *ld, const jr_obj *o, const char *owner, uint32_t *index);
+
+// scene_file_objects.c: transforms, shapes, lights
+
+/// Reads the optional "transform" of o into *xf (object to world); *given is false without one.
+bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *given);
+/// Reads element i of "objects" into the scene.
+bool sf_read_object(sf_loader *ld, jr_val v, size_t i);
+/// Reads element i of "lights" into the scene.
+bool sf_read_light(sf_loader *ld, jr_val v, size_t i);
+
+// scene_file_mesh.c: OBJ meshes placed by the scene
+
+/// A "mesh" object: its OBJ file loaded once (materials mapped to scene materials), placed as an instance.
+bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what);
+
+#endif

@@ -1,0 +1,294 @@
+// scene_file_materials.c — the scene file's "textures" and "materials": every texture and material kind,
+// colour parameters given as numbers or textures, and the cache of image files decoded into textures.
+#include "scene/scene_file.h"
+#include "core/array.h"
+#include "io/image_read.h"
+
+#include <float.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+// ---------------------------------------------------------------------------------------------
+// Image files, each decoded once
+
+// The message of a library that starts with the path it was given, without that "path: " prefix.
+static const char *strip_path(const char *message, const char *path) {
+    size_t n = strlen(path);
+    return strncmp(message, path, n) == 0 && message[n] == ':' && message[n + 1] == ' ' ? message + n + 2 : message;
+}
+
+/// The scene texture of image file `path` (id), decoded on first use; `where` is blamed for failures, and
+/// `prefix` (may be "") opens their message.
+bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *written, const char *path,
+                       sf_file_id id, uint32_t *index) {
+    for (size_t i = 0; i < ld->image_count; i++)
+        if (ld->images[i].id.dev == id.dev && ld->images[i].id.ino == id.ino) {
+            *index = ld->images[i].texture;
+            return true;
+        }
+    if (ld->scene->texture_count >= SF_MAX_ITEMS)
+        return jr_fail_at(&ld->r, where, "too many textures (the limit is %d)", SF_MAX_ITEMS);
+    // The file is decoded here (io/), and the texture module only takes the pixels.
+    image_rgb img;
+    glint_error err;
+    if (image_read(path, &img, &err) != GLINT_OK) {
+        char note[420];
+        return jr_fail_at(&ld->r, where, "%simage file \"%.300s\"%s: %s", prefix, written,
+                          sf_resolved_note(written, path, note, sizeof note), strip_path(err.message, path));
+    }
+    texture t = texture_image(img);
+    long i = scene_add_texture(ld->scene, &t, NULL);
+    if (i < 0 || !array_reserve((void **)&ld->images, &ld->image_cap, ld->image_count + 1, sizeof *ld->images))
+        return sf_fail_oom(ld);
+    ld->images[ld->image_count++] = (sf_image_entry){id, (uint32_t)i};
+    *index = (uint32_t)i;
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Textures: add a row to texture_types (name, keys, reader) for a new kind.
+
+static const char *const solid_keys[] = {"type", "color", NULL};
+static const char *const checker_keys[] = {"type", "scale", "even", "odd", NULL};
+static const char *const noise_keys[] = {"type", "scale", "color", "seed", NULL};
+static const char *const turbulence_keys[] = {"type", "scale", "depth", "color", "seed", NULL};
+static const char *const image_keys[] = {"type", "file", NULL};
+
+/// Adds the texture a texture object describes (or finds the one already loaded from the same image);
+/// `name` is NULL for inline textures.
+typedef bool (*texture_reader)(sf_loader *ld, const jr_obj *o, int variant, const char *name, uint32_t *index);
+
+static bool add_texture(sf_loader *ld, const jr_obj *o, texture *t, const char *name, uint32_t *index) {
+    if (ld->scene->texture_count >= SF_MAX_ITEMS) {
+        texture_free(t);
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, o->self.tok), "too many textures (the limit is %d)", SF_MAX_ITEMS);
+    }
+    long i = scene_add_texture(ld->scene, t, name);
+    if (i < 0) return sf_fail_oom(ld);
+    *index = (uint32_t)i;
+    return true;
+}
+
+static bool read_solid(sf_loader *ld, const jr_obj *o, int variant, const char *name, uint32_t *index) {
+    (void)variant;
+    vec3 c;
+    if (!jr_read_color(&ld->r, o, "color", true, &JR_NONNEG, &c)) return false;
+    texture t = texture_solid(c);
+    return add_texture(ld, o, &t, name, index);
+}
+
+static bool read_checker(sf_loader *ld, const jr_obj *o, int variant, const char *name, uint32_t *index) {
+    (void)variant;
+    float scale = 1.0f;
+    vec3 even = v3s(1.0f), odd = v3s(0.0f);
+    if (!jr_read_float(&ld->r, o, "scale", false, &JR_POSITIVE, &scale) ||
+        !jr_read_color(&ld->r, o, "even", false, &JR_NONNEG, &even) || !jr_read_color(&ld->r, o, "odd", false, &JR_NONNEG, &odd))
+        return false;
+    // The checker divides by the scale: a subnormal one would overflow 1/scale.
+    if (!isfinite(1.0f / scale)) {
+        const jr_member *m = jr_get(o, "scale");
+        char got[96];
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, m->val.tok), "\"scale\" must be at least %g, got %s", (double)FLT_MIN,
+                          jr_describe(&ld->r, m->val, got, sizeof got));
+    }
+    texture t = texture_checker(scale, even, odd);
+    return add_texture(ld, o, &t, name, index);
+}
+
+static bool read_noise(sf_loader *ld, const jr_obj *o, int variant, const char *name, uint32_t *index) {
+    float scale = 1.0f;
+    vec3 color = v3s(1.0f);
+    long long depth = 7, seed = 0;
+    if (!jr_read_float(&ld->r, o, "scale", false, &JR_POSITIVE, &scale) ||
+        !jr_read_int(&ld->r, o, "depth", false, 1, SF_MAX_NOISE_DEPTH, &depth) ||
+        !jr_read_color(&ld->r, o, "color", false, &JR_NONNEG, &color) ||
+        !jr_read_int(&ld->r, o, "seed", false, 0, 9007199254740992LL, &seed))
+        return false;
+    texture t;
+    if (!texture_noise((noise_kind)variant, scale, (int)depth, color, (uint64_t)seed, &t)) return sf_fail_oom(ld);
+    return add_texture(ld, o, &t, name, index);
+}
+
+static bool read_image(sf_loader *ld, const jr_obj *o, int variant, const char *name, uint32_t *index) {
+    (void)variant;
+    char *path;
+    sf_file_id id;
+    jr_val where;
+    if (!sf_read_file_path(ld, o, "file", "image", &path, &id, &where)) return false;
+    size_t before = ld->scene->texture_count;
+    bool ok = sf_load_image(ld, jr_offset(&ld->r, where.tok), "", where.item->valuestring, path, id, index);
+    free(path);
+    // A newly decoded image takes the name it was first defined under (an image given twice loads once).
+    if (ok && name && ld->scene->texture_count > before && !ld->scene->texture_names[*index]) {
+        size_t n = strlen(name) + 1;
+        char *copy = malloc(n);
+        if (!copy) return sf_fail_oom(ld);
+        memcpy(copy, name, n);
+        ld->scene->texture_names[*index] = copy;
+    }
+    return ok;
+}
+
+static const struct texture_type {
+    const char *name;
+    const char *const *keys;
+    texture_reader read;
+    int variant; ///< noise: its noise_kind
+} texture_types[] = {
+    {"solid", solid_keys, read_solid, 0},
+    {"checker", checker_keys, read_checker, 0},
+    {"noise", noise_keys, read_noise, NOISE_PLAIN},
+    {"turbulence", turbulence_keys, read_noise, NOISE_TURBULENCE},
+    {"marble", turbulence_keys, read_noise, NOISE_MARBLE},
+    {"image", image_keys, read_image, 0},
+};
+#define TEXTURE_TYPES (sizeof texture_types / sizeof texture_types[0])
+
+/// Reads a texture object and adds it to the scene (named or anonymous); *index is its number.
+bool sf_read_texture(sf_loader *ld, jr_val v, const char *what, const char *name, uint32_t *index) {
+    size_t t;
+    if (!jr_open_typed(&ld->r, v, what, texture_types, TEXTURE_TYPES, sizeof texture_types[0], &t)) return false;
+    jr_obj o;
+    return jr_open(&ld->r, v, what, texture_types[t].keys, &o) &&
+           texture_types[t].read(ld, &o, texture_types[t].variant, name, index);
+}
+
+// The largest colour component a texture can give (images are in [0, 1]).
+static float texture_peak(const texture *t) {
+    vec3 c = t->kind == TEX_CHECKER ? v3_max(t->even, t->odd) : t->kind == TEX_IMAGE ? v3s(1.0f) : t->color;
+    return fmaxf(c.x, fmaxf(c.y, c.z));
+}
+
+/// A material colour parameter: a number or [r, g, b] (into *color), or a texture, by name or inline (into
+/// *tex). Textures used where components must be at most 1 (albedo) must not exceed 1 either.
+static bool read_material_color(sf_loader *ld, const jr_obj *o, const char *key, const jr_numspec *sp, vec3 *color,
+                                int32_t *tex) {
+    const jr_member *m = jr_get(o, key);
+    if (!m) return true;
+    jr_val v = m->val;
+    char got[96];
+    if (cJSON_IsNumber(v.item) || (cJSON_IsArray(v.item) && cJSON_GetArraySize(v.item) == 3))
+        return jr_check_color(&ld->r, v, key, sp, color);
+    uint32_t index;
+    if (cJSON_IsString(v.item)) {
+        const sf_name *s = sf_names_find(&ld->textures, v.item->valuestring);
+        if (!s) return sf_fail_undefined(ld, v, &ld->textures, "texture");
+        index = s->index;
+    } else if (cJSON_IsObject(v.item)) {
+        char what[96 + SCENE_MAX_NAME];
+        snprintf(what, sizeof what, "the texture \"%s\" of %s", key, o->what);
+        if (!sf_read_texture(ld, v, what, NULL, &index)) return false;
+    } else {
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"%s\" must be %s, an array of 3 such numbers [r, g, b], a texture name or a texture object, "
+                          "got %s",
+                          key, sp->desc, jr_describe(&ld->r, v, got, sizeof got));
+    }
+    float peak = texture_peak(&ld->scene->textures[index]);
+    if (peak > sp->hi)
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"%s\" must stay in [0, %g], but this texture has colour components up to %g", key, sp->hi,
+                          (double)peak);
+    *tex = (int32_t)index;
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Materials: add a row to material_types (name, kind, keys, reader) for a new kind.
+
+static const char *const lambertian_keys[] = {"type", "albedo", NULL};
+static const char *const metal_keys[] = {"type", "albedo", "fuzz", NULL};
+static const char *const dielectric_keys[] = {"type", "ior", "tint", NULL};
+static const char *const phong_keys[] = {"type", "color", "specular", "reflective", "specular_color", NULL};
+static const char *const diffuse_light_keys[] = {"type", "emission", "two_sided", NULL};
+
+// Every colour parameter but Phong's specular_color may be a texture (read_material_color).
+static bool read_lambertian(sf_loader *ld, const jr_obj *o, material *m) {
+    return read_material_color(ld, o, "albedo", &JR_UNIT, &m->albedo, &m->albedo_texture);
+}
+
+static bool read_metal(sf_loader *ld, const jr_obj *o, material *m) {
+    return read_material_color(ld, o, "albedo", &JR_UNIT, &m->albedo, &m->albedo_texture) &&
+           jr_read_float(&ld->r, o, "fuzz", false, &JR_UNIT, &m->fuzz);
+}
+
+static bool read_dielectric(sf_loader *ld, const jr_obj *o, material *m) {
+    return jr_read_float(&ld->r, o, "ior", false, &JR_POSITIVE, &m->ior) &&
+           read_material_color(ld, o, "tint", &JR_UNIT, &m->albedo, &m->albedo_texture);
+}
+
+static bool read_phong(sf_loader *ld, const jr_obj *o, material *m) {
+    long long specular = m->specular;
+    if (!read_material_color(ld, o, "color", &JR_UNIT, &m->albedo, &m->albedo_texture) ||
+        !jr_read_int(&ld->r, o, "specular", false, -1, INT_MAX, &specular) ||
+        !jr_read_float(&ld->r, o, "reflective", false, &JR_UNIT, &m->reflective) ||
+        !jr_read_color(&ld->r, o, "specular_color", false, &JR_UNIT, &m->specular_color))
+        return false;
+    m->specular = (int)specular;
+    m->has_specular_color = jr_get(o, "specular_color") != NULL;
+    return true;
+}
+
+// A texture as "emission" scales the default emission 1: the texture's colour is the emitted radiance.
+static bool read_diffuse_light(sf_loader *ld, const jr_obj *o, material *m) {
+    return read_material_color(ld, o, "emission", &JR_NONNEG, &m->emission, &m->emission_texture) &&
+           jr_read_bool(&ld->r, o, "two_sided", &m->two_sided);
+}
+
+typedef bool (*material_reader)(sf_loader *ld, const jr_obj *o, material *m);
+
+static const struct material_type {
+    const char *name;
+    material_kind kind;
+    const char *const *keys;
+    material_reader read;
+} material_types[] = {
+    {"lambertian", MAT_LAMBERTIAN, lambertian_keys, read_lambertian},
+    {"metal", MAT_METAL, metal_keys, read_metal},
+    {"dielectric", MAT_DIELECTRIC, dielectric_keys, read_dielectric},
+    {"phong", MAT_PHONG, phong_keys, read_phong},
+    {"diffuse_light", MAT_DIFFUSE_LIGHT, diffuse_light_keys, read_diffuse_light},
+};
+#define MATERIAL_TYPES (sizeof material_types / sizeof material_types[0])
+
+/// Reads a material object and adds it to the scene (named or anonymous); *index is its number.
+bool sf_read_material(sf_loader *ld, jr_val v, const char *what, const char *name, uint32_t *index) {
+    size_t t;
+    if (!jr_open_typed(&ld->r, v, what, material_types, MATERIAL_TYPES, sizeof material_types[0], &t)) return false;
+    const struct material_type *mt = &material_types[t];
+    material m = material_default(mt->kind);
+    jr_obj o;
+    if (!jr_open(&ld->r, v, what, mt->keys, &o) || !mt->read(ld, &o, &m)) return false;
+    if (ld->scene->material_count >= SF_MAX_ITEMS)
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "too many materials (the limit is %d)", SF_MAX_ITEMS);
+    long i = scene_add_material(ld->scene, &m, name);
+    if (i < 0) return sf_fail_oom(ld);
+    *index = (uint32_t)i;
+    return true;
+}
+
+/// The "material" of an object: a name defined in "materials", or an inline material object.
+bool sf_read_material_ref(sf_loader *ld, const jr_obj *o, const char *owner, uint32_t *index) {
+    const jr_member *m;
+    if (!jr_lookup(&ld->r, o, "material", true, &m)) return false;
+    jr_val v = m->val;
+    char got[96];
+    if (cJSON_IsObject(v.item)) {
+        char what[96];
+        snprintf(what, sizeof what, "the material of %s", owner);
+        return sf_read_material(ld, v, what, NULL, index);
+    }
+    if (!cJSON_IsString(v.item))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"material\" must be the name of a material in \"materials\" or a material object, got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
+    const sf_name *s = sf_names_find(&ld->materials, v.item->valuestring);
+    if (s) {
+        *index = s->index;
+        return true;
+    }
+    return sf_fail_undefined(ld, v, &ld->materials, "material");
+}

@@ -1,0 +1,172 @@
+// scene_file_mesh.c — "mesh" objects: an OBJ file is loaded once (io/obj), its MTL materials become scene
+// materials ("file:name", map_Kd as an image texture, a grey fallback for faces without one), and every
+// object that names the file places an instance of it.
+#include "scene/scene_file.h"
+#include "core/array.h"
+#include "io/obj.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+// ---------------------------------------------------------------------------------------------
+// Meshes from OBJ files
+
+// The OBJ reader's callback.
+static void collect_warning(const char *message, void *user) { sf_add_warning(user, message); }
+
+// Whether the file name ends in ".obj", in any case.
+static bool has_obj_extension(const char *path) {
+    size_t n = strlen(path);
+    if (n < 4) return false;
+    const char *e = path + n - 4;
+    return e[0] == '.' && (e[1] | 0x20) == 'o' && (e[2] | 0x20) == 'b' && (e[3] | 0x20) == 'j';
+}
+
+// The shared grey Lambertian of faces that have no material of their own.
+static bool fallback_material(sf_loader *ld, uint32_t *index) {
+    if (ld->fallback_material < 0) {
+        material m = material_default(MAT_LAMBERTIAN);
+        if ((ld->fallback_material = scene_add_material(ld->scene, &m, NULL)) < 0) return sf_fail_oom(ld);
+    }
+    *index = (uint32_t)ld->fallback_material;
+    return true;
+}
+
+/// Turns the material slots of a loaded OBJ into scene materials ("file:name", map_Kd as an image texture)
+/// and fills the scene mesh's slot table; *needs_fallback tells whether some faces have no material.
+static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model, scene_mesh *sm, bool *needs_fallback) {
+    const char *written = file.item->valuestring;
+    size_t where = jr_offset(&ld->r, file.tok);
+    *needs_fallback = false;
+    for (size_t i = 0; i < model->mesh.triangle_count && !*needs_fallback; i++)
+        if (model->mesh.triangles[i].material < 0) *needs_fallback = true;
+    if (model->material_count && !(sm->slot_material = calloc(model->material_count, sizeof *sm->slot_material)))
+        return sf_fail_oom(ld);
+    sm->slot_count = model->material_count;
+    for (size_t i = 0; i < model->material_count; i++) {
+        const obj_material *om = &model->materials[i];
+        if (!om->defined) {
+            *needs_fallback = true;
+            if (!fallback_material(ld, &sm->slot_material[i])) return false;
+            continue;
+        }
+        material m = om->mat;
+        m.albedo_texture = m.emission_texture = -1;
+        // map_Kd is a diffuse colour: it replaces the albedo of Lambertian materials only (a metal's albedo is Ks).
+        if (om->diffuse_map && m.kind == MAT_LAMBERTIAN) {
+            // The OBJ reader has resolved the path and warned about (and dropped) missing files.
+            struct stat st;
+            int e = sf_file_problem(om->diffuse_map, &st);
+            char prefix[512];
+            snprintf(prefix, sizeof prefix, "mesh file \"%.200s\": material \"%.100s\": ", written, om->name);
+            if (e)
+                return jr_fail_at(&ld->r, where, "%simage file \"%.300s\": cannot open: %s", prefix, om->diffuse_map,
+                                  sf_file_problem_text(e));
+            uint32_t t;
+            if (!sf_load_image(ld, where, prefix, om->diffuse_map, om->diffuse_map, (sf_file_id){st.st_dev, st.st_ino}, &t))
+                return false;
+            m.albedo_texture = (int32_t)t;
+        }
+        if (ld->scene->material_count >= SF_MAX_ITEMS)
+            return jr_fail_at(&ld->r, where, "too many materials (the limit is %d)", SF_MAX_ITEMS);
+        size_t n = strlen(written) + strlen(om->name) + 2;
+        char *name = malloc(n);
+        if (!name) return sf_fail_oom(ld);
+        snprintf(name, n, "%s:%s", written, om->name);
+        long k = scene_add_material(ld->scene, &m, name);
+        free(name);
+        if (k < 0) return sf_fail_oom(ld);
+        sm->slot_material[i] = (uint32_t)k;
+    }
+    if (*needs_fallback || sm->slot_count == 0) return fallback_material(ld, &sm->default_material);
+    sm->default_material = sm->slot_material[0];
+    return true;
+}
+
+/// Loads an OBJ file into a new scene mesh; *entry records it in the cache.
+static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id id, bool face_normals, sf_mesh_entry *entry) {
+    obj_model model;
+    glint_error err;
+    obj_options opt = {collect_warning, ld, false};
+    char got[96], note[420];
+    if (obj_load(path, &opt, &model, &err) != GLINT_OK)
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, file.tok), "mesh file %s%s: %s", jr_describe(&ld->r, file, got, sizeof got),
+                          sf_resolved_note(file.item->valuestring, path, note, sizeof note), err.message);
+    if (ld->warning_oom) {
+        obj_model_free(&model);
+        return sf_fail_oom(ld);
+    }
+    scene_mesh sm = {0};
+    bool ok = true;
+    if (face_normals) {
+        // Flat shading: every triangle uses its geometric normal.
+        for (size_t i = 0; i < model.mesh.triangle_count; i++)
+            model.mesh.triangles[i].n[0] = model.mesh.triangles[i].n[1] = model.mesh.triangles[i].n[2] = -1;
+    } else {
+        ok = mesh_compute_normals(&model.mesh) || sf_fail_oom(ld);
+    }
+    ok = ok && map_obj_materials(ld, file, &model, &sm, &entry->needs_fallback);
+    // The scene takes the geometry; the model keeps (and frees) its material slots.
+    sm.geometry = model.mesh;
+    memset(&model.mesh, 0, sizeof model.mesh);
+    obj_model_free(&model);
+    if (ok && !(sm.path = malloc(strlen(path) + 1))) ok = sf_fail_oom(ld);
+    if (!ok) {
+        mesh_free(&sm.geometry);
+        free(sm.slot_material);
+        free(sm.path);
+        return false;
+    }
+    memcpy(sm.path, path, strlen(path) + 1);
+    long i = scene_add_mesh(ld->scene, &sm);
+    if (i < 0) return sf_fail_oom(ld);
+    *entry = (sf_mesh_entry){id, face_normals, entry->needs_fallback, false, (uint32_t)i};
+    return true;
+}
+
+// A mesh from a file, placed with its own transform; every mesh object is an instance of its file's mesh,
+// which is loaded once however often it is placed.
+bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
+    char *path;
+    sf_file_id id;
+    jr_val file;
+    bool face_normals = false, moved;
+    transform xf;
+    uint32_t mat = 0;
+    const bool override = jr_get(o, "material") != NULL;
+    if (!sf_read_file_path(ld, o, "file", "mesh", &path, &id, &file)) return false;
+    bool ok = true;
+    char got[96], note[420];
+    if (!has_obj_extension(path))
+        ok = jr_fail_at(
+            &ld->r, jr_offset(&ld->r, file.tok), "mesh file %s%s: unsupported format; expected a Wavefront OBJ file (.obj)",
+            jr_describe(&ld->r, file, got, sizeof got), sf_resolved_note(file.item->valuestring, path, note, sizeof note));
+    ok = ok && jr_read_bool(&ld->r, o, "face_normals", &face_normals) && (!override || sf_read_material_ref(ld, o, what, &mat)) &&
+         sf_read_transform(ld, o, &xf, &moved);
+    sf_mesh_entry *entry = NULL;
+    for (size_t i = 0; ok && i < ld->mesh_count && !entry; i++)
+        if (ld->meshes[i].id.dev == id.dev && ld->meshes[i].id.ino == id.ino &&
+            ld->meshes[i].face_normals == face_normals)
+            entry = &ld->meshes[i];
+    if (ok && !entry) {
+        if (!array_reserve((void **)&ld->meshes, &ld->mesh_cap, ld->mesh_count + 1, sizeof *ld->meshes)) {
+            ok = sf_fail_oom(ld);
+        } else {
+            entry = &ld->meshes[ld->mesh_count];
+            ok = load_mesh(ld, file, path, id, face_normals, entry);
+            if (ok) ld->mesh_count++;
+        }
+    }
+    free(path);
+    if (!ok) return false;
+    if (!override && entry->needs_fallback && !entry->warned) {
+        entry->warned = true;
+        sf_warn_at(ld, jr_offset(&ld->r, file.tok),
+                   "some faces of mesh file %s have no material (no usemtl, or one no material library defines); they "
+                   "are grey Lambertian unless the object gives a \"material\"",
+                   jr_describe(&ld->r, file, got, sizeof got));
+    }
+    instance in = {INSTANCE_MESH, entry->mesh, xf, override ? (int32_t)mat : -1};
+    return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
+}

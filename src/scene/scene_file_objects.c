@@ -1,0 +1,281 @@
+// scene_file_objects.c — the scene file's "objects" (spheres, quads, boxes; meshes in scene_file_mesh.c),
+// their "transform" operations, and its "lights".
+#include "scene/scene_file.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <string.h>
+
+// ---------------------------------------------------------------------------------------------
+// Transforms: an array of operations, the first applied first (Mitsuba's order; pbrt's is the reverse)
+
+static const char *const transform_op_keys[] = {"translate", "rotate", "scale", "matrix", NULL};
+static const char *const rotate_keys[] = {"axis", "degrees", NULL};
+
+// {"rotate": {"axis": [x, y, z], "degrees": a}}: right-handed, counter-clockwise looking down the axis.
+static bool read_rotate(sf_loader *ld, jr_val v, const char *what, mat4 *out) {
+    jr_obj o;
+    vec3 axis;
+    float degrees;
+    if (!jr_open(&ld->r, v, what, rotate_keys, &o) || !jr_read_vec3(&ld->r, &o, "axis", true, &JR_FINITE, &axis) ||
+        !jr_read_float(&ld->r, &o, "degrees", true, &JR_FINITE, &degrees))
+        return false;
+    if (axis.x == 0.0f && axis.y == 0.0f && axis.z == 0.0f) {
+        const jr_member *m = jr_get(&o, "axis");
+        char got[96];
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, m->val.tok), "\"axis\" must be a non-zero vector, got %s",
+                          jr_describe(&ld->r, m->val, got, sizeof got));
+    }
+    *out = mat4_rotate(axis, degrees);
+    return true;
+}
+
+// {"scale": s} or {"scale": [x, y, z]}: every factor non-zero (a zero would flatten the object).
+static bool read_scale(sf_loader *ld, jr_val v, mat4 *out) {
+    double d[3];
+    if (cJSON_IsNumber(v.item)) {
+        if (!jr_check_number(&ld->r, v, "scale", -1, &JR_NONZERO_FINITE, &d[0])) return false;
+        d[1] = d[2] = d[0];
+    } else if (cJSON_IsArray(v.item) && cJSON_GetArraySize(v.item) == 3) {
+        if (!jr_check_numbers(&ld->r, v, "scale", 3, "3 numbers", &JR_NONZERO_FINITE, d)) return false;
+    } else {
+        char got[96];
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"scale\" must be a finite non-zero number or an array of 3 such numbers [x, y, z], got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
+    }
+    *out = mat4_scale(v3((float)d[0], (float)d[1], (float)d[2]));
+    return true;
+}
+
+// {"matrix": [16 numbers, row by row]}: affine (last row 0 0 0 1) and invertible.
+static bool read_matrix(sf_loader *ld, jr_val v, mat4 *out) {
+    double d[16];
+    if (!jr_check_numbers(&ld->r, v, "matrix", 16, "16 numbers (a 4x4 matrix, row by row)", &JR_FINITE, d)) return false;
+    for (int i = 0; i < 16; i++) out->m[i / 4][i % 4] = (float)d[i];
+    if (!(d[12] == 0.0 && d[13] == 0.0 && d[14] == 0.0 && d[15] == 1.0))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"matrix\" must be affine: its last row must be [0, 0, 0, 1], got [%g, %g, %g, %g]", d[12],
+                          d[13], d[14], d[15]);
+    mat4 inv;
+    if (!mat4_invert(out, &inv))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"matrix\" is singular (determinant %g); expected an invertible matrix", mat4_linear_det(out));
+    return true;
+}
+
+/// Reads the optional "transform" of o into *xf (object to world); *given is false without one.
+bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *given) {
+    const jr_member *m = jr_get(o, "transform");
+    *xf = transform_identity();
+    *given = m != NULL;
+    if (!m) return true;
+    jr_val v = m->val;
+    char got[96];
+    if (!cJSON_IsArray(v.item))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"transform\" must be an array of operations ({\"translate\": ...}, {\"rotate\": ...}, "
+                          "{\"scale\": ...} or {\"matrix\": ...}), got %s",
+                          jr_describe(&ld->r, v, got, sizeof got));
+    mat4 acc = mat4_identity();
+    jr_iter it = jr_iter_begin(&ld->r, v);
+    jr_val e;
+    int r;
+    for (size_t i = 0; (r = jr_iter_next(&ld->r, &it, NULL, &e)) > 0; i++) {
+        char what[48];
+        snprintf(what, sizeof what, "transform[%zu]", i);
+        jr_obj op;
+        if (!jr_open(&ld->r, e, what, transform_op_keys, &op)) return false;
+        if (op.count != 1)
+            return jr_fail_at(&ld->r, jr_offset(&ld->r, e.tok),
+                              "%s must hold exactly one operation (translate, rotate, scale or matrix), got %zu; put "
+                              "each in its own element, they apply in array order",
+                              what, op.count);
+        const jr_member *opm = &op.m[0];
+        mat4 step;
+        if (strcmp(opm->key, "translate") == 0) {
+            vec3 t;
+            if (!jr_check_vec3(&ld->r, opm->val, "translate", &JR_FINITE, &t)) return false;
+            step = mat4_translate(t);
+        } else if (strcmp(opm->key, "rotate") == 0) {
+            char rot_what[96];
+            snprintf(rot_what, sizeof rot_what, "\"rotate\" of %s", what);
+            if (!read_rotate(ld, opm->val, rot_what, &step)) return false;
+        } else if (strcmp(opm->key, "scale") == 0) {
+            if (!read_scale(ld, opm->val, &step)) return false;
+        } else if (!read_matrix(ld, opm->val, &step)) {
+            return false;
+        }
+        // Each operation acts on the result of the ones before it: M = step * M.
+        acc = mat4_mul(&step, &acc);
+        if (!mat4_is_affine(&acc))
+            return jr_fail_at(&ld->r, jr_offset(&ld->r, e.tok), "%s makes the transform overflow single precision", what);
+    }
+    if (r < 0) return false;
+    if (!transform_make(&acc, xf))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"transform\" is singular or too close to it to invert in single precision (determinant "
+                          "%g)",
+                          mat4_linear_det(&acc));
+    return true;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Objects: add a row to object_types (name, keys, reader) for a new shape.
+
+static const char *const sphere_keys[] = {"type", "center", "radius", "material", "transform", NULL};
+static const char *const quad_keys[] = {"type", "q", "u", "v", "material", "transform", NULL};
+static const char *const box_keys[] = {"type", "min", "max", "material", "transform", NULL};
+static const char *const mesh_keys[] = {"type", "file", "material", "transform", "face_normals", NULL};
+
+// A sphere under a similarity is another sphere; under any other transform, or when its material is
+// textured (the texture must turn with it), it becomes an instance.
+static bool read_sphere(sf_loader *ld, const jr_obj *o, const char *what) {
+    sphere s = {0};
+    transform xf;
+    bool moved;
+    if (!jr_read_vec3(&ld->r, o, "center", true, &JR_FINITE, &s.center) ||
+        !jr_read_float(&ld->r, o, "radius", true, &JR_NONZERO_FINITE, &s.radius) ||
+        !sf_read_material_ref(ld, o, what, &s.material) || !sf_read_transform(ld, o, &xf, &moved))
+        return false;
+    if (!moved) return scene_add_sphere(ld->scene, s) || sf_fail_oom(ld);
+    double scale;
+    const material *m = &ld->scene->materials[s.material];
+    bool textured = m->albedo_texture >= 0 || m->emission_texture >= 0;
+    if (!textured && mat4_similarity_scale(&xf.m, &scale)) {
+        sphere w = s;
+        w.center = mat4_apply_point(&xf.m, s.center);
+        w.radius = (float)(s.radius * scale);
+        if (!v3_is_finite(w.center) || !isfinite(w.radius) || w.radius == 0.0f)
+            return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "transform"),
+                              "the transformed sphere is not representable in single precision");
+        return scene_add_sphere(ld->scene, w) || sf_fail_oom(ld);
+    }
+    long i = scene_add_instance_sphere(ld->scene, s);
+    if (i < 0) return sf_fail_oom(ld);
+    instance in = {INSTANCE_SPHERE, (uint32_t)i, xf, (int32_t)s.material};
+    return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
+}
+
+// Adds quads (count of them) under xf if `moved`, pointing at "transform" when the result degenerates.
+static bool add_quads(sf_loader *ld, const jr_obj *o, const quad *q, int count, const transform *xf, bool moved) {
+    for (int i = 0; i < count; i++) {
+        quad w = q[i];
+        if (moved && !quad_transform(&q[i], &xf->m, &w))
+            return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "transform"),
+                              "the transformed shape has no area or is not representable in single precision");
+        if (!scene_add_quad(ld->scene, w)) return sf_fail_oom(ld);
+    }
+    return true;
+}
+
+static bool read_quad(sf_loader *ld, const jr_obj *o, const char *what) {
+    vec3 q, u, v;
+    uint32_t mat;
+    transform xf;
+    bool moved;
+    if (!jr_read_vec3(&ld->r, o, "q", true, &JR_FINITE, &q) || !jr_read_vec3(&ld->r, o, "u", true, &JR_FINITE, &u) ||
+        !jr_read_vec3(&ld->r, o, "v", true, &JR_FINITE, &v) || !sf_read_material_ref(ld, o, what, &mat) ||
+        !sf_read_transform(ld, o, &xf, &moved))
+        return false;
+    quad qd;
+    if (!quad_make(q, u, v, mat, &qd)) {
+        vec3 n = v3_cross(u, v);
+        if (v3_is_finite(n) && n.x == 0.0f && n.y == 0.0f && n.z == 0.0f)
+            return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "v"),
+                              "\"u\" and \"v\" must be non-zero and not parallel (the quad has no area)");
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "v"), "the quad is too large: its area overflows single precision");
+    }
+    return add_quads(ld, o, &qd, 1, &xf, moved);
+}
+
+static bool read_box(sf_loader *ld, const jr_obj *o, const char *what) {
+    vec3 lo, hi;
+    uint32_t mat;
+    transform xf;
+    bool moved;
+    if (!jr_read_vec3(&ld->r, o, "min", true, &JR_FINITE, &lo) || !jr_read_vec3(&ld->r, o, "max", true, &JR_FINITE, &hi))
+        return false;
+    for (int k = 0; k < 3; k++) {
+        float a = v3_comp(lo, k), b = v3_comp(hi, k);
+        if (!(a < b))
+            return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "max"),
+                              "\"max\" must be greater than \"min\" in every coordinate, but \"max\"[%d] = %g <= "
+                              "\"min\"[%d] = %g",
+                              k, (double)b, k, (double)a);
+    }
+    if (!sf_read_material_ref(ld, o, what, &mat) || !sf_read_transform(ld, o, &xf, &moved)) return false;
+    quad faces[6];
+    if (!quad_box(lo, hi, mat, faces))
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "max"), "the box is too large: its faces' areas overflow single "
+                                                           "precision");
+    return add_quads(ld, o, faces, 6, &xf, moved);
+}
+
+typedef bool (*object_reader)(sf_loader *ld, const jr_obj *o, const char *what);
+
+static const struct object_type {
+    const char *name;
+    const char *const *keys;
+    object_reader read;
+} object_types[] = {
+    {"sphere", sphere_keys, read_sphere},
+    {"quad", quad_keys, read_quad},
+    {"box", box_keys, read_box},
+    {"mesh", mesh_keys, sf_read_mesh},
+};
+#define OBJECT_TYPES (sizeof object_types / sizeof object_types[0])
+
+bool sf_read_object(sf_loader *ld, jr_val v, size_t i) {
+    char what[64], typed[96];
+    size_t t;
+    snprintf(what, sizeof what, "object %zu", i);
+    if (!jr_open_typed(&ld->r, v, what, object_types, OBJECT_TYPES, sizeof object_types[0], &t)) return false;
+    snprintf(typed, sizeof typed, "object %zu (%s)", i, object_types[t].name);
+    jr_obj o;
+    return jr_open(&ld->r, v, typed, object_types[t].keys, &o) && object_types[t].read(ld, &o, typed);
+}
+
+// ---------------------------------------------------------------------------------------------
+// Lights
+
+static const char *const ambient_keys[] = {"type", "intensity", NULL};
+static const char *const point_keys[] = {"type", "intensity", "position", NULL};
+static const char *const directional_keys[] = {"type", "intensity", "direction", NULL};
+
+static const struct light_type {
+    light_kind kind;
+    const char *const *keys;
+} light_types[] = {
+    {LIGHT_AMBIENT, ambient_keys},
+    {LIGHT_POINT, point_keys},
+    {LIGHT_DIRECTIONAL, directional_keys},
+};
+#define LIGHT_TYPES (sizeof light_types / sizeof light_types[0])
+
+bool sf_read_light(sf_loader *ld, jr_val v, size_t i) {
+    char what[64], typed[96];
+    // The light module names the kinds (light_kind_name), so the file format and the code say the same.
+    const char *names[LIGHT_TYPES];
+    for (size_t k = 0; k < LIGHT_TYPES; k++) names[k] = light_kind_name(light_types[k].kind);
+    size_t t;
+    snprintf(what, sizeof what, "light %zu", i);
+    if (!jr_open_typed(&ld->r, v, what, names, LIGHT_TYPES, sizeof names[0], &t)) return false;
+    snprintf(typed, sizeof typed, "light %zu (%s)", i, names[t]);
+    jr_obj o;
+    if (!jr_open(&ld->r, v, typed, light_types[t].keys, &o)) return false;
+    light l = {0};
+    l.kind = light_types[t].kind;
+    if (!jr_read_color(&ld->r, &o, "intensity", true, &JR_NONNEG, &l.intensity)) return false;
+    if (l.kind == LIGHT_POINT && !jr_read_vec3(&ld->r, &o, "position", true, &JR_FINITE, &l.position)) return false;
+    if (l.kind == LIGHT_DIRECTIONAL) {
+        if (!jr_read_vec3(&ld->r, &o, "direction", true, &JR_FINITE, &l.direction)) return false;
+        if (l.direction.x == 0.0f && l.direction.y == 0.0f && l.direction.z == 0.0f) {
+            const jr_member *m = jr_get(&o, "direction");
+            char got[96];
+            return jr_fail_at(&ld->r, jr_offset(&ld->r, m->val.tok), "\"direction\" must be a non-zero vector, got %s",
+                              jr_describe(&ld->r, m->val, got, sizeof got));
+        }
+    }
+    return scene_add_light(ld->scene, l) || sf_fail_oom(ld);
+}
