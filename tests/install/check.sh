@@ -2,6 +2,8 @@
 # check.sh — installs the build tree into a temporary prefix and uses it as a client would: pkg-config,
 # render.c built with gcc and clang against libglint.so and libglint.a, the exported symbols, the man page.
 # usage: check.sh CMAKE BUILD_DIR SOURCE_DIR C_COMPILER_ID SANITIZE(0|1)
+# "COND && pass || fail" is safe here: pass cannot fail.
+# shellcheck disable=SC2015
 set -euo pipefail
 if [[ $# -ne 5 ]]; then
     echo "usage: $0 CMAKE BUILD_DIR SOURCE_DIR C_COMPILER_ID SANITIZE" >&2
@@ -35,7 +37,8 @@ if [[ ${#pcs[@]} -ne 1 ]]; then
     cat "$TMP/install.log" >&2
     exit 1
 fi
-export PKG_CONFIG_PATH=$(dirname "${pcs[0]}")
+PKG_CONFIG_PATH=$(dirname "${pcs[0]}")
+export PKG_CONFIG_PATH
 LIBDIR=$(pkg-config --variable=libdir glint)
 VERSION=$(pkg-config --modversion glint)
 MAJOR=${VERSION%%.*}
@@ -84,9 +87,9 @@ else
 fi
 groff -man -Tascii -P-cbou "$man_page" 2>/dev/null >"$TMP/man.ascii"
 "$PREFIX/bin/glint" --help >"$TMP/help"
-for opt in $(grep -oE -- '(^|[ ,])--?[a-zA-Z][a-z-]*' "$TMP/help" | grep -oE -- '--?[a-zA-Z][a-z-]*' | sort -u); do
+while read -r opt; do
     grep -qE -- "(^|[^a-zA-Z-])$opt([^a-zA-Z-]|$)" "$TMP/man.ascii" && pass || fail "glint.1 does not document $opt"
-done
+done < <(grep -oE -- '(^|[ ,])--?[a-zA-Z][a-z-]*' "$TMP/help" | grep -oE -- '--?[a-zA-Z][a-z-]*' | sort -u)
 for status in 0 1 2 130 143; do
     grep -qE "^ +$status +[A-Z]" "$TMP/man.ascii" && pass || fail "glint.1's EXIT STATUS does not list $status"
 done
@@ -96,9 +99,12 @@ CFLAGS=(-std=c17 -O2 -Wall -Wextra -Wpedantic -Werror)
 # pkg-config --static --libs, without -lglint itself: the archive is named by its path instead, so that
 # the linker cannot take libglint.so from the same directory.
 static_libs=()
-for word in $(pkg-config --static --libs glint); do
+read -ra words <<<"$(pkg-config --static --libs glint)"
+for word in "${words[@]}"; do
     [[ $word == -lglint ]] || static_libs+=("$word")
 done
+read -ra pc_cflags <<<"$(pkg-config --cflags glint)"
+read -ra pc_cflags_libs <<<"$(pkg-config --cflags --libs glint)"
 
 # build_and_run NAME COMPILER ARGS...: compiles render.c, runs it, keeps its image as $TMP/NAME.ppm.
 build_and_run() {
@@ -145,15 +151,16 @@ for cc in gcc clang; do
             echo "SKIP: $cc: this GLINT_SANITIZE build's library is instrumented by $BUILT_WITH, whose runtime $cc lacks"
             continue
         fi
+        # shellcheck disable=SC2054 # one option, not two array elements
         san=(-fsanitize=address,undefined)
     fi
-    build_and_run "$cc-shared" "$cc" "${san[@]}" "$SRC/tests/install/render.c" $(pkg-config --cflags --libs glint) \
+    build_and_run "$cc-shared" "$cc" "${san[@]}" "$SRC/tests/install/render.c" "${pc_cflags_libs[@]}" \
         -Wl,-rpath,"$LIBDIR"
-    build_and_run "$cc-static" "$cc" "${san[@]}" $(pkg-config --cflags glint) "$SRC/tests/install/render.c" \
+    build_and_run "$cc-static" "$cc" "${san[@]}" "${pc_cflags[@]}" "$SRC/tests/install/render.c" \
         "$LIBDIR/libglint.a" "${static_libs[@]}"
     if [[ $cc == gcc ]]; then
         # gcc without LTO reads the archive's machine code, not its LTO objects.
-        build_and_run "$cc-static-no-lto" "$cc" -fno-lto "${san[@]}" $(pkg-config --cflags glint) \
+        build_and_run "$cc-static-no-lto" "$cc" -fno-lto "${san[@]}" "${pc_cflags[@]}" \
             "$SRC/tests/install/render.c" "$LIBDIR/libglint.a" "${static_libs[@]}"
     fi
 done
