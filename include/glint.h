@@ -13,6 +13,13 @@ extern "C" {
 
 #define GLINT_VERSION "0.1.0"
 
+/// Marks the public API: the library is built with hidden visibility, so libglint.so exports these alone.
+#if defined(__GNUC__)
+#define GLINT_API __attribute__((visibility("default")))
+#else
+#define GLINT_API
+#endif
+
 /// Exit codes shared by the library's status values and the command-line program.
 typedef enum glint_status {
     GLINT_OK = 0,
@@ -37,7 +44,7 @@ typedef struct glint_overrides {
 } glint_overrides;
 
 /// Sets every field of *o to "not overridden".
-void glint_overrides_init(glint_overrides *o);
+GLINT_API void glint_overrides_init(glint_overrides *o);
 
 /// Options of one render that are not part of the scene.
 typedef struct glint_render_options {
@@ -57,41 +64,41 @@ typedef struct glint_render_stats {
 typedef void (*glint_progress_fn)(double fraction_done, void *user);
 
 /// Reads and validates a JSON scene file; on failure returns GLINT_ERR_INPUT with a message in *err.
-glint_status glint_scene_load(const char *path, glint_scene **out, glint_error *err);
+GLINT_API glint_status glint_scene_load(const char *path, glint_scene **out, glint_error *err);
 /// Parses a JSON scene from memory; `name` is used in messages and to resolve relative paths.
-glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err);
+GLINT_API glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err);
 /// Applies command-line overrides; validates them like scene values.
-glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err);
+GLINT_API glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err);
 /// Image size the scene will render at.
-void glint_scene_size(const glint_scene *scene, int *width, int *height);
+GLINT_API void glint_scene_size(const glint_scene *scene, int *width, int *height);
 /// Number of warnings the loader collected (problems in mesh files it worked around); the library prints none.
-size_t glint_scene_warning_count(const glint_scene *scene);
+GLINT_API size_t glint_scene_warning_count(const glint_scene *scene);
 /// Warning i (0-based), formatted "file:line: warning: what happened; what is done instead", or NULL past the end.
-const char *glint_scene_warning(const glint_scene *scene, size_t i);
-void glint_scene_free(glint_scene *scene);
+GLINT_API const char *glint_scene_warning(const glint_scene *scene, size_t i);
+GLINT_API void glint_scene_free(glint_scene *scene);
 
 /// Renders the scene: builds what the render needs (BVH, light index, camera) from it, renders, frees that. On GLINT_ERR_INTERRUPTED *out still holds the samples completed so far.
-glint_status glint_render(const glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,
-                          void *user, glint_image **out, glint_render_stats *stats, glint_error *err);
+GLINT_API glint_status glint_render(const glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,
+                                    void *user, glint_image **out, glint_render_stats *stats, glint_error *err);
 
 /// Asks running renders to stop soon; async-signal-safe (it stores one atomic flag).
-void glint_request_stop(void);
+GLINT_API void glint_request_stop(void);
 
 /// Image output format, chosen from the file name's extension unless given.
 typedef enum glint_format { GLINT_FORMAT_AUTO, GLINT_FORMAT_PNG, GLINT_FORMAT_PPM, GLINT_FORMAT_PPM_ASCII, GLINT_FORMAT_PFM } glint_format;
 
 /// Writes the image; "-" writes PPM to standard output. Writes a temporary file and renames it.
-glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err);
+GLINT_API glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err);
 /// Checks before a render that the image can be written there: GLINT_ERR_INPUT for an unknown extension,
 /// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory.
-glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err);
+GLINT_API glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err);
 /// Width, height and linear RGB pixels (row 0 at the top, 3 floats a pixel).
-void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb);
+GLINT_API void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb);
 /// The 8-bit, display-encoded pixel (x, y) channel c, exactly as PNG/PPM output stores it.
-uint8_t glint_image_byte(const glint_image *img, int x, int y, int c);
-void glint_image_free(glint_image *img);
+GLINT_API uint8_t glint_image_byte(const glint_image *img, int x, int y, int c);
+GLINT_API void glint_image_free(glint_image *img);
 
-const char *glint_version(void);
+GLINT_API const char *glint_version(void);
 
 #ifdef __cplusplus
 }
