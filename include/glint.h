@@ -1,5 +1,23 @@
 // glint.h — the public API of the glint ray tracer: load a scene, render it, write the image.
-// Every type is an opaque handle; the command-line program uses nothing else.
+//
+// ABOUT
+//   Two opaque handles, glint_scene (a scene: plain data, as a JSON scene file describes it) and glint_image
+//   (a rendered image), created and freed only by the functions below. Four small structs are plain values
+//   that the caller owns, fills or reads field by field: glint_error, glint_overrides, glint_render_options,
+//   glint_render_stats. Nothing else is public: the command-line program uses this header alone, and
+//   libglint.so exports the functions marked GLINT_API and nothing else.
+//
+// USAGE
+//   glint_scene *scene; glint_image *image; glint_error err;
+//   if (glint_scene_load("scene.json", &scene, &err) != GLINT_OK) { puts(err.message); return 2; }
+//   glint_status st = glint_render(scene, NULL, NULL, NULL, &image, NULL, &err);
+//   if (image) st = glint_image_write(image, "out.png", GLINT_FORMAT_AUTO, &err);
+//   glint_image_free(image); glint_scene_free(scene);
+//   Build: cc prog.c $(pkg-config --cflags --libs glint)     (add --static for libglint.a)
+//
+// Scenes are built from JSON text (docs/scene-format.md): there is no public call to add objects one by one.
+// A scene can be rendered any number of times, from one thread at a time; each render builds what it needs
+// (BVH, light index, camera) from the scene as it is then, so overrides made between renders take effect.
 #ifndef GLINT_H
 #define GLINT_H
 
@@ -20,23 +38,30 @@ extern "C" {
 #define GLINT_API
 #endif
 
-/// Exit codes shared by the library's status values and the command-line program.
+/// What a call did. These are status values, not exit codes; the glint program exits with 0, 1 or 2 for
+/// the first three, and with 128 + the signal's number (130 for SIGINT, 143 for SIGTERM) when a signal
+/// stopped the render, after writing the partial image. 3 is never an exit code.
 typedef enum glint_status {
     GLINT_OK = 0,
-    GLINT_ERR_RENDER = 1, ///< rendering, memory or I/O failure
-    GLINT_ERR_INPUT = 2,  ///< bad usage, scene file or mesh
-    GLINT_ERR_INTERRUPTED = 3 ///< the render was stopped by glint_request_stop (partial image kept)
+    GLINT_ERR_RENDER = 1,     ///< rendering, memory or I/O failure (the program exits 1)
+    GLINT_ERR_INPUT = 2,      ///< bad usage, scene file, mesh or image file (the program exits 2)
+    GLINT_ERR_INTERRUPTED = 3 ///< the render was stopped by glint_request_stop; the partial image is kept
 } glint_status;
 
-/// A human-readable error, already formatted as "file:line:col: what is wrong, what was expected".
+/// A value struct: a human-readable error, already formatted as "file:line:col: what is wrong, what was
+/// expected". Every function that can fail fills it (when not NULL) whenever it returns a status other than
+/// GLINT_OK.
 typedef struct glint_error {
     char message[1024];
 } glint_error;
 
+/// Opaque: a scene, plain data read from a scene file. Free with glint_scene_free.
 typedef struct glint_scene glint_scene;
+/// Opaque: a rendered image (linear RGB and its display encoding). Free with glint_image_free.
 typedef struct glint_image glint_image;
 
-/// Values that replace the scene file's render settings; a field < 0 (or NULL) leaves the file's value.
+/// A value struct: values that replace the scene file's render settings; a field < 0 (or NULL) leaves the
+/// file's value. Initialise with glint_overrides_init, then set what changes.
 typedef struct glint_overrides {
     long width, height, spp, max_depth;
     long long seed;
@@ -46,28 +71,30 @@ typedef struct glint_overrides {
 /// Sets every field of *o to "not overridden".
 GLINT_API void glint_overrides_init(glint_overrides *o);
 
-/// Options of one render that are not part of the scene.
+/// A value struct: options of one render that are not part of the scene (zero-initialised: the defaults).
 typedef struct glint_render_options {
-    int threads; ///< worker threads; 0 = all online CPUs
+    int threads; ///< worker threads; 0 = all online CPUs. The image is the same for every count
 } glint_render_options;
 
-/// Counters of one render, filled by glint_render.
+/// A value struct: counters of one render, filled by glint_render.
 typedef struct glint_render_stats {
     double wall_seconds, build_seconds;
-    double render_seconds; ///< the render loop alone: wall_seconds less scene preparation (BVH build)
+    double render_seconds; ///< the render loop alone: wall_seconds less the preparation (BVH build)
     uint64_t samples, rays, shadow_rays, discarded_samples;
     uint64_t bvh_nodes, bvh_leaves, bvh_depth;
     int threads;
 } glint_render_stats;
 
-/// Called from one worker thread at a time with the fraction of work done, a few times a second at most.
+/// Called from one thread at a time with the fraction of work done, a few times a second at most.
 typedef void (*glint_progress_fn)(double fraction_done, void *user);
 
-/// Reads and validates a JSON scene file; on failure returns GLINT_ERR_INPUT with a message in *err.
+/// Reads and validates a JSON scene file; on failure returns GLINT_ERR_INPUT (GLINT_ERR_RENDER when memory
+/// runs out) with a message in *err, and *out is NULL.
 GLINT_API glint_status glint_scene_load(const char *path, glint_scene **out, glint_error *err);
 /// Parses a JSON scene from memory; `name` is used in messages and to resolve relative paths.
-GLINT_API glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err);
-/// Applies command-line overrides; validates them like scene values.
+GLINT_API glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out,
+                                         glint_error *err);
+/// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise).
 GLINT_API glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err);
 /// Image size the scene will render at.
 GLINT_API void glint_scene_size(const glint_scene *scene, int *width, int *height);
@@ -75,29 +102,45 @@ GLINT_API void glint_scene_size(const glint_scene *scene, int *width, int *heigh
 GLINT_API size_t glint_scene_warning_count(const glint_scene *scene);
 /// Warning i (0-based), formatted "file:line: warning: what happened; what is done instead", or NULL past the end.
 GLINT_API const char *glint_scene_warning(const glint_scene *scene, size_t i);
+/// Frees a scene (NULL is allowed).
 GLINT_API void glint_scene_free(glint_scene *scene);
 
-/// Renders the scene: builds what the render needs (BVH, light index, camera) from it, renders, frees that. On GLINT_ERR_INTERRUPTED *out still holds the samples completed so far.
-GLINT_API glint_status glint_render(const glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,
-                                    void *user, glint_image **out, glint_render_stats *stats, glint_error *err);
+/// Renders the scene: builds what the render needs from it (BVH, light index, camera), renders every sample
+/// on opt->threads threads (opt may be NULL), frees what it built. progress (may be NULL) hears how far it
+/// is; stats (may be NULL) receives the counters. On GLINT_OK and GLINT_ERR_INTERRUPTED *out is the image
+/// (after an interruption, each pixel the mean of its completed samples); otherwise *out is NULL.
+GLINT_API glint_status glint_render(const glint_scene *scene, const glint_render_options *opt,
+                                    glint_progress_fn progress, void *user, glint_image **out,
+                                    glint_render_stats *stats, glint_error *err);
 
-/// Asks running renders to stop soon; async-signal-safe (it stores one atomic flag).
+/// Asks running renders to stop soon; async-signal-safe (it stores one atomic flag). A request made while
+/// no render runs stops the next one at once.
 GLINT_API void glint_request_stop(void);
 
 /// Image output format, chosen from the file name's extension unless given.
-typedef enum glint_format { GLINT_FORMAT_AUTO, GLINT_FORMAT_PNG, GLINT_FORMAT_PPM, GLINT_FORMAT_PPM_ASCII, GLINT_FORMAT_PFM } glint_format;
+typedef enum glint_format {
+    GLINT_FORMAT_AUTO,
+    GLINT_FORMAT_PNG,
+    GLINT_FORMAT_PPM,
+    GLINT_FORMAT_PPM_ASCII,
+    GLINT_FORMAT_PFM
+} glint_format;
 
-/// Writes the image; "-" writes PPM to standard output. Writes a temporary file and renames it.
-GLINT_API glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err);
+/// Writes the image; "-" writes PPM to standard output. Writes a temporary file and renames it, so a failed
+/// write leaves no partial file.
+GLINT_API glint_status glint_image_write(const glint_image *img, const char *path, glint_format format,
+                                         glint_error *err);
 /// Checks before a render that the image can be written there: GLINT_ERR_INPUT for an unknown extension,
 /// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory.
 GLINT_API glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err);
-/// Width, height and linear RGB pixels (row 0 at the top, 3 floats a pixel).
+/// Width, height and linear RGB pixels (row 0 at the top, 3 floats a pixel), valid until glint_image_free.
 GLINT_API void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb);
 /// The 8-bit, display-encoded pixel (x, y) channel c, exactly as PNG/PPM output stores it.
 GLINT_API uint8_t glint_image_byte(const glint_image *img, int x, int y, int c);
+/// Frees an image (NULL is allowed).
 GLINT_API void glint_image_free(glint_image *img);
 
+/// The library's version, GLINT_VERSION when the header and the library agree.
 GLINT_API const char *glint_version(void);
 
 #ifdef __cplusplus

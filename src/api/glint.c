@@ -35,7 +35,8 @@ glint_status glint_scene_parse(const char *name, const char *text, size_t length
 }
 
 glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err) {
-    return scene_override(scene, o, err);
+    glint_error scratch;
+    return scene_override(scene, o, err ? err : &scratch);
 }
 
 void glint_scene_size(const glint_scene *scene, int *width, int *height) {
@@ -53,18 +54,21 @@ void glint_scene_free(glint_scene *scene) { scene_free(scene); }
 
 glint_status glint_render(const glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,
                           void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
+    glint_error scratch;
     render_options ro = {.threads = opt ? opt->threads : 0};
-    return render_scene(scene, &ro, progress, user, out, stats, err);
+    return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);
 }
 
 void glint_request_stop(void) { render_request_stop(); }
 
 glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
-    return image_write(img, path, format, err);
+    glint_error scratch;
+    return image_write(img, path, format, err ? err : &scratch);
 }
 
 glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err) {
-    return image_check_path(path, format, err);
+    glint_error scratch;
+    return image_check_path(path, format, err ? err : &scratch);
 }
 
 void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb) {
