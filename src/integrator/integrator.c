@@ -28,21 +28,3 @@ void integrator_init(integrator *it, const glint_scene *s, const accel *a) {
     it->render_tile = NULL;
     it->release = NULL;
 }
-
-bool integrator_tile_by_samples(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
-    const render_settings *rs = &it->scene->settings;
-    for (int y = tp->y0; y < tp->y1; y++)
-        for (int x = tp->x0; x < tp->x1; x++) {
-            // rng_for_sample(seed, pixel, k), its per-render and per-pixel parts computed once.
-            uint64_t key = rng_pixel_key(rs->seed, (uint64_t)y * (uint64_t)rs->width + (uint64_t)x);
-            for (int k = tp->k0; k < tp->k1; k++) {
-                if (tile_pass_stopping(tp)) {
-                    film_tile_stop(ft);
-                    return false;
-                }
-                rng r = rng_for_key(it->stream, key, (uint64_t)k);
-                film_tile_add(ft, it->sample(it, x, y, (uint32_t)k, &r, ts));
-            }
-        }
-    return true;
-}

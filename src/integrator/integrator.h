@@ -54,8 +54,6 @@ void integrator_free(integrator *it);
 
 /// Fills the common part: scene, accel, camera prepared for the scene's image size, random stream.
 void integrator_init(integrator *it, const glint_scene *s, const accel *a);
-/// A tile pass sample by sample through it->sample, each with the generator of (seed, pixel, sample).
-bool integrator_tile_by_samples(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts);
 
 /// The Whitted integrator (paper or colour mode, as the scene says).
 integrator *whitted_create(const glint_scene *s, const accel *a, glint_error *err);
@@ -65,6 +63,31 @@ integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_l
 /// Whether a stop was requested (polled before every sample).
 static inline bool tile_pass_stopping(const tile_pass *tp) {
     return atomic_load_explicit(tp->stop, memory_order_relaxed) != 0;
+}
+
+/// A tile pass sample by sample, each with the generator of (seed, pixel, sample): the tile loop of an
+/// integrator that renders one sample at a time. Inline, so that `sample` (a constant in the caller) is called
+/// directly.
+static inline bool integrator_tile_by_samples(const integrator *it, const tile_pass *tp, film_tile *ft,
+                                              thread_stats *ts, integrator_sample_fn sample) {
+    const render_settings *rs = &it->scene->settings;
+    film_tile t = *ft; // a local copy whose address does not escape: its fields can live in registers
+    for (int y = tp->y0; y < tp->y1; y++)
+        for (int x = tp->x0; x < tp->x1; x++) {
+            // rng_for_sample(seed, pixel, k), its per-render and per-pixel parts computed once.
+            uint64_t key = rng_pixel_key(rs->seed, (uint64_t)y * (uint64_t)rs->width + (uint64_t)x);
+            for (int k = tp->k0; k < tp->k1; k++) {
+                if (tile_pass_stopping(tp)) {
+                    film_tile_stop(&t);
+                    *ft = t;
+                    return false;
+                }
+                rng r = rng_for_key(it->stream, key, (uint64_t)k);
+                film_tile_add(&t, sample(it, x, y, (uint32_t)k, &r, ts));
+            }
+        }
+    *ft = t;
+    return true;
 }
 
 #endif

@@ -487,6 +487,11 @@ static vec3 whitted_sample(const integrator *it, int x, int y, uint32_t sample, 
     return color_trace(it, primary, s->settings.max_depth, v3s(1.0f), ts);
 }
 
+// A tile pass, sample by sample.
+static bool whitted_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
+    return integrator_tile_by_samples(it, tp, ft, ts, whitted_sample);
+}
+
 integrator *whitted_create(const glint_scene *s, const accel *a, glint_error *err) {
     integrator *it = malloc(sizeof *it);
     if (!it) {
@@ -495,7 +500,7 @@ integrator *whitted_create(const glint_scene *s, const accel *a, glint_error *er
     }
     integrator_init(it, s, a);
     it->sample = whitted_sample;
-    it->render_tile = integrator_tile_by_samples;
+    it->render_tile = whitted_render_tile;
     it->release = NULL;
     return it;
 }
