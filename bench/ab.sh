@@ -5,7 +5,7 @@
 # by several percent on a shared machine, so use tens of pairs to resolve a 1-2% difference.
 #
 # usage: bash bench/ab.sh A_BINARY B_BINARY [PAIRS] [-- GLINT ARGS]
-#   default render: scenes/rtiow-final.json at 200x112, 10 spp, one thread (pinned to CPU 1 when taskset exists)
+#   default render: scenes/rtiow-final.json at 200x112, 10 spp, one thread; one-thread renders are pinned
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 A=${1:?usage: ab.sh A_BINARY B_BINARY [PAIRS] [-- GLINT ARGS]}
@@ -16,8 +16,13 @@ if [ $# -gt 0 ] && [ "$1" != "--" ]; then PAIRS=$1; shift; fi
 [ $# -gt 0 ] && [ "$1" = "--" ] && shift
 ARGS=("$@")
 [ ${#ARGS[@]} -gt 0 ] || ARGS=("$ROOT/scenes/rtiow-final.json" --width 200 --height 112 --spp 10 --threads 1)
+# One-thread renders are pinned to CPU 1 (when taskset exists), so that they do not migrate between cores.
 PIN=()
-command -v taskset >/dev/null && [ "$(nproc)" -gt 1 ] && PIN=(taskset -c 1)
+for ((i = 0; i + 1 < ${#ARGS[@]}; i++)); do
+    if [ "${ARGS[i]}" = --threads ] && [ "${ARGS[i + 1]}" = 1 ] && command -v taskset >/dev/null && [ "$(nproc)" -gt 1 ]; then
+        PIN=(taskset -c 1)
+    fi
+done
 OUT=$(mktemp -d "${TMPDIR:-/tmp}/glint-ab.XXXXXX")
 trap 'rm -rf "$OUT"' EXIT
 

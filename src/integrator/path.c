@@ -255,6 +255,7 @@ static bool path_render_tile(const integrator *it, const tile_pass *tp, film_til
     int gx = tp->x0, gy = tp->y0, gk = tp->k0;
     uint64_t gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
     camera_batch cb;
+    film_tile t = *ft; // a local copy whose address does not escape: its fields can live in registers
     for (int j = 0; j < items; j += CAMERA_BATCH) {
         int n = items - j < CAMERA_BATCH ? items - j : CAMERA_BATCH;
         for (int i = 0; i < CAMERA_BATCH; i++) {
@@ -275,13 +276,18 @@ static bool path_render_tile(const integrator *it, const tile_pass *tp, film_til
         camera_batch_make(&it->camera, it->stream, &cb);
         for (int i = 0; i < n; i++) {
             if (tile_pass_stopping(tp)) {
-                film_tile_stop(ft);
+                film_tile_stop(&t);
+                *ft = t;
                 return false;
             }
             rng r = cb.r[i];
-            if (!film_tile_add(ft, path_trace(pi, cb.o[i], cb.d[i], &r, ts))) return true;
+            if (!film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], &r, ts))) {
+                *ft = t;
+                return true;
+            }
         }
     }
+    *ft = t;
     return true;
 }
 
