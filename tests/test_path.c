@@ -5,6 +5,7 @@
 // byte-identical images for any thread count.
 #include "check.h"
 #include "glint.h"
+#include "integrator/light_sampler.h"
 #include "render/render.h"
 #include "scene/scene.h"
 
@@ -496,6 +497,71 @@ static void test_quad_light_irradiance(void) {
     }
 }
 
+// A Lambertian plane (albedo rho, black background) under emissive spheres: a sphere of radiance Le whose
+// centre is at distance D from a point, seen at angle theta from its normal and entirely above its horizon,
+// gives it irradiance pi Le (R / D)^2 cos(theta), so the radiance there is rho Le (R / D)^2 cos(theta).
+// Light sampling (cones towards the spheres, chosen by power) with MIS, and BSDF sampling alone, must both
+// converge to it. Second layout: a dimmer sphere off to the side too, and the bright one a hollow shell
+// (negative radius: its emitting side faces inwards, so it lights nothing outside it but its back: black).
+static void test_sphere_light_irradiance(void) {
+    const double rho = 0.5, radius = 0.6, height = 1.5, side_x = 2.0, side_r = 0.3;
+    const double side_d2 = side_x * side_x + height * height;
+    const double side = rho * 2.0 * (side_r * side_r / side_d2) * (height / sqrt(side_d2));
+    for (int layout = 0; layout < 2; layout++) {
+        double exact = rho * 4.0 * (radius / height) * (radius / height);
+        if (layout) exact = side; // the shell emits inwards only
+        double mean[2], se[2];
+        for (int nee = 0; nee < 2; nee++) {
+            glint_scene *s = plane_under_light(nee, (float)rho);
+            material lamp = material_default(MAT_DIFFUSE_LIGHT);
+            lamp.emission = v3s(4.0f);
+            add_sphere(s, v3(0, (float)height, 0), layout ? (float)-radius : (float)radius, add_material(s, lamp));
+            if (layout) {
+                lamp.emission = v3s(2.0f);
+                add_sphere(s, v3((float)side_x, (float)height, 0), (float)side_r, add_material(s, lamp));
+            }
+            glint_render_stats st;
+            glint_image *img = render(s, 0, &st);
+            image_mean(img, &mean[nee], &se[nee]);
+            printf("sphere light %d: %s: %.5f +- %.5f (exact %.5f), %llu rays, %llu shadow rays\n", layout,
+                   nee ? "light sampling + MIS" : "BSDF sampling only", mean[nee], se[nee], exact,
+                   (unsigned long long)st.rays, (unsigned long long)st.shadow_rays);
+            CHECK(nee ? st.shadow_rays > 0 : st.shadow_rays == 0);
+            CHECK(se[nee] < (layout ? 0.02 : 0.01) * exact); // tight enough to mean something
+            CHECK_NEAR(mean[nee], exact, 5.0 * se[nee]);
+            glint_image_free(img);
+            glint_scene_free(s);
+        }
+        CHECK_NEAR(mean[0], mean[1], 5.0 * sqrt(se[0] * se[0] + se[1] * se[1]));
+        if (layout == 0) CHECK(se[1] * sqrt(16.0) < 0.5 * se[0] * sqrt(256.0)); // light sampling: far less noise
+    }
+}
+
+// The cone sampling of a sphere light: every direction it draws meets the sphere at the distance it says,
+// and the cone's density integrates to 1 over the cone (its solid angle times the density).
+static void test_sphere_cone_sampling(void) {
+    const sphere sp = {v3(0.3f, 2.0f, -0.5f), 0.75f, 0};
+    const vec3 p = v3(0.1f, -1.0f, 0.2f);
+    rng g = rng_for_sample(11, 0, 0);
+    int bad = 0;
+    float pdf = 0.0f;
+    for (int i = 0; i < 10000; i++) {
+        vec3 wi;
+        float dist;
+        if (!light_sphere_sample(&sp, p, rng_float(&g), rng_float(&g), &wi, &dist, &pdf)) { bad++; continue; }
+        vec3 x = v3_fma(p, wi, dist);
+        bad += fabsf(v3_len(v3_sub(x, sp.center)) - sp.radius) > 1e-4f || fabsf(v3_len(wi) - 1.0f) > 1e-5f;
+    }
+    CHECK(bad == 0);
+    double d = v3_len(v3_sub(sp.center, p)), cos_max = sqrt(1.0 - sp.radius * sp.radius / (d * d));
+    CHECK_NEAR(pdf * 2.0 * PI * (1.0 - cos_max), 1.0, 1e-4);
+    CHECK_NEAR(light_sphere_pdf(&sp, p), pdf, 1e-6 * pdf);
+    vec3 wi;
+    float dist;
+    CHECK(!light_sphere_sample(&sp, sp.center, 0.5f, 0.5f, &wi, &dist, &pdf)); // inside: no cone
+    CHECK(light_sphere_pdf(&sp, sp.center) == 0.0f);
+}
+
 // The Cornell box of "The Rest of Your Life" (its box axis-aligned, a white sphere beside it) at 12 x 12:
 // light sampling changes the noise, not the mean, so both estimators' image means agree within their
 // standard errors (about 1%: this checks a scene of many bounces; the plane under a light above is the
@@ -758,6 +824,8 @@ static void test_determinism_quads(void) {
 }
 
 int main(void) {
+    test_sphere_cone_sampling();
+    test_sphere_light_irradiance();
     test_white_furnace();
     test_convex_albedo();
     test_huge_sphere_robust();

@@ -13,6 +13,7 @@ void light_sampler_release(light_sampler *pl) {
     free(pl->tris);
     free(pl->tri_base);
     free(pl->tri_select_pdf);
+    free(pl->sphere_select_pdf);
     memset(pl, 0, sizeof *pl);
 }
 
@@ -64,6 +65,12 @@ static double tri_light_make(const glint_scene *s, uint32_t ii, uint32_t tri, tr
     return light_power(m, out->area);
 }
 
+// A world-space sphere light's power (light_power), its area 4 pi r^2.
+static double sphere_light_power(const glint_scene *s, const sphere *sp) {
+    double r = sp->radius;
+    return light_power(&s->materials[sp->material], 4.0 * 3.14159265358979323846 * r * r);
+}
+
 // Adds a light of power p to the cdf under construction; its selection probability (the cdf step, so that
 // sampling and the MIS weights of BSDF hits agree on it).
 static float add_light(light_sampler *pl, light_ref ref, double p, double *sum, double total, size_t count,
@@ -100,6 +107,13 @@ bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
         if (here) tri_slots += nt;
     }
     count += tri_count;
+    size_t sphere_lights = 0;
+    for (size_t i = 0; i < s->sphere_count; i++) {
+        double p = sphere_light_power(s, &s->spheres[i]);
+        sphere_lights += p > 0.0;
+        total += p;
+    }
+    count += sphere_lights;
     if (count == 0 || !isfinite(total)) return true; // nothing to sample: BSDF sampling alone
     pl->lights = malloc(count * sizeof *pl->lights);
     pl->cdf = malloc(count * sizeof *pl->cdf);
@@ -111,6 +125,10 @@ bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
         pl->tri_select_pdf = calloc(tri_slots, sizeof *pl->tri_select_pdf);
         ok = pl->tris && pl->tri_base && pl->tri_select_pdf;
     }
+    if (ok && sphere_lights) {
+        pl->sphere_select_pdf = calloc(s->sphere_count, sizeof *pl->sphere_select_pdf);
+        ok = pl->sphere_select_pdf != NULL;
+    }
     if (!ok) {
         light_sampler_release(pl);
         return false;
@@ -120,12 +138,11 @@ bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
     for (size_t i = 0; i < s->quad_count; i++) {
         double p = quad_light_power(s, &s->quads[i]);
         if (!(p > 0.0)) continue;
-        pl->select_pdf[i] = add_light(pl, (light_ref){false, (uint32_t)i}, p, &sum, total, count, &prev);
+        pl->select_pdf[i] = add_light(pl, (light_ref){LIGHT_REF_QUAD, (uint32_t)i}, p, &sum, total, count, &prev);
     }
     pl->quad_count = s->quad_count;
-    if (!tri_count) return true;
     size_t slot = 0;
-    for (size_t i = 0; i < s->instance_count; i++) {
+    for (size_t i = 0; tri_count && i < s->instance_count; i++) {
         const instance *in = &s->instances[i];
         pl->tri_base[i] = SIZE_MAX;
         if (in->kind != INSTANCE_MESH) continue;
@@ -140,17 +157,66 @@ bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
             }
             uint32_t k = (uint32_t)pl->tri_count++;
             pl->tris[k] = tl;
-            pl->tri_select_pdf[pl->tri_base[i] + t] = add_light(pl, (light_ref){true, k}, p, &sum, total, count, &prev);
+            pl->tri_select_pdf[pl->tri_base[i] + t] =
+                add_light(pl, (light_ref){LIGHT_REF_TRIANGLE, k}, p, &sum, total, count, &prev);
         }
     }
-    pl->instance_count = s->instance_count;
+    if (tri_count) pl->instance_count = s->instance_count;
+    for (size_t i = 0; sphere_lights && i < s->sphere_count; i++) {
+        double p = sphere_light_power(s, &s->spheres[i]);
+        if (!(p > 0.0)) continue;
+        pl->sphere_select_pdf[i] =
+            add_light(pl, (light_ref){LIGHT_REF_SPHERE, (uint32_t)i}, p, &sum, total, count, &prev);
+    }
+    if (sphere_lights) pl->sphere_count = s->sphere_count;
     return true;
+}
+
+// The cone a sphere subtends from a point at squared distance d2 from its centre: 1 - cos(theta_max), in the
+// form that keeps its precision for small spheres far away, (r^2 / d^2) / (1 + cos(theta_max)); 0 when the
+// point is not outside the sphere.
+static double sphere_cone_gap(double r2, double d2) {
+    if (!(d2 > r2) || !isfinite(d2)) return 0.0;
+    double s2 = r2 / d2; // sin^2(theta_max)
+    return s2 / (1.0 + sqrt(1.0 - s2));
+}
+
+static const double two_pi = 6.28318530717958647692;
+
+float light_sphere_pdf(const sphere *sp, vec3 p) {
+    vec3 to = v3_sub(sp->center, p);
+    double r = sp->radius, gap = sphere_cone_gap(r * r, (double)v3_len2(to));
+    return gap > 0.0 ? (float)(1.0 / (two_pi * gap)) : 0.0f;
+}
+
+bool light_sphere_sample(const sphere *sp, vec3 p, float a, float b, vec3 *wi, float *dist, float *pdf) {
+    vec3 to = v3_sub(sp->center, p);
+    double r = sp->radius, d2 = (double)v3_len2(to), gap = sphere_cone_gap(r * r, d2);
+    if (!(gap > 0.0)) return false;
+    // cos(theta) = 1 - b gap, uniform in [cos(theta_max), 1]; sin^2 from (1 - cos)(1 + cos) keeps small angles exact.
+    double one_minus_cos = (double)b * gap, cos_t = 1.0 - one_minus_cos;
+    double sin_t = sqrt(fmax(0.0, one_minus_cos * (2.0 - one_minus_cos)));
+    double phi = two_pi * (double)a, d = sqrt(d2);
+    vec3 w = v3_scale(to, (float)(1.0 / d)), t, bt;
+    v3_basis(w, &t, &bt);
+    vec3 dir = v3_add(v3_scale(w, (float)cos_t),
+                      v3_add(v3_scale(t, (float)(sin_t * cos(phi))), v3_scale(bt, (float)(sin_t * sin(phi)))));
+    *wi = v3_unit(dir);
+    // The nearer root of |p + s wi - c| = r: s = d cos - sqrt(r^2 - d^2 sin^2), >= 0 inside the cone.
+    *dist = (float)(d * cos_t - sqrt(fmax(0.0, r * r - d2 * sin_t * sin_t)));
+    *pdf = (float)(1.0 / (two_pi * gap));
+    return *dist > 0.0f && isfinite(*dist) && isfinite(*pdf);
 }
 
 // Probability density, per unit solid angle, with which next-event estimation would have chosen the point
 // where a ray of unit direction d hit an emissive quad or mesh triangle at distance t; 0 when it is not an
 // indexed light.
-float light_sampler_pdf(const light_sampler *pl, const glint_scene *s, const surface *sf, vec3 d, float t) {
+float light_sampler_pdf(const light_sampler *pl, const glint_scene *s, const surface *sf, vec3 o, vec3 d, float t) {
+    if (sf->kind == HIT_SPHERE) {
+        if (sf->instance != HIT_NO_INSTANCE || sf->prim >= pl->sphere_count) return 0.0f;
+        float select = pl->sphere_select_pdf[sf->prim];
+        return select > 0.0f ? select * light_sphere_pdf(&s->spheres[sf->prim], o) : 0.0f;
+    }
     if (sf->kind == HIT_TRIANGLE) {
         if (sf->instance >= pl->instance_count || pl->tri_base[sf->instance] == SIZE_MAX) return 0.0f;
         float select = pl->tri_select_pdf[pl->tri_base[sf->instance] + sf->prim];

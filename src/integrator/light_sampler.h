@@ -21,15 +21,19 @@ typedef struct tri_light {
     uint32_t material;
 } tri_light;
 
-/// One light of the index: a scene quad, or a triangle of tris.
+/// What a light of the index is.
+typedef enum light_ref_kind { LIGHT_REF_QUAD, LIGHT_REF_TRIANGLE, LIGHT_REF_SPHERE } light_ref_kind;
+
+/// One light of the index: a scene quad, a triangle of tris, or a world-space scene sphere.
 typedef struct light_ref {
-    bool is_tri;
-    uint32_t index; ///< into s->quads, or into light_sampler.tris
+    uint32_t kind;  ///< a light_ref_kind
+    uint32_t index; ///< into s->quads, light_sampler.tris or s->spheres
 } light_ref;
 
-/// The scene's emissive quads and mesh triangles, indexed for next-event estimation (built by light_sampler_build).
+/// The scene's emissive quads, mesh triangles and spheres, indexed for next-event estimation (built by
+/// light_sampler_build).
 typedef struct light_sampler {
-    light_ref *lights;      ///< the lights, quads first in scene order, then triangles by instance and triangle
+    light_ref *lights;      ///< the lights: quads in scene order, triangles by instance and triangle, then spheres
     float *cdf;             ///< cdf[i]: probability of choosing one of lights[0..i]; the last is 1
     float *select_pdf;      ///< per scene quad: probability of choosing it, 0 for a quad that is not a light
     size_t count;           ///< lights
@@ -39,16 +43,25 @@ typedef struct light_sampler {
     size_t *tri_base;       ///< per scene instance: its first triangle's entry in tri_select_pdf, or SIZE_MAX
     float *tri_select_pdf;  ///< per triangle of each instance with a tri_base: probability of choosing it, or 0
     size_t instance_count;  ///< scene instances when indexed (tri_base's length)
+    float *sphere_select_pdf; ///< per world-space scene sphere: probability of choosing it, 0 when it is no light
+    size_t sphere_count;    ///< scene spheres when indexed (sphere_select_pdf's length; 0 when none emits)
 } light_sampler;
 
-/// Indexes the emissive quads and mesh-instance triangles of s (world space). An empty sampler (count 0)
+/// Indexes the emissive quads, mesh-instance triangles and world-space spheres of s (spheres placed by
+/// instances are left to BSDF sampling). An empty sampler (count 0)
 /// when nothing emits. False when out of memory (ls is then empty).
 bool light_sampler_build(light_sampler *ls, const glint_scene *s);
 /// Frees what the sampler owns and leaves it empty.
 void light_sampler_release(light_sampler *ls);
 /// Probability density, per unit solid angle, with which next-event estimation would have chosen the point
-/// where a ray of unit direction d hit surface sf at distance t; 0 when it is not an indexed light.
-float light_sampler_pdf(const light_sampler *ls, const glint_scene *s, const surface *sf, vec3 d, float t);
+/// where a ray from o of unit direction d hit surface sf at distance t; 0 when it is not an indexed light.
+float light_sampler_pdf(const light_sampler *ls, const glint_scene *s, const surface *sf, vec3 o, vec3 d, float t);
+/// A direction from p towards sphere sp, uniform in the cone of directions the sphere subtends ("The Rest of
+/// Your Life", ch. 12), from two uniform numbers a, b: the unit direction *wi, the distance *dist to where it
+/// meets the sphere, and the cone's density per unit solid angle *pdf. False when p is not outside the sphere.
+bool light_sphere_sample(const sphere *sp, vec3 p, float a, float b, vec3 *wi, float *dist, float *pdf);
+/// The density per unit solid angle of light_sphere_sample's directions from p; 0 when p is not outside.
+float light_sphere_pdf(const sphere *sp, vec3 p);
 /// The emitted radiance of triangle light tl at barycentrics (b1, b2), point x, towards unit direction wi.
 vec3 light_sampler_tri_emitted(const glint_scene *s, const tri_light *tl, float b1, float b2, vec3 x, vec3 wi);
 

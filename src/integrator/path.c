@@ -1,8 +1,8 @@
 // path.c — the path tracer of "Ray Tracing in One Weekend", iterative: a path traces at most max_depth
 // rays, each surface scatters it by its material (material/scatter.h), and escaping rays see the
 // background. At diffuse surfaces, point and directional lights are added by next-event estimation, and so
-// are emissive quads and mesh triangles, combined with the BSDF samples that hit them by multiple importance
-// sampling.
+// are emissive quads, mesh triangles and spheres, combined with the BSDF samples that hit them by multiple
+// importance sampling.
 #include "integrator/integrator.h"
 #include "integrator/light_sampler.h"
 #include "integrator/spawn.h"
@@ -31,6 +31,38 @@ static float mis_weight(float a, float b) {
     return 1.0f / (1.0f + q * q);
 }
 
+// Next-event estimation towards emissive sphere `index`: a direction in the cone the sphere subtends (a, b
+// uniform), its emission where that direction meets the sphere, a shadow ray, and the power-heuristic weight
+// against BSDF sampling; the same contract as sample_light.
+static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, uint32_t index, const surface *sf,
+                                const spawn_point *sp, float in_side, float a, float b, thread_stats *ts) {
+    const glint_scene *s = it->scene;
+    const sphere *sph = &s->spheres[index];
+    vec3 wi;
+    float dist, cone_pdf;
+    if (!light_sphere_sample(sph, sp->p, a, b, &wi, &dist, &cone_pdf)) return v3s(0.0f);
+    float cos_s = v3_dot(sf->n, wi);
+    if (!(cos_s > 0.0f) || v3_dot(wi, sf->ng) * in_side > 0.0f) return v3s(0.0f);
+    float pdf_light = pl->sphere_select_pdf[index] * cone_pdf;
+    if (!(pdf_light > 0.0f) || !isfinite(pdf_light)) return v3s(0.0f);
+    // The side and texture coordinates a ray along wi sees there, as surface_at gives them.
+    vec3 x = v3_fma(sp->p, wi, dist), q = v3_sub(x, sph->center);
+    float len = sqrtf(v3_len2(q));
+    if (!(len > 0.0f)) return v3s(0.0f);
+    vec3 outward = v3_scale(q, copysignf(1.0f / len, sph->radius));
+    const material *m = &s->materials[sph->material];
+    float u = 0.0f, v = 0.0f;
+    if (m->emission_texture >= 0) sphere_uv(sph->radius < 0.0f ? v3_neg(outward) : outward, &u, &v);
+    vec3 le = mat_emitted(m, s->textures, v3_dot(wi, outward) < 0.0f, u, v, x);
+    if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return v3s(0.0f);
+    // Stop short of the light by a relative margin (pbrt's shadow epsilon) so that it does not occlude itself.
+    ray shadow = spawn_ray(sp, wi, 0.0f, dist * (1.0f - 1e-4f));
+    ts->shadow_rays++;
+    if (accel_occluded(it->accel, &shadow)) return v3s(0.0f);
+    float w = mis_weight(pdf_light, cos_s * inv_pi);
+    return v3_scale(le, cos_s * inv_pi * w / pdf_light);
+}
+
 // Next-event estimation towards the emissive quads and triangles at a diffuse surface point: a light chosen
 // by power, a uniform point on it and a shadow ray, weighted against BSDF sampling by the power heuristic.
 // Returns Le cos / (pi pdf) times the weight; the caller multiplies by the albedo and the path's throughput.
@@ -48,12 +80,13 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const su
     }
     float select = pl->cdf[lo] - (lo ? pl->cdf[lo - 1] : 0.0f); // as light_sampler_build recorded it
     light_ref ref = pl->lights[lo];
+    if (ref.kind == LIGHT_REF_SPHERE) return sample_sphere_light(it, pl, ref.index, sf, sp, in_side, a, b, ts);
     vec3 x, n;
     float area;
     const tri_light *tl = NULL;
     float b1 = 0.0f, b2 = 0.0f;
     const quad *q = NULL;
-    if (ref.is_tri) {
+    if (ref.kind == LIGHT_REF_TRIANGLE) {
         tl = &pl->tris[ref.index];
         // Uniform on the triangle: barycentrics (1 - sqrt a, sqrt a (1 - b), sqrt a b).
         float sa = sqrtf(a);
@@ -199,7 +232,7 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread
         if (m->kind == MAT_DIFFUSE_LIGHT) {
             vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, sf.p);
             if (light_sampled) {
-                float pdf_light = light_sampler_pdf(pl, s, &sf, cur.d, h.t);
+                float pdf_light = light_sampler_pdf(pl, s, &sf, cur.o, cur.d, h.t);
                 if (pdf_light > 0.0f) le = v3_scale(le, mis_weight(bsdf_pdf, pdf_light));
             }
             radiance = v3_add(radiance, v3_mul(throughput, le));
