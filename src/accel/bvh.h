@@ -71,7 +71,16 @@ typedef struct bvh_sphere_packet {
     uint32_t prim[BVH_PACKET];
 } bvh_sphere_packet;
 
-/// A packet of up to BVH_PACKET primitives of another kind, tested one by one: their indices.
+/// A packet of up to BVH_PACKET triangles of the BVH's mesh, their vertices gathered as structure of arrays
+/// (v[vertex][axis][lane]), so that a packet is tested in SIMD without reading the mesh; unused lanes have
+/// NaN vertices, which no ray hits.
+typedef struct bvh_triangle_packet {
+    bvh_packet_header h;
+    float v[3][3][BVH_PACKET];
+    uint32_t prim[BVH_PACKET];
+} bvh_triangle_packet;
+
+/// A packet of up to BVH_PACKET primitives of another kind (quads, instances), tested one by one: their indices.
 typedef struct bvh_index_packet {
     bvh_packet_header h;
     uint32_t prim[BVH_PACKET];

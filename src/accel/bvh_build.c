@@ -15,6 +15,8 @@ enum { SAH_BINS = 32 };
 
 _Static_assert(sizeof(bvh_sphere_packet) % sizeof(bvh_slot) == 0, "a packet is a whole number of slots");
 _Static_assert(offsetof(bvh_sphere_packet, cx) % (BVH_PACKET * sizeof(float)) == 0, "lanes aligned for SIMD loads");
+_Static_assert(sizeof(bvh_triangle_packet) % sizeof(bvh_slot) == 0, "a packet is a whole number of slots");
+_Static_assert(offsetof(bvh_triangle_packet, v) % (BVH_PACKET * sizeof(float)) == 0, "lanes aligned for SIMD loads");
 
 // SAH constants: the cost of visiting a node relative to testing one leaf packet (wide BVH) or one
 // primitive (binary BVH). Halving or doubling either changed rtiow-final by less than the noise (1%).
@@ -234,7 +236,10 @@ static int ref_order(const void *a, const void *b) {
 }
 
 static size_t packet_slots(uint32_t kind) {
-    return (kind == PRIM_SPHERE ? sizeof(bvh_sphere_packet) : sizeof(bvh_index_packet)) / sizeof(bvh_slot);
+    size_t bytes = kind == PRIM_SPHERE     ? sizeof(bvh_sphere_packet)
+                   : kind == PRIM_TRIANGLE ? sizeof(bvh_triangle_packet)
+                                           : sizeof(bvh_index_packet);
+    return bytes / sizeof(bvh_slot);
 }
 
 // Slots the packets of a binary leaf take: primitives of one kind per packet, BVH_PACKET at most. Sorts
@@ -288,6 +293,21 @@ static uint32_t emit_leaf(collapser *cl, const bvh2_node *leaf) {
                     pk->cx[k] = pk->cy[k] = pk->cz[k] = NAN;
                     pk->radius[k] = 0.0f;
                     pk->prim[k] = UINT32_MAX;
+                }
+            }
+        } else if (kind == PRIM_TRIANGLE) {
+            bvh_triangle_packet *pk = (bvh_triangle_packet *)(void *)slot;
+            for (size_t k = 0; k < BVH_PACKET; k++) {
+                vec3 p[3] = {v3s(NAN), v3s(NAN), v3s(NAN)}; // NaN vertices: an unused lane never hits
+                pk->prim[k] = UINT32_MAX;
+                if (k < n) {
+                    mesh_triangle_positions(b->mesh, refs[i + k].index, &p[0], &p[1], &p[2]);
+                    pk->prim[k] = refs[i + k].index;
+                }
+                for (int j = 0; j < 3; j++) {
+                    pk->v[j][0][k] = p[j].x;
+                    pk->v[j][1][k] = p[j].y;
+                    pk->v[j][2][k] = p[j].z;
                 }
             }
         } else {

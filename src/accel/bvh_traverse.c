@@ -70,6 +70,47 @@ static __attribute__((noinline)) hit packet_hit(const bvh *b, const bvh_index_pa
     return best;
 }
 
+// A packet of triangles one lane at a time, through tri_intersect: the scalar path, and the reference the
+// SIMD test matches bit for bit. Out of line and by value, as packet_hit.
+static __attribute__((noinline)) hit triangle_packet_scalar(const bvh_triangle_packet *p, const ray *r, tri_cache *tc,
+                                                            hit best, uint32_t inst_id, bool any, bool *hit_any) {
+    const tri_ray *tr = tri_for(tc, r);
+    *hit_any = false;
+    for (uint32_t k = 0; k < p->h.count; k++) {
+        vec3 v[3];
+        for (int j = 0; j < 3; j++) v[j] = v3(p->v[j][0][k], p->v[j][1][k], p->v[j][2][k]);
+        tri_hit th;
+        if (!tri_intersect(tr, v[0], v[1], v[2], r->tmin, r->tmax, &th)) continue;
+        *hit_any = true;
+        if (any) break;
+        offer(&best, (hit){th.t, p->prim[k], HIT_TRIANGLE, inst_id, th.b1, th.b2});
+    }
+    return best;
+}
+
+#if BVH_SIMD && BVH_PACKET == 8
+// A packet of triangles in SIMD (triangles_simd), its hits offered lane by lane.
+static __attribute__((noinline)) hit triangle_packet_simd(const bvh_triangle_packet *p, const ray *r, tri_cache *tc,
+                                                          hit best, uint32_t inst_id, bool any, bool *hit_any) {
+    __m256 tv, b1v, b2v;
+    unsigned mask = triangles_simd(p, tri_for(tc, r), r->tmin, r->tmax, &tv, &b1v, &b2v);
+    *hit_any = mask != 0;
+    if (!mask || any) return best;
+    _Alignas(32) float t[8], b1[8], b2[8];
+    _mm256_store_ps(t, tv);
+    _mm256_store_ps(b1, b1v);
+    _mm256_store_ps(b2, b2v);
+    do {
+        int k = __builtin_ctz(mask);
+        mask &= mask - 1;
+        offer(&best, (hit){t[k], p->prim[k], HIT_TRIANGLE, inst_id, b1[k], b2[k]});
+    } while (mask);
+    return best;
+}
+#else
+#define triangle_packet_simd triangle_packet_scalar
+#endif
+
 bool bvh_prim_hit(const bvh *b, uint32_t kind, uint32_t index, const ray *r, tri_cache *tc, hit *best,
                   uint32_t inst_id, bool any, trav_mode mode) {
     return prim_hit(b, kind, index, r, tc, best, inst_id, any, mode);
@@ -120,8 +161,12 @@ static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cac
             }
         } else if (generic) {
             bool h;
-            *best = packet_hit(b, (const bvh_index_packet *)(const void *)slot, r, tc, *best, inst_id, any,
-                               MODE_WIDE_SCALAR, &h);
+            if (hd->kind == PRIM_TRIANGLE)
+                *best = triangle_packet_scalar((const bvh_triangle_packet *)(const void *)slot, r, tc, *best, inst_id,
+                                               any, &h);
+            else
+                *best = packet_hit(b, (const bvh_index_packet *)(const void *)slot, r, tc, *best, inst_id, any,
+                                   MODE_WIDE_SCALAR, &h);
             if (h) {
                 found = true;
                 if (any) return true;
@@ -133,7 +178,7 @@ static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cac
 }
 
 #if BVH_SIMD
-// Tests one leaf: spheres in SIMD packets, everything else one at a time. True when something was hit.
+// Tests one leaf: spheres and triangles in SIMD packets, everything else one at a time. True when something was hit.
 static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32_t ref, const ray *r,
                                                             const simd_ray *s, tri_cache *tc, hit *best,
                                                             uint32_t inst_id, bool any, bool generic) {
@@ -152,8 +197,12 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
             }
         } else if (generic) {
             bool h;
-            *best = packet_hit(b, (const bvh_index_packet *)(const void *)slot, r, tc, *best, inst_id, any,
-                               MODE_WIDE_SIMD, &h);
+            if (hd->kind == PRIM_TRIANGLE)
+                *best = triangle_packet_simd((const bvh_triangle_packet *)(const void *)slot, r, tc, *best, inst_id,
+                                             any, &h);
+            else
+                *best = packet_hit(b, (const bvh_index_packet *)(const void *)slot, r, tc, *best, inst_id, any,
+                                   MODE_WIDE_SIMD, &h);
             if (h) {
                 found = true;
                 if (any) return true;
