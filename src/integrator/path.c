@@ -14,6 +14,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 static const float inv_pi = 0.318309886183791f;
 
@@ -22,6 +23,8 @@ typedef struct path_integrator {
     integrator base;
     light_sampler lights;
     const light_sampler *sampled; ///< &lights when next-event estimation samples the emissive surfaces, else NULL
+    envmap_sampler environment;
+    const envmap_sampler *env_sampled; ///< &environment when next-event estimation samples the envmap, else NULL
 } path_integrator;
 
 // Power heuristic weight (beta = 2) of a strategy of density a against one of density b, a > 0: a^2 /
@@ -131,6 +134,25 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const su
     return v3_scale(le, cos_s * inv_pi * w / pdf_light);
 }
 
+// Next-event estimation towards the environment map: a direction drawn in proportion to the map's brightness
+// (envmap_sample), a shadow ray to infinity, and the power-heuristic weight against BSDF sampling, whose rays
+// that escape are weighted in turn (path_trace); the same contract as sample_light.
+static vec3 sample_environment(const integrator *it, const envmap_sampler *es, const surface *sf,
+                               const spawn_point *sp, float in_side, rng *r, thread_stats *ts) {
+    float a = rng_float(r), b = rng_float(r);
+    vec3 wi, le;
+    float pdf;
+    if (!envmap_sample(es, &it->scene->environment, a, b, &wi, &pdf, &le)) return v3s(0.0f);
+    float cos_s = v3_dot(sf->n, wi);
+    if (!(cos_s > 0.0f) || v3_dot(wi, sf->ng) * in_side > 0.0f) return v3s(0.0f);
+    if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return v3s(0.0f);
+    ray shadow = spawn_ray(sp, wi, 0.0f, INFINITY);
+    ts->shadow_rays++;
+    if (accel_occluded(it->accel, &shadow)) return v3s(0.0f);
+    float w = mis_weight(pdf, cos_s * inv_pi);
+    return v3_scale(le, cos_s * inv_pi * w / pdf);
+}
+
 // Direct light from the scene's point and directional lights at a diffuse surface point: BRDF (weight / pi)
 // times irradiance, unoccluded. Point lights fall off with the inverse square of the distance; a
 // directional light's intensity is the irradiance it gives a surface facing it. Ambient lights have no
@@ -178,9 +200,11 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread
     vec3 radiance = v3s(0.0f), throughput = v3s(1.0f);
     bool has_lights = s->light_count > 0;
     const light_sampler *pl = pi->sampled;
+    const envmap_sampler *es = pi->env_sampled;
     bool light_sampled = false; // the last vertex sampled the area lights: a hit on one is weighted
+    bool env_sampled = false;   // the last vertex sampled the environment: an escaping ray is weighted
     float bsdf_pdf = 0.0f;      // solid-angle density of the direction the last vertex sampled
-    bool lean = !has_lights && !pl;
+    bool lean = !has_lights && !pl && !es;
     // Whether cur.d has unit length: camera rays and the lean bounce's Lambertian directions are left unnormalised.
     bool unit = false;
     for (int depth = 0; depth < s->settings.max_depth; depth++) {
@@ -188,7 +212,9 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread
         ts->rays++;
         if (!accel_intersect(it->accel, &cur, &h)) {
             if (!unit) cur.d = v3_unit(cur.d);
-            radiance = v3_add(radiance, v3_mul(throughput, scene_background(&s->settings, cur.d)));
+            vec3 bg = scene_background(s, cur.d);
+            if (env_sampled) bg = v3_scale(bg, mis_weight(bsdf_pdf, envmap_pdf(es, &s->environment, cur.d)));
+            radiance = v3_add(radiance, v3_mul(throughput, bg));
             break;
         }
         // A world sphere of an untextured material that does not emit, with no light to sample (the book's
@@ -243,7 +269,7 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread
         if (!mat_scatter(m, albedo, cur.d, sf.n, sf.front, r, &ev)) break;
         spawn_point sp = spawn_point_of(s, &sf);
         float in_side = v3_dot(cur.d, sf.ng);
-        light_sampled = false;
+        light_sampled = env_sampled = false;
         if (ev.diffuse) {
             if (has_lights) radiance = v3_add(radiance, v3_mul(throughput, direct_light(it, &sp, sf.n, ev.weight, ts)));
             // Only where the BSDF sample is traced too, so that the two strategies cover the same paths.
@@ -251,6 +277,12 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread
                 vec3 direct = sample_light(it, pl, &sf, &sp, in_side, r, ts);
                 radiance = v3_add(radiance, v3_mul(throughput, v3_mul(ev.weight, direct)));
                 light_sampled = true;
+                bsdf_pdf = v3_dot(ev.dir, sf.n) * inv_pi;
+            }
+            if (es && depth + 1 < s->settings.max_depth) {
+                vec3 direct = sample_environment(it, es, &sf, &sp, in_side, r, ts);
+                radiance = v3_add(radiance, v3_mul(throughput, v3_mul(ev.weight, direct)));
+                env_sampled = true;
                 bsdf_pdf = v3_dot(ev.dir, sf.n) * inv_pi;
             }
         }
@@ -327,6 +359,7 @@ static bool path_render_tile(const integrator *it, const tile_pass *tp, film_til
 static void path_release(integrator *it) {
     path_integrator *pi = (path_integrator *)(void *)it;
     light_sampler_release(&pi->lights);
+    envmap_sampler_release(&pi->environment);
     free(pi);
 }
 
@@ -343,5 +376,11 @@ integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_l
     pi->base.render_tile = path_render_tile;
     pi->base.release = path_release;
     pi->sampled = sample_area_lights && pi->lights.count > 0 ? &pi->lights : NULL;
+    // The environment's distribution, when it is the background (a black map has none: nothing to sample).
+    pi->env_sampled = NULL;
+    memset(&pi->environment, 0, sizeof pi->environment);
+    if (s->settings.background == BACKGROUND_ENVMAP && sample_area_lights &&
+        envmap_sampler_build(&pi->environment, &s->environment))
+        pi->env_sampled = &pi->environment;
     return &pi->base;
 }

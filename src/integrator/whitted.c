@@ -399,7 +399,7 @@ static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thre
         ts->rays++;
         hit h;
         vec3 d = v3_unit(r.r.d);
-        if (!color_intersect(it, &r, &h)) return v3_add(sum, v3_mul(w, scene_background(&s->settings, d)));
+        if (!color_intersect(it, &r, &h)) return v3_add(sum, v3_mul(w, scene_background(s, d)));
         surface sf = surface_at(s, &r.r, &h);
         const material *m = &s->materials[sf.material];
         if (m->kind == MAT_DIFFUSE_LIGHT)

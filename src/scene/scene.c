@@ -181,6 +181,7 @@ void scene_free(glint_scene *s) {
     free(s->meshes);
     free(s->instance_spheres);
     free(s->instances);
+    envmap_free(&s->environment);
     for (size_t i = 0; i < s->warning_count; i++) free(s->warnings[i]);
     free(s->warnings);
     free(s->path);

@@ -9,6 +9,7 @@
 #include "camera/camera.h"
 #include "film/film.h"
 #include "material/material.h"
+#include "light/envmap.h"
 #include "light/light.h"
 #include "geometry/instance.h"
 #include "geometry/mesh.h"
@@ -23,7 +24,7 @@
 
 typedef enum integrator_kind { INTEGRATOR_WHITTED, INTEGRATOR_PATH } integrator_kind;
 typedef enum whitted_mode { WHITTED_PAPER, WHITTED_COLOR } whitted_mode;
-typedef enum background_kind { BACKGROUND_CONSTANT, BACKGROUND_SKY } background_kind;
+typedef enum background_kind { BACKGROUND_CONSTANT, BACKGROUND_SKY, BACKGROUND_ENVMAP } background_kind;
 
 /// The "render" object of a scene file.
 typedef struct render_settings {
@@ -84,6 +85,8 @@ struct glint_scene {
     instance *instances;
     size_t instance_count;
 
+    envmap environment;      ///< the background of BACKGROUND_ENVMAP (an empty image otherwise)
+
     char **warnings;         ///< problems the loader worked around ("file:line: warning: ..."); never printed by the library
     size_t warning_count;
 
@@ -129,8 +132,10 @@ glint_status scene_file_load(const char *path, glint_scene **out, glint_error *e
 void scene_free(glint_scene *s);
 
 /// The background radiance seen along unit direction d.
-static inline vec3 scene_background(const render_settings *rs, vec3 d) {
+static inline vec3 scene_background(const glint_scene *s, vec3 d) {
+    const render_settings *rs = &s->settings;
     if (rs->background == BACKGROUND_SKY) return v3_lerp(rs->sky_horizon, rs->sky_zenith, 0.5f * (d.y + 1.0f));
+    if (rs->background == BACKGROUND_ENVMAP) return envmap_radiance(&s->environment, d);
     return rs->background_color;
 }
 

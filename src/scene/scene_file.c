@@ -5,6 +5,7 @@
 #include "scene/scene_file.h"
 #include "core/array.h"
 #include "core/filepath.h"
+#include "io/hdr_read.h"
 #include "io/json_scan.h"
 
 #include <cjson/cJSON.h>
@@ -303,6 +304,40 @@ static const struct integrator_type {
     {"path", INTEGRATOR_PATH, path_keys},
 };
 
+static const char *const envmap_keys[] = {"type", "file", "scale", "rotate", NULL};
+static const jr_numspec NUM_ENVMAP_SCALE = {0.0, 1e30, JR_FLOAT, "a number in [0, 1e30]"};
+static const jr_numspec NUM_DEGREES = {-1e6, 1e6, JR_FLOAT, "a number of degrees in [-1e6, 1e6]"};
+
+// An environment map: an equirectangular Radiance .hdr image (light/envmap.h says how it is oriented).
+static bool read_envmap(sf_loader *ld, const jr_obj *o) {
+    char *path;
+    sf_file_id id;
+    jr_val where;
+    if (!sf_read_file_path(ld, o, "file", "environment map", &path, &id, &where)) return false;
+    float scale = 1.0f, degrees = 0.0f;
+    if (!jr_read_float(&ld->r, o, "scale", false, &NUM_ENVMAP_SCALE, &scale) ||
+        !jr_read_float(&ld->r, o, "rotate", false, &NUM_DEGREES, &degrees)) {
+        free(path);
+        return false;
+    }
+    image_rgb img;
+    glint_error err;
+    glint_status st = hdr_read(path, &img, &err);
+    // hdr_read's message names the resolved path; the scene's message names the file as written instead.
+    size_t n = strlen(path);
+    const char *why = strncmp(err.message, path, n) == 0 && err.message[n] == ':' ? err.message + n + 2 : err.message;
+    free(path);
+    if (st != GLINT_OK) {
+        bool failed = jr_fail_at(&ld->r, jr_offset(&ld->r, where.tok), "environment map \"%.300s\": %s",
+                                 where.item->valuestring, why);
+        ld->r.status = st; // out of memory stays a resource failure
+        return failed;
+    }
+    envmap_free(&ld->scene->environment);
+    ld->scene->environment = envmap_make(img, scale, degrees);
+    return true;
+}
+
 static const struct background_type {
     const char *name;
     background_kind kind;
@@ -310,6 +345,7 @@ static const struct background_type {
 } background_types[] = {
     {"constant", BACKGROUND_CONSTANT, constant_keys},
     {"sky", BACKGROUND_SKY, sky_keys},
+    {"envmap", BACKGROUND_ENVMAP, envmap_keys},
 };
 
 static bool read_integrator(sf_loader *ld, jr_val v, render_settings *rs) {
@@ -355,12 +391,13 @@ static bool read_background(sf_loader *ld, jr_val v, render_settings *rs) {
                           "got %s",
                           jr_describe(&ld->r, v, got, sizeof got));
     size_t t;
-    if (!jr_open_typed(&ld->r, v, "background", background_types, 2, sizeof background_types[0], &t)) return false;
+    if (!jr_open_typed(&ld->r, v, "background", background_types, 3, sizeof background_types[0], &t)) return false;
     char typed[64];
     snprintf(typed, sizeof typed, "background (%s)", background_types[t].name);
     jr_obj o;
     if (!jr_open(&ld->r, v, typed, background_types[t].keys, &o)) return false;
     rs->background = background_types[t].kind;
+    if (rs->background == BACKGROUND_ENVMAP) return read_envmap(ld, &o);
     if (rs->background == BACKGROUND_CONSTANT)
         return jr_read_color(&ld->r, &o, "color", true, &JR_NONNEG, &rs->background_color);
     return jr_read_color(&ld->r, &o, "horizon", false, &JR_NONNEG, &rs->sky_horizon) &&
