@@ -405,8 +405,9 @@ static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thre
         surface sf = surface_at(s, &r.r, &h);
         const material *m = &s->materials[sf.material];
         if (m->kind == MAT_DIFFUSE_LIGHT)
-            return v3_add(sum, v3_mul(w, mat_emitted(m, s->textures, sf.front, sf.u, sf.v, sf.p)));
-        vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, sf.p);
+            return v3_add(sum,
+                          v3_mul(w, mat_emitted(m, s->textures, sf.front, sf.u, sf.v, surface_texture_point(s, &sf))));
+        vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf));
         color_origin co = color_origin_of(s, &sf);
         switch (m->kind) {
         case MAT_DIFFUSE_LIGHT: return sum; // handled above
