@@ -616,7 +616,9 @@ static void test_meshes(void) {
     }
 
     // Spot has no materials: without a "material" its faces are grey, and the scene says so in a warning.
-    s = parse_in_scenes("{\"objects\": [{\"type\": \"mesh\", \"file\": \"meshes/spot/spot_triangulated.obj\"}]}");
+    // (Lit by a white background, so that the only warning is the mesh's.)
+    s = parse_in_scenes("{\"objects\": [{\"type\": \"mesh\", \"file\": \"meshes/spot/spot_triangulated.obj\"}], "
+                        "\"render\": {\"background\": 1}}");
     if (s) {
         CHECK(s->mesh_count == 1 && s->material_count == 1 && s->warning_count == 1);
         if (s->mesh_count == 1 && s->material_count == 1) {
@@ -634,7 +636,7 @@ static void test_meshes(void) {
     s = parse_in_scenes(
         "{\"objects\": [{\"type\": \"mesh\", \"file\": \"meshes/spot/spot_triangulated.obj\", \"material\":"
         " {\"type\": \"lambertian\", \"albedo\": {\"type\": \"image\", \"file\": "
-        "\"meshes/spot/spot_texture.png\"}}}]}");
+        "\"meshes/spot/spot_texture.png\"}}}], \"render\": {\"background\": 1}}");
     if (s) {
         CHECK(s->warning_count == 0 && s->instance_count == 1 && s->texture_count == 1);
         if (s->instance_count == 1)
@@ -693,6 +695,106 @@ static void test_issue5_scenes(void) {
     }
 }
 
+// Checks that text parses with exactly the warnings listed (NULL-terminated), in order.
+static void check_warnings(const char *text, const char *const *expected) {
+    glint_scene *s = parse(text);
+    if (!s) return;
+    size_t n = 0;
+    while (expected[n]) n++;
+    CHECK(s->warning_count == n);
+    for (size_t i = 0; i < s->warning_count; i++) {
+        bool same = i < n && strcmp(s->warnings[i], expected[i]) == 0;
+        CHECK(same);
+        if (!same) fprintf(stderr, "  warning %zu: %s\n  expected:   %s\n", i, s->warnings[i], i < n ? expected[i] : "(none)");
+    }
+    glint_scene_free(s);
+}
+
+#define NO_LIGHT                                                                                              \
+    "good.json: warning: no light sources in the scene (no lights, no emitters, black background); the image " \
+    "will be black"
+
+// A scene that nothing lights says so; any light, emitter or bright background keeps it quiet.
+static void test_no_light_warning(void) {
+    static const char *const none[] = {NULL}, *const no_light[] = {NO_LIGHT, NULL};
+    static const char *const ambient_only[] = {
+        "good.json: warning: no light sources the path tracer uses (no point or directional lights, no emitters, "
+        "black background; it ignores ambient lights); the image will be black",
+        NULL};
+    const char *ball = "\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, -3], \"radius\": 1, \"material\": "
+                         "{\"type\": \"lambertian\"}}]";
+    char text[1024];
+    check_warnings("{}", no_light);
+    snprintf(text, sizeof text, "{%s}", ball);
+    check_warnings(text, no_light);
+    snprintf(text, sizeof text, "{\"render\": {\"integrator\": \"path\"}, %s}", ball);
+    check_warnings(text, no_light);
+    snprintf(text, sizeof text,
+             "{\"render\": {\"integrator\": \"path\"}, %s, \"lights\": [{\"type\": \"ambient\", \"intensity\": 1}]}",
+             ball);
+    check_warnings(text, ambient_only);
+    // Lit: an ambient light in Whitted, a point light, a background, a sky, an emitter on a quad or in a mesh.
+    snprintf(text, sizeof text, "{%s, \"lights\": [{\"type\": \"ambient\", \"intensity\": 1}]}", ball);
+    check_warnings(text, none);
+    snprintf(text, sizeof text,
+             "{\"render\": {\"integrator\": \"path\"}, %s, \"lights\": [{\"type\": \"point\", \"intensity\": 1, "
+             "\"position\": [0, 0, 0]}]}",
+             ball);
+    check_warnings(text, none);
+    check_warnings("{\"render\": {\"integrator\": \"path\", \"background\": 0.1}}", none);
+    check_warnings("{\"render\": {\"integrator\": \"path\", \"background\": \"sky\"}}", none);
+    check_warnings("{\"render\": {\"integrator\": \"path\"}, \"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": "
+                   "[1, 0, 0], \"v\": [0, 1, 0], \"material\": {\"type\": \"diffuse_light\"}}]}",
+                   none);
+    // A black emitter lights nothing.
+    check_warnings("{\"render\": {\"integrator\": \"path\"}, \"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": "
+                   "[1, 0, 0], \"v\": [0, 1, 0], \"material\": {\"type\": \"diffuse_light\", \"emission\": 0}}]}",
+                   no_light);
+    // Paper mode's misses are white: never black.
+    check_warnings("{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"paper\"}}}", none);
+}
+
+// Paper mode names each kind of thing it drops, with how many.
+static void test_paper_mode_warnings(void) {
+    static const char *const expected[] = {
+        "good.json: warning: paper mode sees spheres only: 2 quad objects are ignored (neither seen nor casting "
+        "shadows)",
+        "good.json: warning: paper mode sees spheres only: 1 box object is ignored (neither seen nor casting shadows)",
+        "good.json: warning: paper mode sees spheres only: 1 instanced sphere is ignored (a transform that is not a "
+        "similarity, or a transform with a textured material, makes a sphere an instance; neither seen nor casting "
+        "shadows)",
+        "good.json: warning: paper mode uses constant colours: 1 sphere is textured (textures are not used)",
+        "good.json: warning: paper mode shades metal as a matte colour: 2 spheres are made of metal (no mirror "
+        "reflection)",
+        "good.json: warning: paper mode shades dielectric as a matte colour: 1 sphere is made of dielectric (no "
+        "refraction or reflection)",
+        "good.json: warning: paper mode shades diffuse_light as a matte colour: 1 sphere is made of diffuse_light (no "
+        "emission)",
+        NULL};
+    check_warnings(
+        "{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"paper\"}},"
+        " \"materials\": {\"m\": {\"type\": \"metal\"}, \"p\": {\"type\": \"phong\"}},"
+        " \"objects\": ["
+        "  {\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1, 0, 0], \"v\": [0, 1, 0], \"material\": \"p\"},"
+        "  {\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1, 0, 0], \"v\": [0, 1, 0], \"material\": \"p\"},"
+        "  {\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"p\"},"
+        "  {\"type\": \"sphere\", \"center\": [0, 0, 5], \"radius\": 1, \"material\": \"p\","
+        "   \"transform\": [{\"scale\": [1, 2, 1]}]},"
+        "  {\"type\": \"sphere\", \"center\": [0, 0, 5], \"radius\": 1, \"material\": \"m\"},"
+        "  {\"type\": \"sphere\", \"center\": [0, 0, 6], \"radius\": 1, \"material\": \"m\"},"
+        "  {\"type\": \"sphere\", \"center\": [0, 0, 7], \"radius\": 1, \"material\": {\"type\": \"dielectric\"}},"
+        "  {\"type\": \"sphere\", \"center\": [0, 0, 8], \"radius\": 1, \"material\": {\"type\": \"diffuse_light\"}},"
+        "  {\"type\": \"sphere\", \"center\": [0, 0, 9], \"radius\": 1, \"material\": {\"type\": \"lambertian\","
+        "   \"albedo\": {\"type\": \"checker\"}}}"
+        " ]}",
+        expected);
+    // The paper's own scene drops nothing.
+    static const char *const none[] = {NULL};
+    check_warnings("{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"paper\"}}, \"objects\": "
+                   "[{\"type\": \"sphere\", \"center\": [0, 0, 5], \"radius\": 1, \"material\": {\"type\": \"phong\"}}]}",
+                   none);
+}
+
 int main(void) {
     test_defaults();
     test_render_settings();
@@ -707,5 +809,7 @@ int main(void) {
     test_textured_sphere_rotates();
     test_meshes();
     test_issue5_scenes();
+    test_no_light_warning();
+    test_paper_mode_warnings();
     return check_summary();
 }

@@ -643,11 +643,49 @@ static void test_paper_ignores_quads(void) {
     for (int k = 0; k < 2; k++) glint_image_free(img[k]);
 }
 
+// A checker on a floor quad at exactly y = 0, a cell boundary: each pixel is one of the two colours exactly
+// (ambient light 1 shows the albedo), and no pixel differs from all four of its neighbours (salt-and-pepper
+// noise, from hit points rounding to either side of y = 0, would).
+static void test_color_checker_on_cell_boundary(void) {
+    const char *text =
+        "{\"render\": {\"width\": 64, \"height\": 64, \"spp\": 1},"
+        " \"camera\": {\"type\": \"lookat\", \"lookfrom\": [0.3, 4, 0.7], \"lookat\": [0.3, 0, -3.7], \"vfov\": 60},"
+        " \"materials\": {\"floor\": {\"type\": \"lambertian\", \"albedo\": {\"type\": \"checker\", \"scale\": 1,"
+        "  \"even\": 0.8, \"odd\": 0.3}}},"
+        " \"objects\": [{\"type\": \"quad\", \"q\": [-50, 0, -50], \"u\": [100, 0, 0], \"v\": [0, 0, 100],"
+        "  \"material\": \"floor\"}],"
+        " \"lights\": [{\"type\": \"ambient\", \"intensity\": 1}]}";
+    glint_scene *s = NULL;
+    glint_error err;
+    CHECK(glint_scene_parse("checker.json", text, strlen(text), &s, &err) == GLINT_OK);
+    if (!s) return;
+    glint_image *img = render(s, 2, NULL);
+    if (img) {
+        int other = 0, isolated = 0;
+        for (int y = 0; y < 64; y++)
+            for (int x = 0; x < 64; x++) {
+                vec3 c = pixel(img, x, y);
+                bool even = c.x == 0.8f && c.y == 0.8f && c.z == 0.8f, odd = c.x == 0.3f && c.y == 0.3f && c.z == 0.3f;
+                other += !even && !odd;
+                if (x == 0 || y == 0 || x == 63 || y == 63) continue;
+                float k = c.x;
+                isolated += pixel(img, x - 1, y).x != k && pixel(img, x + 1, y).x != k && pixel(img, x, y - 1).x != k &&
+                            pixel(img, x, y + 1).x != k;
+            }
+        CHECK(other == 0);
+        CHECK(isolated == 0);
+        if (isolated) fprintf(stderr, "  %d isolated pixels on the checkered floor\n", isolated);
+    }
+    glint_image_free(img);
+    glint_scene_free(s);
+}
+
 int main(void) {
     test_byte_round_trip();
     test_paper_ambient();
     test_paper_miss();
     test_color_lit_sphere();
+    test_color_checker_on_cell_boundary();
     test_color_shadow();
     test_color_highlight();
     test_color_reflection();

@@ -72,7 +72,11 @@ static void print_usage(FILE *f) {
             "far (each pixel the mean of its completed samples; nothing if no sample was completed);\n"
             "a second Ctrl-C aborts at once.\n"
             "\n"
-            "exit status: 0 success; 1 render or I/O failure; 2 usage or scene error;\n"
+            "Samples that come out NaN or infinite are dropped, with a warning on stderr (even with\n"
+            "--quiet); when more than 1 %% of them were dropped the image is written and the exit status is 1.\n"
+            "\n"
+            "exit status: 0 success; 1 render or I/O failure, or more than 1 %% of samples dropped;\n"
+            "             2 usage or scene error;\n"
             "             130 stopped by SIGINT, 143 by SIGTERM (partial image written)\n",
             cpus > 0 ? cpus : 1);
 }

@@ -36,5 +36,9 @@ void cli_progress_draw(double fraction, void *user);
 void cli_progress_clear(cli_progress *p);
 /// Prints the one-line statistics summary of a render on stderr.
 void cli_print_stats(const glint_render_stats *st);
+/// Share of a render's samples that may be NaN or infinite (and dropped) before the program exits 1: 1 %.
+#define CLI_MAX_DISCARDED_SHARE 0.01
+/// Warns on stderr (even with --quiet) when st dropped samples; true when more than CLI_MAX_DISCARDED_SHARE did.
+bool cli_warn_discarded(const glint_render_stats *st);
 
 #endif

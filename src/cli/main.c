@@ -139,6 +139,8 @@ int main(int argc, char **argv) {
         return exit_code(st);
     }
     if (!opt.quiet) cli_print_stats(&stats);
+    // A render that lost more than a small share of its samples is wrong, but its image is still written.
+    bool lost = cli_warn_discarded(&stats);
 
     bool interrupted = st == GLINT_ERR_INTERRUPTED;
     if (interrupted && stats.samples == 0) {
@@ -162,5 +164,5 @@ int main(int argc, char **argv) {
         fprintf(stderr, "glint: %s\n", err.message);
         return exit_code(st);
     }
-    return interrupted ? interrupted_status() : 0;
+    return interrupted ? interrupted_status() : lost ? 1 : 0;
 }

@@ -76,3 +76,12 @@ void cli_print_stats(const glint_render_stats *st) {
                 st->discarded_samples == 1 ? "" : "s");
     fputc('\n', stderr);
 }
+
+bool cli_warn_discarded(const glint_render_stats *st) {
+    if (st->discarded_samples == 0) return false;
+    // samples counts every sample taken, the dropped ones included
+    double share = st->samples ? (double)st->discarded_samples / (double)st->samples : 1.0;
+    fprintf(stderr, "glint: warning: %llu of %llu samples (%.1f %%) were NaN or infinite and were dropped\n",
+            (unsigned long long)st->discarded_samples, (unsigned long long)st->samples, 100.0 * share);
+    return share > CLI_MAX_DISCARDED_SHARE;
+}

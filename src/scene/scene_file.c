@@ -462,6 +462,7 @@ static bool read_scene(sf_loader *ld, jr_val root) {
         return false;
     if ((m = jr_get(&o, "objects")) && !read_array(ld, m->val, "objects", sf_read_object)) return false;
     if ((m = jr_get(&o, "lights")) && !read_array(ld, m->val, "lights", sf_read_light)) return false;
+    sf_warn_unseen(ld);
     if (ld->warnings_dropped) {
         char msg[256];
         snprintf(msg, sizeof msg, "%s: warning: %zu more warnings not listed", ld->r.name, ld->warnings_dropped);

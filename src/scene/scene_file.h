@@ -59,6 +59,9 @@ typedef struct sf_image_entry {
 } sf_image_entry;
 
 /// The reader of one scene file. r.status is GLINT_ERR_INPUT, or GLINT_ERR_RENDER when memory ran out.
+/// Object types, in the order of scene_file_objects.c's object_types table, for counting what was read.
+typedef enum sf_object_kind { SF_OBJECT_SPHERE, SF_OBJECT_QUAD, SF_OBJECT_BOX, SF_OBJECT_MESH, SF_OBJECT_KINDS } sf_object_kind;
+
 typedef struct sf_loader {
     json_reader r; ///< the document, positions and the message of a failure
     glint_scene *scene;
@@ -71,6 +74,7 @@ typedef struct sf_loader {
     long fallback_material;  ///< the grey Lambertian of faces without a material, once created; else -1
     size_t warnings_dropped; ///< warnings past SF_MAX_WARNINGS
     bool warning_oom;        ///< a warning could not be stored
+    size_t object_counts[SF_OBJECT_KINDS]; ///< objects read, by type (for the warnings of sf_warn_unseen)
 } sf_loader;
 
 // scene_file.c: messages, names, files
@@ -81,6 +85,9 @@ bool sf_fail_oom(sf_loader *ld);
 void sf_add_warning(sf_loader *ld, const char *message);
 /// Keeps the warning "name:line:col: warning: message" for the byte at `offset`.
 JR_PRINTF(3, 4) void sf_warn_at(sf_loader *ld, size_t offset, const char *fmt, ...);
+/// Warns about what the loaded scene will not show: no light at all, and what paper mode drops
+/// (scene_file_warnings.c).
+void sf_warn_unseen(sf_loader *ld);
 /// The entry of a defined name, or NULL.
 const sf_name *sf_names_find(const sf_names *t, const char *name);
 /// "material "blu" is not defined (defined: red, green)", pointing at v; false.

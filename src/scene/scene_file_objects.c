@@ -218,7 +218,7 @@ static const struct object_type {
     const char *name;
     const char *const *keys;
     object_reader read;
-} object_types[] = {
+} object_types[] = { // in the order of sf_object_kind
     {"sphere", sphere_keys, read_sphere},
     {"quad", quad_keys, read_quad},
     {"box", box_keys, read_box},
@@ -233,7 +233,9 @@ bool sf_read_object(sf_loader *ld, jr_val v, size_t i) {
     if (!jr_open_typed(&ld->r, v, what, object_types, OBJECT_TYPES, sizeof object_types[0], &t)) return false;
     snprintf(typed, sizeof typed, "object %zu (%s)", i, object_types[t].name);
     jr_obj o;
-    return jr_open(&ld->r, v, typed, object_types[t].keys, &o) && object_types[t].read(ld, &o, typed);
+    if (!jr_open(&ld->r, v, typed, object_types[t].keys, &o) || !object_types[t].read(ld, &o, typed)) return false;
+    ld->object_counts[t]++;
+    return true;
 }
 
 // ---------------------------------------------------------------------------------------------
