@@ -1,12 +1,13 @@
-# interrupt.sh — SIGINT and SIGTERM stop a long render: exit 130/143, a complete-size image of the samples
-# rendered so far, no temporary file left; a second SIGINT aborts without leaving anything half-written.
+# interrupt.sh — SIGINT, SIGTERM and SIGHUP stop a long render: exit 130/143/129, a complete-size image of the
+# samples rendered so far, no temporary file left; a second SIGINT aborts without leaving anything half-written;
+# a stop while the scene is read (from a FIFO or a pipe that never ends) ends the program within a second.
 source "$2/tests/cli/common.bash"
 
 # A render far too long to finish (16x16 pixels, a million samples each), stopped after half a second.
-# wait_for PID: its exit status, or 255 (and a kill) if it is still running after 20 s.
+# wait_for PID [TENTHS]: its exit status, or 255 (and a kill) if it is still running after TENTHS/10 s (20 s).
 wait_for() {
     local pid=$1
-    for _ in $(seq 200); do
+    for _ in $(seq "${2:-200}"); do
         kill -0 "$pid" 2>/dev/null || break
         sleep 0.1
     done
@@ -20,7 +21,7 @@ wait_for() {
 
 LONG=(--width 16 --height 16 --spp 1000000 "$DATA/tiny.json")
 
-for sig in INT TERM; do
+for sig in INT TERM HUP; do
     status=$((128 + $(kill -l $sig)))
     out=$TMP/stopped-$sig.ppm
     "$GLINT" -o "$out" "${LONG[@]}" 2>"$TMP/err-$sig" &
@@ -64,6 +65,40 @@ check "two SIGINTs: exit 130 (got $rc)" test $rc -eq 130
 if [[ -e $TMP/twice.ppm ]]; then
     check "two SIGINTs: a complete image" test "$(size "$TMP/twice.ppm")" -eq $((13 + 16 * 16 * 3))
 fi
+
+# A stop while the scene is being read: the read may never end (a FIFO no one writes, a pipe from a slow
+# command), so the program must end within a second, say so (unless --quiet) and write nothing.
+mkfifo "$TMP/fifo.json"
+for sig in INT TERM HUP; do
+    status=$((128 + $(kill -l $sig)))
+    "$GLINT" -o "$TMP/fifo.png" "$TMP/fifo.json" 2>"$TMP/err-fifo" &
+    pid=$!
+    sleep 0.3
+    kill -$sig $pid
+    wait_for $pid 10
+    rc=$?
+    check "SIG$sig while opening a FIFO: exit $status within a second (got $rc)" test $rc -eq $status
+    check "SIG$sig while opening a FIFO: says so" test "$(cat "$TMP/err-fifo")" == "glint: interrupted while loading the scene"
+    check "SIG$sig while opening a FIFO: no image" test ! -e "$TMP/fifo.png"
+done
+# stdin is a pipe from a command that outputs nothing for a while (its own output kept off the test's).
+sleep 5 2>/dev/null | "$GLINT" -o "$TMP/pipe.png" - 2>"$TMP/err-pipe" &
+pid=$!
+sleep 0.3
+kill -INT $pid
+wait_for $pid 10
+rc=$?
+check "SIGINT while reading a pipe: exit 130 within a second (got $rc)" test $rc -eq 130
+check "SIGINT while reading a pipe: says so" test "$(cat "$TMP/err-pipe")" == "glint: interrupted while loading the scene"
+check "SIGINT while reading a pipe: no image" test ! -e "$TMP/pipe.png"
+sleep 5 2>/dev/null | "$GLINT" --quiet -o "$TMP/pipe.png" - 2>"$TMP/err-pipe" &
+pid=$!
+sleep 0.3
+kill -TERM $pid
+wait_for $pid 10
+rc=$?
+check "SIGTERM while reading a pipe, --quiet: exit 143 within a second (got $rc)" test $rc -eq 143
+check "SIGTERM while reading a pipe, --quiet: nothing printed" test ! -s "$TMP/err-pipe"
 
 check "no temporary files left" no_temp_files "$TMP"
 summary
