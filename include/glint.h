@@ -126,12 +126,14 @@ typedef enum glint_format {
     GLINT_FORMAT_PFM
 } glint_format;
 
-/// Writes the image; "-" writes PPM to standard output. Writes a temporary file and renames it, so a failed
-/// write leaves no partial file.
+/// Writes the image; "-" writes PPM to standard output. Writes an unnamed temporary file (Linux O_TMPFILE; a
+/// named one where unsupported) and links it into place, so a failed or killed write leaves no file behind;
+/// writes through a symbolic link to the file it names, and refuses a read-only file ("PATH: cannot write:
+/// the file is read-only", GLINT_ERR_RENDER).
 GLINT_API glint_status glint_image_write(const glint_image *img, const char *path, glint_format format,
                                          glint_error *err);
 /// Checks before a render that the image can be written there: GLINT_ERR_INPUT for an unknown extension,
-/// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory.
+/// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory or a read-only file.
 GLINT_API glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err);
 /// Width, height and linear RGB pixels (row 0 at the top, 3 floats a pixel), valid until glint_image_free.
 GLINT_API void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb);

@@ -110,6 +110,15 @@ static glint_status load_scene(const char *path, glint_scene **scene, glint_erro
     return st;
 }
 
+// Whether the output would replace the scene file (the same file by device and inode, whatever the names and
+// links: `glint a.png -o ./a.png`, or a scene on standard input redirected from the output).
+static bool output_is_scene(const char *output, const char *scene_path) {
+    struct stat out, in;
+    if (strcmp(output, "-") == 0 || stat(output, &out) != 0) return false;
+    int found = strcmp(scene_path, "-") == 0 ? fstat(STDIN_FILENO, &in) : stat(scene_path, &in);
+    return found == 0 && S_ISREG(in.st_mode) && in.st_dev == out.st_dev && in.st_ino == out.st_ino;
+}
+
 int main(int argc, char **argv) {
     cli_options opt;
     cli_action action = cli_parse(argc, argv, &opt);
@@ -122,6 +131,10 @@ int main(int argc, char **argv) {
     if (st != GLINT_OK) {
         fprintf(stderr, "glint: %s\n", err.message);
         return exit_code(st);
+    }
+    if (output_is_scene(opt.output, opt.scene_path)) {
+        fprintf(stderr, "glint: %s: cannot write: it is the scene file, which would be lost\n", opt.output);
+        return exit_code(GLINT_ERR_INPUT);
     }
 
     quiet_signals = opt.quiet;
