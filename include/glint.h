@@ -94,13 +94,16 @@ GLINT_API glint_status glint_scene_load(const char *path, glint_scene **out, gli
 /// Parses a JSON scene from memory; `name` is used in messages and to resolve relative paths.
 GLINT_API glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out,
                                          glint_error *err);
-/// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise).
+/// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise); adds
+/// a warning when the scene will render by brute force (accel "none") with meshes in it.
 GLINT_API glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err);
 /// Image size the scene will render at.
 GLINT_API void glint_scene_size(const glint_scene *scene, int *width, int *height);
-/// Number of warnings the loader collected (problems in mesh files it worked around); the library prints none.
+/// Number of warnings collected (problems in mesh files the loader worked around, brute force on meshes); the
+/// library prints none.
 GLINT_API size_t glint_scene_warning_count(const glint_scene *scene);
-/// Warning i (0-based), formatted "file:line: warning: what happened; what is done instead", or NULL past the end.
+/// Warning i (0-based), formatted "file:line: warning: what happened; what is done instead" (a warning about the
+/// settings: "warning: setting: what will happen"), or NULL past the end.
 GLINT_API const char *glint_scene_warning(const glint_scene *scene, size_t i);
 /// Frees a scene (NULL is allowed).
 GLINT_API void glint_scene_free(glint_scene *scene);

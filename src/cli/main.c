@@ -172,9 +172,9 @@ int main(int argc, char **argv) {
         glint_image_free(img);
         return exit_code(st);
     }
-    if (!opt.quiet) cli_print_stats(&stats);
-
     bool interrupted = st == GLINT_ERR_INTERRUPTED;
+    if (!opt.quiet) cli_print_stats(&stats, interrupted && stats.samples == 0 ? NULL : opt.output);
+
     if (interrupted && stats.samples == 0) {
         if (!opt.quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
         glint_image_free(img);
