@@ -68,37 +68,39 @@ fi
 
 # A stop while the scene is being read: the read may never end (a FIFO no one writes, a pipe from a slow
 # command), so the program must end within a second, say so (unless --quiet) and write nothing.
+# stop_loading SIG SOURCE ARGS...: glint ARGS reads its scene from SOURCE (a FIFO, or "pipe": a pipe from a
+# command that prints nothing for 5 s, its own output kept off the test's) and gets SIG 0.3 s later. $rc: its
+# status, or 255 if it still runs a second after; its stderr in $TMP/err-load.
+stop_loading() {
+    local sig=$1 source=$2
+    shift 2
+    if [[ $source == pipe ]]; then
+        sleep 5 2>/dev/null | "$GLINT" "$@" - 2>"$TMP/err-load" &
+    else
+        "$GLINT" "$@" "$source" 2>"$TMP/err-load" &
+    fi
+    local pid=$!
+    sleep 0.3
+    kill -"$sig" $pid
+    wait_for $pid 10
+    rc=$?
+}
+
 mkfifo "$TMP/fifo.json"
 for sig in INT TERM HUP; do
     status=$((128 + $(kill -l $sig)))
-    "$GLINT" -o "$TMP/fifo.png" "$TMP/fifo.json" 2>"$TMP/err-fifo" &
-    pid=$!
-    sleep 0.3
-    kill -$sig $pid
-    wait_for $pid 10
-    rc=$?
+    stop_loading $sig "$TMP/fifo.json" -o "$TMP/fifo.png"
     check "SIG$sig while opening a FIFO: exit $status within a second (got $rc)" test $rc -eq $status
-    check "SIG$sig while opening a FIFO: says so" test "$(cat "$TMP/err-fifo")" == "glint: interrupted while loading the scene"
+    check "SIG$sig while opening a FIFO: says so" test "$(cat "$TMP/err-load")" == "glint: interrupted while loading the scene"
     check "SIG$sig while opening a FIFO: no image" test ! -e "$TMP/fifo.png"
 done
-# stdin is a pipe from a command that outputs nothing for a while (its own output kept off the test's).
-sleep 5 2>/dev/null | "$GLINT" -o "$TMP/pipe.png" - 2>"$TMP/err-pipe" &
-pid=$!
-sleep 0.3
-kill -INT $pid
-wait_for $pid 10
-rc=$?
+stop_loading INT pipe -o "$TMP/pipe.png"
 check "SIGINT while reading a pipe: exit 130 within a second (got $rc)" test $rc -eq 130
-check "SIGINT while reading a pipe: says so" test "$(cat "$TMP/err-pipe")" == "glint: interrupted while loading the scene"
+check "SIGINT while reading a pipe: says so" test "$(cat "$TMP/err-load")" == "glint: interrupted while loading the scene"
 check "SIGINT while reading a pipe: no image" test ! -e "$TMP/pipe.png"
-sleep 5 2>/dev/null | "$GLINT" --quiet -o "$TMP/pipe.png" - 2>"$TMP/err-pipe" &
-pid=$!
-sleep 0.3
-kill -TERM $pid
-wait_for $pid 10
-rc=$?
+stop_loading TERM pipe --quiet -o "$TMP/pipe.png"
 check "SIGTERM while reading a pipe, --quiet: exit 143 within a second (got $rc)" test $rc -eq 143
-check "SIGTERM while reading a pipe, --quiet: nothing printed" test ! -s "$TMP/err-pipe"
+check "SIGTERM while reading a pipe, --quiet: nothing printed" test ! -s "$TMP/err-load"
 
 check "no temporary files left" no_temp_files "$TMP"
 summary
