@@ -94,13 +94,16 @@ GLINT_API glint_status glint_scene_load(const char *path, glint_scene **out, gli
 /// Parses a JSON scene from memory; `name` is used in messages and to resolve relative paths.
 GLINT_API glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out,
                                          glint_error *err);
-/// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise).
+/// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise); adds
+/// a warning when the scene will render by brute force (accel "none") with meshes in it.
 GLINT_API glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err);
 /// Image size the scene will render at.
 GLINT_API void glint_scene_size(const glint_scene *scene, int *width, int *height);
-/// Number of warnings the loader collected (problems in mesh files it worked around); the library prints none.
+/// Number of warnings collected (problems in mesh files the loader worked around, brute force on meshes); the
+/// library prints none.
 GLINT_API size_t glint_scene_warning_count(const glint_scene *scene);
-/// Warning i (0-based), formatted "file:line: warning: what happened; what is done instead", or NULL past the end.
+/// Warning i (0-based), formatted "file:line: warning: what happened; what is done instead" (a warning about the
+/// settings: "warning: setting: what will happen"), or NULL past the end.
 GLINT_API const char *glint_scene_warning(const glint_scene *scene, size_t i);
 /// Frees a scene (NULL is allowed).
 GLINT_API void glint_scene_free(glint_scene *scene);
@@ -126,12 +129,14 @@ typedef enum glint_format {
     GLINT_FORMAT_PFM
 } glint_format;
 
-/// Writes the image; "-" writes PPM to standard output. Writes a temporary file and renames it, so a failed
-/// write leaves no partial file.
+/// Writes the image; "-" writes PPM to standard output. Writes an unnamed temporary file (Linux O_TMPFILE; a
+/// named one where unsupported) and links it into place, so a failed or killed write leaves no file behind;
+/// writes through a symbolic link to the file it names, and refuses a read-only file ("PATH: cannot write:
+/// the file is read-only", GLINT_ERR_RENDER).
 GLINT_API glint_status glint_image_write(const glint_image *img, const char *path, glint_format format,
                                          glint_error *err);
 /// Checks before a render that the image can be written there: GLINT_ERR_INPUT for an unknown extension,
-/// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory.
+/// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory or a read-only file.
 GLINT_API glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err);
 /// Width, height and linear RGB pixels (row 0 at the top, 3 floats a pixel), valid until glint_image_free.
 GLINT_API void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb);

@@ -1,7 +1,8 @@
-// args.c — glint's command line: a table of options, strict integer values, --help and --version.
+// args.c — glint's command line: a table of options read by getopt_long, strict integer values, --help and --version.
 #include "cli.h"
 
 #include <errno.h>
+#include <getopt.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,7 +31,7 @@ static const option_spec OPTIONS[] = {
     {"spp", 0, true, OPT_SPP, 1, 1000000},
     {"depth", 0, true, OPT_DEPTH, 0, 10000},
     {"seed", 0, true, OPT_SEED, 0, 9007199254740992LL}, // 2^53: every seed a JSON number holds exactly
-    {"threads", 0, true, OPT_THREADS, 1, 256},
+    {"threads", 0, true, OPT_THREADS, 0, 256}, // 0: all online CPUs, as the library counts them
     {"accel", 0, true, OPT_ACCEL, 1, 0},
     {"quiet", 'q', false, OPT_QUIET, 1, 0},
     {"help", 'h', false, OPT_HELP, 1, 0},
@@ -51,33 +52,36 @@ static void print_usage(FILE *f) {
             "                     .png (8-bit RGB), .ppm (binary P6), .pfm (linear float RGB);\n"
             "                     - writes PPM to standard output. Default: the scene's file name with\n"
             "                     .png, in the current directory (scenes/paper.json -> paper.png;\n"
-            "                     out.png when the scene comes from standard input)\n"
+            "                     out.png when the scene comes from standard input). A symbolic link is\n"
+            "                     written through; the scene file and read-only files are never replaced\n"
             "      --ascii-ppm    write PPM as ASCII P3, as the seeds print it, instead of binary P6\n"
             "      --width N      image width in pixels, 1..16384\n"
             "      --height N     image height in pixels, 1..16384\n"
             "      --spp N        samples per pixel, 1..1000000\n"
             "      --depth N      maximum recursion (Whitted) or bounce (path) depth, 0..10000\n"
             "      --seed N       random seed, 0..9007199254740992 (2^53)\n"
-            "      --threads N    worker threads, 1..256; default: all online CPUs (%ld here);\n"
+            "      --threads N    worker threads, 0..256; 0 and the default: all online CPUs (%ld here);\n"
             "                     1 renders sequentially. The image is the same for every N\n"
-            "      --accel KIND   acceleration structure: bvh, bvh2 or none (brute force)\n"
-            "  -q, --quiet        no progress bar and no statistics line; errors are still printed\n"
+            "      --accel KIND   acceleration structure: bvh, bvh2 or none (brute force: every ray tests\n"
+            "                     every object and triangle; a warning says so when there are meshes)\n"
+            "  -q, --quiet        no progress bar, statistics line or warnings; errors are still printed\n"
             "  -h, --help         print this help and exit\n"
             "  -V, --version      print the version and exit\n"
             "\n"
-            "On a terminal, a progress bar (percentage, elapsed time, ETA) is drawn on stderr, and at the\n"
-            "end one statistics line: wall time, samples/s, rays/s, threads, BVH size and build time.\n"
+            "Short options combine (-qo out.png). Unless --quiet, a progress bar (percentage, elapsed time,\n"
+            "ETA) is drawn on stderr when stderr is a terminal, and at the end, terminal or not, one\n"
+            "statistics line: wall time, samples/s, rays/s, threads, BVH size, build time and the image.\n"
             "\n"
-            "Ctrl-C (SIGINT) or SIGTERM stops the render within a second and writes the image rendered so\n"
-            "far (each pixel the mean of its completed samples; nothing if no sample was completed);\n"
-            "a second Ctrl-C aborts at once.\n"
+            "Ctrl-C (SIGINT), SIGTERM or SIGHUP stops the render within a second and writes the image\n"
+            "rendered so far (each pixel the mean of its completed samples; nothing if no sample was\n"
+            "completed); a second Ctrl-C aborts at once. While the scene is read, it stops at once.\n"
             "\n"
             "Samples that come out NaN or infinite are dropped, with a warning on stderr (even with\n"
             "--quiet); when more than 1 %% of them were dropped the image is written and the exit status is 1.\n"
             "\n"
-            "exit status: 0 success; 1 render or I/O failure, or more than 1 %% of samples dropped;\n"
-            "             2 usage or scene error;\n"
-            "             130 stopped by SIGINT, 143 by SIGTERM (partial image written)\n",
+            "exit status: 0 success; 1 render or I/O failure (a read-only output too), or more than 1 %%\n"
+            "             of samples dropped; 2 usage or scene error; 128 + the signal when stopped by one:\n"
+            "             130 SIGINT, 143 SIGTERM, 129 SIGHUP\n",
             cpus > 0 ? cpus : 1);
 }
 
@@ -158,72 +162,63 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
     return CLI_RUN;
 }
 
-static const option_spec *find_long(const char *name, size_t len) {
-    for (int i = 0; i < OPTION_COUNT; i++)
-        if (strlen(OPTIONS[i].long_name) == len && strncmp(OPTIONS[i].long_name, name, len) == 0) return &OPTIONS[i];
-    return NULL;
-}
-
-static const option_spec *find_short(char c) {
+static const option_spec *find_short(int c) {
     for (int i = 0; i < OPTION_COUNT; i++)
         if (OPTIONS[i].short_name == c) return &OPTIONS[i];
     return NULL;
 }
 
+// getopt_long's value for an option: its short letter, or 256 + its index in OPTIONS (no letter is that large).
+static int option_value(int i) { return OPTIONS[i].short_name ? OPTIONS[i].short_name : 256 + i; }
+
+static const option_spec *spec_of_value(int v) { return v >= 256 ? &OPTIONS[v - 256] : find_short(v); }
+
+// getopt_long does the GNU syntax (bundled flags "-qo x.png", "-ox.png", "--name=value", "--", options after
+// the scene); its messages are silenced (opterr = 0) so that glint's own, unchanged, are printed instead.
 cli_action cli_parse(int argc, char **argv, cli_options *o) {
     memset(o, 0, sizeof *o);
     glint_overrides_init(&o->overrides);
-    bool options_done = false;
-    for (int i = 1; i < argc; i++) {
-        const char *arg = argv[i];
-        if (options_done || arg[0] != '-' || strcmp(arg, "-") == 0) {
-            if (o->scene_path) {
-                fprintf(stderr, "glint: unexpected argument '%s': only one scene file can be given\n", arg);
-                usage_hint();
-                return CLI_EXIT_USAGE;
-            }
-            o->scene_path = arg;
+    struct option longopts[OPTION_COUNT + 1];
+    char shortopts[2 * OPTION_COUNT + 2] = ":"; // ':' first: a missing value returns ':', not '?'
+    size_t n = 1;
+    for (int i = 0; i < OPTION_COUNT; i++) {
+        longopts[i] = (struct option){OPTIONS[i].long_name, OPTIONS[i].takes_value ? required_argument : no_argument,
+                                      NULL, option_value(i)};
+        if (!OPTIONS[i].short_name) continue;
+        shortopts[n++] = OPTIONS[i].short_name;
+        if (OPTIONS[i].takes_value) shortopts[n++] = ':';
+    }
+    shortopts[n] = '\0';
+    longopts[OPTION_COUNT] = (struct option){NULL, 0, NULL, 0};
+    opterr = 0;
+    optind = 1;
+    for (int c; (c = getopt_long(argc, argv, shortopts, longopts, NULL)) != -1;) {
+        const char *typed = argv[optind - 1]; // the argument that held the option
+        const option_spec *spec = c == '?' || c == ':' ? (optopt ? spec_of_value(optopt) : NULL) : spec_of_value(c);
+        if (c == '?' && spec) { // "--quiet=yes": only a long option given a value makes a known option fail
+            fprintf(stderr, "glint: option '--%s' takes no value\n", spec->long_name);
+        } else if (c == '?' && optopt && !spec) {
+            fprintf(stderr, "glint: unknown option '-%c'\n", optopt);
+        } else if (c == '?') { // an unknown or ambiguous long option
+            fprintf(stderr, "glint: unknown option '%s'\n", typed);
+        } else if (c == ':') {
+            if (strncmp(typed, "--", 2) == 0) fprintf(stderr, "glint: option '%s' needs a value\n", typed);
+            else fprintf(stderr, "glint: option '-%c' needs a value\n", optopt);
+        } else {
+            cli_action a = apply_option(spec, optarg, o);
+            if (a != CLI_RUN) return a;
             continue;
         }
-        if (strcmp(arg, "--") == 0) { options_done = true; continue; }
-        const option_spec *spec;
-        const char *value = NULL;
-        if (arg[1] == '-') {
-            // --name or --name=value
-            const char *eq = strchr(arg + 2, '=');
-            size_t len = eq ? (size_t)(eq - (arg + 2)) : strlen(arg + 2);
-            spec = find_long(arg + 2, len);
-            if (spec && eq) {
-                if (!spec->takes_value) {
-                    fprintf(stderr, "glint: option '--%s' takes no value\n", spec->long_name);
-                    usage_hint();
-                    return CLI_EXIT_USAGE;
-                }
-                value = eq + 1;
-            }
-        } else {
-            // -x, or -oVALUE for an option with a value
-            spec = find_short(arg[1]);
-            if (spec && arg[2] != '\0') {
-                if (!spec->takes_value) spec = NULL; // "-qx": unknown, no bundling
-                else value = arg + 2;
-            }
-        }
-        if (!spec) {
-            fprintf(stderr, "glint: unknown option '%s'\n", arg);
+        usage_hint();
+        return CLI_EXIT_USAGE;
+    }
+    for (int i = optind; i < argc; i++) {
+        if (o->scene_path) {
+            fprintf(stderr, "glint: unexpected argument '%s': only one scene file can be given\n", argv[i]);
             usage_hint();
             return CLI_EXIT_USAGE;
         }
-        if (spec->takes_value && !value) {
-            if (i + 1 >= argc) {
-                fprintf(stderr, "glint: option '%s' needs a value\n", arg);
-                usage_hint();
-                return CLI_EXIT_USAGE;
-            }
-            value = argv[++i];
-        }
-        cli_action a = apply_option(spec, value, o);
-        if (a != CLI_RUN) return a;
+        o->scene_path = argv[i];
     }
     if (!o->scene_path) {
         fprintf(stderr, "glint: no scene file given\n");

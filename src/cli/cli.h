@@ -26,16 +26,20 @@ cli_action cli_parse(int argc, char **argv, cli_options *o);
 typedef struct cli_progress {
     double start;   ///< monotonic seconds when the render began
     bool drawn;     ///< a bar is on the screen and must be erased
+    double last_time, last_fraction; ///< the previous report (last_time 0: none yet)
+    double measured; ///< seconds of rendering the rate was measured over
+    double rate;     ///< smoothed fraction of the work done per second
 } cli_progress;
 
 /// Monotonic clock in seconds.
 double cli_now(void);
-/// glint_progress_fn drawing "[####----]  42%  1.2 s elapsed, ETA 1.7 s" over itself on stderr.
+/// glint_progress_fn drawing "[####----]  42%  1.2 s elapsed, ETA 1.7 s" over itself on stderr, within the
+/// terminal's width.
 void cli_progress_draw(double fraction, void *user);
 /// Erases the bar, if one was drawn.
 void cli_progress_clear(cli_progress *p);
-/// Prints the one-line statistics summary of a render on stderr.
-void cli_print_stats(const glint_render_stats *st);
+/// Prints the one-line statistics summary of a render on stderr, naming the image (output NULL: none written).
+void cli_print_stats(const glint_render_stats *st, const char *output);
 /// Share of a render's samples that may be NaN or infinite (and dropped) before the program exits 1: 1 %.
 #define CLI_MAX_DISCARDED_SHARE 0.01
 /// Warns on stderr (even with --quiet) when st dropped samples; true when more than CLI_MAX_DISCARDED_SHARE did.

@@ -1,5 +1,5 @@
 // main.c — the glint command: parse flags, load the scene, render with a progress bar, write the image;
-// SIGINT/SIGTERM stop the render and keep the samples completed so far.
+// SIGINT/SIGTERM/SIGHUP stop the render and keep the samples completed so far.
 #include "cli.h"
 #include "glint.h"
 
@@ -8,16 +8,33 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 _Static_assert(ATOMIC_INT_LOCK_FREE == 2, "the signal handler needs a lock-free atomic int");
 
 static atomic_int first_signal; // the signal that asked the render to stop, 0 while none has
+static atomic_int loading;      // 1 while the scene is read: a signal then ends the program at once
+static bool quiet_signals;      // --quiet, set before the handlers are installed
 
-// First SIGINT/SIGTERM: ask the render to stop (it then writes what it has). Second: die at once, by the
-// signal's default action, so the shell sees the usual status. No temporary file can be left behind then:
-// none exists while rendering, and signals are blocked while the image is written.
+// The signals that stop a render: Ctrl-C, kill, and the terminal going away (the session ending).
+static const int STOP_SIGNALS[] = {SIGINT, SIGTERM, SIGHUP};
+enum { STOP_SIGNAL_COUNT = sizeof STOP_SIGNALS / sizeof STOP_SIGNALS[0] };
+
+// While loading: nothing exists yet to write or to clean up, and the read may be blocked on a FIFO or a pipe
+// that never ends, so say what happened and leave at once. During the render, the first signal asks it to
+// stop (it then writes what it has); the second dies at once, by the signal's default action, so the shell
+// sees the usual status. No temporary file can be left behind then: none exists while rendering, and signals
+// are blocked while the image is written.
 static void on_signal(int sig) {
+    if (atomic_load(&loading)) {
+        static const char msg[] = "glint: interrupted while loading the scene\n";
+        if (!quiet_signals) {
+            ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
+            (void)ignored;
+        }
+        _exit(128 + sig);
+    }
     int expected = 0;
     if (atomic_compare_exchange_strong(&first_signal, &expected, sig)) {
         glint_request_stop();
@@ -42,16 +59,14 @@ static void install_signal_handlers(void) {
     sa.sa_handler = on_signal;
     sigemptyset(&sa.sa_mask);
     sa.sa_flags = SA_RESTART;
-    sigaction(SIGINT, &sa, NULL);
-    sigaction(SIGTERM, &sa, NULL);
+    for (int i = 0; i < STOP_SIGNAL_COUNT; i++) sigaction(STOP_SIGNALS[i], &sa, NULL);
 }
 
-// Holds SIGINT/SIGTERM back while a file is being written, so that a rename never races an abort.
+// Holds the stop signals back while a file is being written, so that a rename never races an abort.
 static void block_stop_signals(void) {
     sigset_t set;
     sigemptyset(&set);
-    sigaddset(&set, SIGINT);
-    sigaddset(&set, SIGTERM);
+    for (int i = 0; i < STOP_SIGNAL_COUNT; i++) sigaddset(&set, STOP_SIGNALS[i]);
     pthread_sigmask(SIG_BLOCK, &set, NULL);
 }
 
@@ -60,6 +75,8 @@ static int interrupted_status(void) {
     int sig = atomic_load(&first_signal);
     return 128 + (sig ? sig : SIGINT);
 }
+
+static const char NOTHING_RENDERED[] = "glint: interrupted before any sample was rendered, no image written\n";
 
 static int exit_code(glint_status st) { return st == GLINT_ERR_INPUT ? 2 : 1; }
 
@@ -93,6 +110,15 @@ static glint_status load_scene(const char *path, glint_scene **scene, glint_erro
     return st;
 }
 
+// Whether the output would replace the scene file (the same file by device and inode, whatever the names and
+// links: `glint a.png -o ./a.png`, or a scene on standard input redirected from the output).
+static bool output_is_scene(const char *output, const char *scene_path) {
+    struct stat out, in;
+    if (strcmp(output, "-") == 0 || stat(output, &out) != 0) return false;
+    int found = strcmp(scene_path, "-") == 0 ? fstat(STDIN_FILENO, &in) : stat(scene_path, &in);
+    return found == 0 && S_ISREG(in.st_mode) && in.st_dev == out.st_dev && in.st_ino == out.st_ino;
+}
+
 int main(int argc, char **argv) {
     cli_options opt;
     cli_action action = cli_parse(argc, argv, &opt);
@@ -106,10 +132,17 @@ int main(int argc, char **argv) {
         fprintf(stderr, "glint: %s\n", err.message);
         return exit_code(st);
     }
+    if (output_is_scene(opt.output, opt.scene_path)) {
+        fprintf(stderr, "glint: %s: cannot write: it is the scene file, which would be lost\n", opt.output);
+        return exit_code(GLINT_ERR_INPUT);
+    }
 
+    quiet_signals = opt.quiet;
+    atomic_store(&loading, 1);
     install_signal_handlers();
     glint_scene *scene = NULL;
     st = load_scene(opt.scene_path, &scene, &err);
+    atomic_store(&loading, 0);
     if (st == GLINT_OK) st = glint_scene_override(scene, &opt.overrides, &err);
     if (st != GLINT_OK) {
         fprintf(stderr, "glint: %s\n", err.message);
@@ -121,6 +154,7 @@ int main(int argc, char **argv) {
         fprintf(stderr, "glint: %s\n", glint_scene_warning(scene, i));
     if (atomic_load(&first_signal)) { // stopped before the render began: there is nothing to write
         glint_scene_free(scene);
+        if (!opt.quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
         return interrupted_status();
     }
 
@@ -138,13 +172,13 @@ int main(int argc, char **argv) {
         glint_image_free(img);
         return exit_code(st);
     }
-    if (!opt.quiet) cli_print_stats(&stats);
+    bool interrupted = st == GLINT_ERR_INTERRUPTED;
+    if (!opt.quiet) cli_print_stats(&stats, interrupted && stats.samples == 0 ? NULL : opt.output);
     // A render that lost more than a small share of its samples is wrong, but its image is still written.
     bool lost = cli_warn_discarded(&stats);
 
-    bool interrupted = st == GLINT_ERR_INTERRUPTED;
     if (interrupted && stats.samples == 0) {
-        if (!opt.quiet) fprintf(stderr, "glint: interrupted before any sample was rendered, no image written\n");
+        if (!opt.quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
         glint_image_free(img);
         return interrupted_status();
     }

@@ -3,7 +3,10 @@
 
 #include <inttypes.h>
 #include <stdio.h>
+#include <string.h>
+#include <sys/ioctl.h>
 #include <time.h>
+#include <unistd.h>
 
 enum { BAR_WIDTH = 30 };
 
@@ -24,21 +27,59 @@ static void format_duration(double seconds, char *buf, size_t size) {
     else snprintf(buf, size, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
 }
 
+// The terminal's width in columns (TIOCGWINSZ on stderr), asked at every draw so that a resize is followed;
+// 80 when it does not say.
+static int terminal_columns(void) {
+    struct winsize ws;
+    if (ioctl(STDERR_FILENO, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0) return ws.ws_col;
+    return 80;
+}
+
+// Follows the rate of work (fraction per second) from report to report, smoothed over about RATE_SECONDS:
+// measured on the render itself (from the first report on, so the scene preparation and BVH build before it
+// do not count), over all of it at first, then weighted towards the recent past as the cost of a sample
+// changes (passes of 1, 1, 2, 4, ... samples: early ones pay more per sample for visiting every tile).
+static void update_rate(cli_progress *p, double now, double fraction) {
+    enum { RATE_SECONDS = 5 };
+    if (p->last_time > 0.0 && now > p->last_time && fraction >= p->last_fraction) {
+        double dt = now - p->last_time, r = (fraction - p->last_fraction) / dt;
+        p->measured += dt;
+        // Weight of the newest interval: all of the measure so far at first (a plain mean), then dt / RATE_SECONDS.
+        double w = dt / (p->measured < RATE_SECONDS ? p->measured : RATE_SECONDS);
+        p->rate += (w < 1.0 ? w : 1.0) * (r - p->rate);
+    }
+    p->last_time = now;
+    p->last_fraction = fraction;
+}
+
 void cli_progress_draw(double fraction, void *user) {
+    enum { MIN_MEASURE_SECONDS = 1 }; // no ETA before a second of rendering has been measured
     cli_progress *p = user;
     if (!(fraction > 0.0)) fraction = 0.0;
     if (fraction > 1.0) fraction = 1.0;
-    double elapsed = cli_now() - p->start;
-    char bar[BAR_WIDTH + 1];
-    int filled = (int)(fraction * BAR_WIDTH);
-    for (int i = 0; i < BAR_WIDTH; i++) bar[i] = i < filled ? '#' : '-';
-    bar[BAR_WIDTH] = '\0';
-    char el[32], eta[32] = "?";
-    format_duration(elapsed, el, sizeof el);
-    // Samples cost about the same everywhere, so the rate so far predicts the rest.
-    if (fraction > 0.0) format_duration(elapsed * (1.0 - fraction) / fraction, eta, sizeof eta);
+    double now = cli_now();
+    update_rate(p, now, fraction);
+    char el[32], eta[32] = "?", tail[96];
+    format_duration(now - p->start, el, sizeof el);
+    if (fraction >= 1.0) format_duration(0.0, eta, sizeof eta);
+    else if (p->measured >= MIN_MEASURE_SECONDS && p->rate > 0.0)
+        format_duration((1.0 - fraction) / p->rate, eta, sizeof eta);
+    int percent = (int)(fraction * 100.0);
+    int tail_len = snprintf(tail, sizeof tail, "] %3d%%  %s elapsed, ETA %s", percent, el, eta);
+    // Never the last column: a character there makes some terminals wrap, and the bar must stay on one line.
+    int room = terminal_columns() - 1;
+    int width = room - 1 - tail_len; // "[" + bar + tail
+    if (width > BAR_WIDTH) width = BAR_WIDTH;
     // \r returns to the line's start and ESC[K clears what a longer previous line left behind.
-    fprintf(stderr, "\r[%s] %3d%%  %s elapsed, ETA %s\033[K", bar, (int)(fraction * 100.0), el, eta);
+    if (width >= 5) {
+        char bar[BAR_WIDTH + 1];
+        int filled = (int)(fraction * width);
+        for (int i = 0; i < width; i++) bar[i] = i < filled ? '#' : '-';
+        fprintf(stderr, "\r[%.*s%s\033[K", width, bar, tail);
+    } else { // too narrow for a bar: the numbers alone, cut to fit
+        int n = snprintf(tail, sizeof tail, "%3d%% ETA %s", percent, eta);
+        fprintf(stderr, "\r%.*s\033[K", n < room ? n : (room > 0 ? room : 0), tail);
+    }
     fflush(stderr);
     p->drawn = true;
 }
@@ -55,7 +96,7 @@ static void format_rate(double v, char *buf, size_t size) {
     snprintf(buf, size, v >= 99.95 ? "%.0f" : v >= 9.995 ? "%.1f" : "%.2f", v);
 }
 
-void cli_print_stats(const glint_render_stats *st) {
+void cli_print_stats(const glint_render_stats *st, const char *output) {
     // Rates over the render loop alone (as the Embree yardstick counts): scene preparation, the BVH build
     // in the first place, is reported on its own.
     double wall = st->render_seconds > 1e-9 ? st->render_seconds : 1e-9;
@@ -74,6 +115,9 @@ void cli_print_stats(const glint_render_stats *st) {
     if (st->discarded_samples > 0)
         fprintf(stderr, ", %" PRIu64 " NaN/infinite sample%s discarded", st->discarded_samples,
                 st->discarded_samples == 1 ? "" : "s");
+    if (!output) fputs("; no image", stderr);
+    else if (strcmp(output, "-") == 0) fputs("; image on standard output", stderr);
+    else fprintf(stderr, "; image %s", output);
     fputc('\n', stderr);
 }
 

@@ -1,10 +1,13 @@
-// image_write.c — PNG, PPM and PFM output, written to a temporary file and renamed into place.
+// image_write.c — PNG, PPM and PFM output, written to an unnamed temporary file and linked into place.
+// O_TMPFILE is Linux's: <fcntl.h> declares it only for _GNU_SOURCE (without it, the named fallback is used).
+#define _GNU_SOURCE
 #include "io/image_write.h"
 #include "film/film.h"
 
 #include <png.h>
 
 #include <errno.h>
+#include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -176,10 +179,15 @@ static glint_status cannot_write(const char *path, int rc, const char *why, glin
     return GLINT_ERR_RENDER;
 }
 
+// Length of the directory part of path, its last slash included (0: the current directory).
+static size_t dir_length(const char *path) {
+    const char *slash = strrchr(path, '/');
+    return slash ? (size_t)(slash - path) + 1 : 0;
+}
+
 // "dir/.name.tmp-XXXXXX" next to path, so that rename() stays within one file system; NULL when out of memory.
 static char *temp_name_for(const char *path) {
-    const char *slash = strrchr(path, '/');
-    size_t dir_len = slash ? (size_t)(slash - path) + 1 : 0;
+    size_t dir_len = dir_length(path);
     const char *base = path + dir_len;
     size_t n = dir_len + 1 + strlen(base) + sizeof ".tmp-XXXXXX";
     char *tmp = malloc(n);
@@ -192,6 +200,155 @@ static mode_t new_file_mode(void) {
     mode_t mask = umask(0);
     umask(mask);
     return 0666 & ~mask;
+}
+
+enum { MAX_SYMLINK_HOPS = 40 }; // as the kernel's own limit on a path's links (ELOOP beyond)
+
+// The file an image written at `path` must replace: path itself, or, when path is a symbolic link (a chain of
+// them), the file it finally names, so that the image is written through the link as cp and shells write, and
+// the link stays. A dangling link names the file to create. NULL with *error set (ELOOP, ENOMEM, ...).
+static char *final_path(const char *path, int *error) {
+    char *cur = strdup(path);
+    for (int hops = 0; cur; hops++) {
+        struct stat lsb;
+        if (lstat(cur, &lsb) != 0 || !S_ISLNK(lsb.st_mode)) return cur; // not a link: the end of the chain
+        if (hops == MAX_SYMLINK_HOPS) {
+            free(cur);
+            *error = ELOOP;
+            return NULL;
+        }
+        char target[4096];
+        ssize_t n = readlink(cur, target, sizeof target - 1);
+        if (n < 0) {
+            *error = errno;
+            free(cur);
+            return NULL;
+        }
+        target[n] = '\0';
+        // A relative target is relative to the link's own directory.
+        size_t keep = target[0] == '/' ? 0 : dir_length(cur);
+        char *next = malloc(keep + (size_t)n + 1);
+        if (next) snprintf(next, keep + (size_t)n + 1, "%.*s%s", (int)keep, cur, target);
+        free(cur);
+        cur = next;
+    }
+    *error = ENOMEM;
+    return NULL;
+}
+
+// Why the image cannot replace what is at `target` (0: nothing there, or a file it may replace; -1: see why).
+// A read-only file is refused, as cp refuses it, even for root, who could replace it: its mode says the owner
+// wants it kept.
+static int check_existing(const char *target, char *why, size_t why_size) {
+    struct stat sb;
+    if (stat(target, &sb) != 0) return 0;
+    if (S_ISDIR(sb.st_mode)) return EISDIR;
+    if (S_ISREG(sb.st_mode) && ((sb.st_mode & 0222) == 0 || (access(target, W_OK) != 0 && errno == EACCES))) {
+        snprintf(why, why_size, "the file is read-only");
+        return -1;
+    }
+    return 0;
+}
+
+// Where the image goes and whether it may: *target is the file to replace (see final_path), which must not be
+// a directory or a read-only file. GLINT_ERR_RENDER ("PATH: cannot write: reason") otherwise.
+static glint_status prepare_target(const char *path, char **target, glint_error *err) {
+    int e = 0;
+    *target = final_path(path, &e);
+    if (!*target) return cannot_write(path, e, "", err);
+    char why[64] = "";
+    int rc = check_existing(*target, why, sizeof why);
+    if (rc == 0) return GLINT_OK;
+    free(*target);
+    *target = NULL;
+    return cannot_write(path, rc, why, err);
+}
+
+// Opens a file without a name (Linux O_TMPFILE) in the directory of `target`: until it is linked it is no
+// file in any directory, so a kill at any moment, SIGKILL included, leaves nothing behind. -1 with errno;
+// EOPNOTSUPP, EISDIR (kernels before 3.11) or EINVAL where the system or the file system cannot.
+static int open_unnamed(const char *target) {
+#ifdef O_TMPFILE
+    // Linking it later needs /proc/self/fd (linkat with AT_EMPTY_PATH needs a privilege).
+    if (access("/proc/self/fd", X_OK) != 0) {
+        errno = EOPNOTSUPP;
+        return -1;
+    }
+    size_t n = dir_length(target);
+    char *dir = malloc(n + 2);
+    if (!dir) return -1;
+    if (n) snprintf(dir, n + 2, "%.*s", (int)n, target);
+    else snprintf(dir, n + 2, ".");
+    int fd = open(dir, O_TMPFILE | O_WRONLY | O_CLOEXEC, 0666); // the umask applies, as to any new file
+    int e = errno;
+    free(dir);
+    errno = e;
+    return fd;
+#else
+    (void)target;
+    errno = EOPNOTSUPP;
+    return -1;
+#endif
+}
+
+static bool unnamed_unsupported(int e) { return e == EOPNOTSUPP || e == EISDIR || e == EINVAL; }
+
+// A temporary file beside target: unnamed where the system can, named (*tmp, mkstemp) otherwise.
+static int open_temp(const char *target, char **tmp) {
+    *tmp = NULL;
+    int fd = open_unnamed(target);
+    if (fd >= 0 || !unnamed_unsupported(errno)) return fd;
+    *tmp = temp_name_for(target);
+    if (!*tmp) {
+        errno = ENOMEM;
+        return -1;
+    }
+    fd = mkstemp(*tmp);
+    if (fd < 0) {
+        int e = errno;
+        free(*tmp);
+        *tmp = NULL;
+        errno = e;
+        return -1;
+    }
+    if (fchmod(fd, new_file_mode()) != 0) { // before any byte is written: the fallback is no less tidy
+        int e = errno;
+        close(fd);
+        unlink(*tmp);
+        free(*tmp);
+        *tmp = NULL;
+        errno = e;
+        return -1;
+    }
+    return fd;
+}
+
+// Gives the unnamed file fd the name target, in one step when nothing is there yet. Otherwise it is linked
+// under a temporary name and renamed over the old file (link cannot replace): the old file or the new one
+// is there at every moment, and only a kill between those two calls could leave the temporary name behind.
+// 0 or an errno value.
+static int publish_unnamed(int fd, const char *target) {
+    char proc[64];
+    snprintf(proc, sizeof proc, "/proc/self/fd/%d", fd);
+    if (linkat(AT_FDCWD, proc, AT_FDCWD, target, AT_SYMLINK_FOLLOW) == 0) return 0;
+    if (errno != EEXIST) return fail_errno();
+    char *tmp = temp_name_for(target);
+    if (!tmp) return ENOMEM;
+    size_t x = strlen(tmp) - 6; // the XXXXXX
+    static const char digits[] = "abcdefghijklmnopqrstuvwxyz0123456789";
+    unsigned long seed = (unsigned long)getpid() * 2654435761u ^ (unsigned long)fd;
+    int rc = EEXIST;
+    for (int attempt = 0; attempt < 100 && rc == EEXIST; attempt++) {
+        unsigned long r = seed + (unsigned long)attempt * 0x9e3779b9u;
+        for (size_t i = 0; i < 6; i++, r /= 36) tmp[x + i] = digits[r % 36];
+        rc = linkat(AT_FDCWD, proc, AT_FDCWD, tmp, AT_SYMLINK_FOLLOW) == 0 ? 0 : fail_errno();
+    }
+    if (rc == 0 && rename(tmp, target) != 0) {
+        rc = fail_errno();
+        unlink(tmp);
+    }
+    free(tmp);
+    return rc;
 }
 
 static glint_status write_stdout(const glint_image *img, glint_format format, glint_error *err) {
@@ -207,12 +364,13 @@ glint_status image_write(const glint_image *img, const char *path, glint_format 
     if (st != GLINT_OK) return st;
     if (strcmp(path, "-") == 0) return write_stdout(img, format, err);
 
-    char *tmp = temp_name_for(path);
-    if (!tmp) return cannot_write(path, ENOMEM, "", err);
-    int fd = mkstemp(tmp);
+    char *target = NULL, *tmp = NULL;
+    st = prepare_target(path, &target, err);
+    if (st != GLINT_OK) return st;
+    int fd = open_temp(target, &tmp);
     if (fd < 0) {
         int e = errno;
-        free(tmp);
+        free(target);
         return cannot_write(path, e, "", err);
     }
     char why[300] = "";
@@ -225,31 +383,32 @@ glint_status image_write(const glint_image *img, const char *path, glint_format 
         rc = write_format(f, img, format, why, sizeof why);
         errno = 0;
         if (rc == 0 && fflush(f) != 0) rc = fail_errno();
-        if (rc == 0 && fchmod(fd, new_file_mode()) != 0) rc = fail_errno();
         // On disk before it takes the image's name: a crash leaves the old file or the new one, never half.
         if (rc == 0 && fsync(fd) != 0 && errno != EINVAL) rc = fail_errno();
+        if (rc == 0 && !tmp) rc = publish_unnamed(fd, target); // needs the descriptor open
         if (fclose(f) != 0 && rc == 0) rc = fail_errno();
     }
-    if (rc == 0 && rename(tmp, path) != 0) rc = fail_errno();
-    if (rc != 0) unlink(tmp); // a failed write leaves nothing behind
+    if (rc == 0 && tmp && rename(tmp, target) != 0) rc = fail_errno();
+    if (rc != 0 && tmp) unlink(tmp); // a failed write leaves nothing behind
     free(tmp);
+    free(target);
     return rc == 0 ? GLINT_OK : cannot_write(path, rc, why, err);
 }
 
 glint_status image_check_path(const char *path, glint_format format, glint_error *err) {
     glint_status st = resolve_format(path, format, &format, err);
     if (st != GLINT_OK || strcmp(path, "-") == 0) return st;
-    struct stat sb;
-    if (stat(path, &sb) == 0 && S_ISDIR(sb.st_mode)) return cannot_write(path, EISDIR, "", err);
+    char *target = NULL, *tmp = NULL;
+    st = prepare_target(path, &target, err);
+    if (st != GLINT_OK) return st;
     // Create and remove a temporary file exactly where the image will go: the one test that sees every reason.
-    char *tmp = temp_name_for(path);
-    if (!tmp) return cannot_write(path, ENOMEM, "", err);
-    int fd = mkstemp(tmp);
+    int fd = open_temp(target, &tmp);
     int e = errno;
     if (fd >= 0) {
         close(fd);
-        unlink(tmp);
+        if (tmp) unlink(tmp);
     }
     free(tmp);
+    free(target);
     return fd >= 0 ? GLINT_OK : cannot_write(path, e, "", err);
 }

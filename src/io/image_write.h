@@ -1,5 +1,5 @@
-// image_write.h — writing a rendered image as PNG (libpng), binary or ASCII PPM, or PFM: through a temporary
-// file renamed into place, so that a failed or interrupted write never leaves a partial file behind.
+// image_write.h — writing a rendered image as PNG (libpng), binary or ASCII PPM, or PFM: through an unnamed
+// temporary file linked into place, so that a failed, interrupted or killed write never leaves a file behind.
 #ifndef GLINT_IMAGE_WRITE_H
 #define GLINT_IMAGE_WRITE_H
 
@@ -8,7 +8,7 @@
 /// Writes img to path in the format (GLINT_FORMAT_AUTO: from the extension); "-" writes PPM to standard output.
 glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err);
 /// Checks before a render that an image can be written at path: GLINT_ERR_INPUT for an unknown extension,
-/// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory.
+/// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory or a read-only file.
 glint_status image_check_path(const char *path, glint_format format, glint_error *err);
 
 #endif

@@ -135,6 +135,25 @@ static bool override_in_range(const char *flag, long v, long lo, long hi, glint_
     return false;
 }
 
+// Brute force on meshes tests every triangle of every placed mesh for every ray: a render that a BVH does in
+// seconds can take hours, so the user hears it before waiting (once, however often overrides are applied).
+static glint_status warn_brute_force(glint_scene *s, bool from_flag, glint_error *err) {
+    uint64_t triangles = 0;
+    for (size_t i = 0; i < s->instance_count; i++)
+        if (s->instances[i].kind == INSTANCE_MESH) triangles += s->meshes[s->instances[i].index].geometry.triangle_count;
+    if (s->settings.accel != ACCEL_NONE || triangles == 0) return GLINT_OK;
+    char msg[256];
+    snprintf(msg, sizeof msg,
+             "warning: %s: brute force tests every one of the %llu triangle%s of the scene's meshes for every ray; "
+             "the render may take far longer than with the default, bvh",
+             from_flag ? "--accel none" : "\"accel\": \"none\"", (unsigned long long)triangles,
+             triangles == 1 ? "" : "s");
+    if (s->warning_count > 0 && strcmp(s->warnings[s->warning_count - 1], msg) == 0) return GLINT_OK;
+    if (scene_add_warning(s, msg)) return GLINT_OK;
+    snprintf(err->message, sizeof err->message, "out of memory");
+    return GLINT_ERR_RENDER;
+}
+
 glint_status scene_override(glint_scene *s, const glint_overrides *o, glint_error *err) {
     render_settings *rs = &s->settings;
     if (o->width >= 0 && !override_in_range("--width", o->width, 1, SCENE_MAX_DIMENSION, err)) return GLINT_ERR_INPUT;
@@ -160,7 +179,7 @@ glint_status scene_override(glint_scene *s, const glint_overrides *o, glint_erro
     if (o->max_depth >= 0) rs->max_depth = (int)o->max_depth;
     if (o->seed >= 0) rs->seed = (uint64_t)o->seed;
     rs->accel = kind;
-    return GLINT_OK;
+    return warn_brute_force(s, o->accel != NULL, err);
 }
 
 void scene_free(glint_scene *s) {

@@ -89,6 +89,9 @@ check "statistics: no progress bar without a terminal" test "$(tr -cd '\r' <"$TM
 check "statistics line format" grep -Eq \
     '^glint: [0-9]+\.[0-9]{3} s wall, [0-9.]+ Msamples/s, [0-9.]+ Mrays/s \(2 threads\), (BVH [0-9]+ nodes [0-9]+ leaves depth [0-9]+|no BVH \(brute force\)), build [0-9.]+ m?s' \
     "$TMP/err"
+check "statistics: names the image" grep -q "; image $TMP/stats.ppm\$" "$TMP/err"
+run --threads 2 -o - "$TINY"
+check "statistics: names standard output" grep -q '; image on standard output$' "$TMP/err"
 run --threads 1 --accel none -o "$TMP/stats.ppm" "$TINY"
 check "statistics: 1 thread, brute force" grep -q 'Mrays/s (1 thread), no BVH (brute force), build' "$TMP/err"
 
@@ -97,6 +100,13 @@ if command -v script >/dev/null; then
     script -qec "'$GLINT' --threads 1 -o '$TMP/tty.ppm' '$PATHS'" /dev/null >"$TMP/tty" 2>&1
     check "progress bar on a terminal" grep -Eq '\[#+\] 100%  [0-9.]+ s elapsed, ETA' "$TMP/tty"
     check "statistics after the bar" grep -q 'Mrays/s (1 thread)' "$TMP/tty"
+    # The bar fits the terminal: in 40 and 20 columns no line reaches the last column (it would wrap).
+    for cols in 40 20; do
+        script -qec "stty cols $cols; '$GLINT' --threads 1 --spp 2000 -o '$TMP/tty.ppm' '$PATHS'" /dev/null >"$TMP/tty" 2>&1
+        longest=$(tr '\r' '\n' <"$TMP/tty" | grep -v 'Mrays/s' | sed 's/\x1b\[K//g' | awk '{ if (length($0) > n) n = length($0) } END { print n + 0 }')
+        check "progress bar in $cols columns: at most $((cols - 1)) wide (got $longest)" test "$longest" -le $((cols - 1))
+        check "progress bar in $cols columns: drawn" grep -q '100%' "$TMP/tty"
+    done
     script -qec "'$GLINT' --quiet -o '$TMP/tty.ppm' '$PATHS'" /dev/null >"$TMP/tty" 2>&1
     check "--quiet: no progress bar on a terminal" test ! -s "$TMP/tty"
 fi

@@ -1,12 +1,13 @@
-# interrupt.sh — SIGINT and SIGTERM stop a long render: exit 130/143, a complete-size image of the samples
-# rendered so far, no temporary file left; a second SIGINT aborts without leaving anything half-written.
+# interrupt.sh — SIGINT, SIGTERM and SIGHUP stop a long render: exit 130/143/129, a complete-size image of the
+# samples rendered so far, no temporary file left; a second SIGINT aborts without leaving anything half-written;
+# a stop while the scene is read (from a FIFO or a pipe that never ends) ends the program within a second.
 source "$2/tests/cli/common.bash"
 
 # A render far too long to finish (16x16 pixels, a million samples each), stopped after half a second.
-# wait_for PID: its exit status, or 255 (and a kill) if it is still running after 20 s.
+# wait_for PID [TENTHS]: its exit status, or 255 (and a kill) if it is still running after TENTHS/10 s (20 s).
 wait_for() {
     local pid=$1
-    for _ in $(seq 200); do
+    for _ in $(seq "${2:-200}"); do
         kill -0 "$pid" 2>/dev/null || break
         sleep 0.1
     done
@@ -20,7 +21,7 @@ wait_for() {
 
 LONG=(--width 16 --height 16 --spp 1000000 "$DATA/tiny.json")
 
-for sig in INT TERM; do
+for sig in INT TERM HUP; do
     status=$((128 + $(kill -l $sig)))
     out=$TMP/stopped-$sig.ppm
     "$GLINT" -o "$out" "${LONG[@]}" 2>"$TMP/err-$sig" &
@@ -64,6 +65,42 @@ check "two SIGINTs: exit 130 (got $rc)" test $rc -eq 130
 if [[ -e $TMP/twice.ppm ]]; then
     check "two SIGINTs: a complete image" test "$(size "$TMP/twice.ppm")" -eq $((13 + 16 * 16 * 3))
 fi
+
+# A stop while the scene is being read: the read may never end (a FIFO no one writes, a pipe from a slow
+# command), so the program must end within a second, say so (unless --quiet) and write nothing.
+# stop_loading SIG SOURCE ARGS...: glint ARGS reads its scene from SOURCE (a FIFO, or "pipe": a pipe from a
+# command that prints nothing for 5 s, its own output kept off the test's) and gets SIG 0.3 s later. $rc: its
+# status, or 255 if it still runs a second after; its stderr in $TMP/err-load.
+stop_loading() {
+    local sig=$1 source=$2
+    shift 2
+    if [[ $source == pipe ]]; then
+        sleep 5 2>/dev/null | "$GLINT" "$@" - 2>"$TMP/err-load" &
+    else
+        "$GLINT" "$@" "$source" 2>"$TMP/err-load" &
+    fi
+    local pid=$!
+    sleep 0.3
+    kill -"$sig" $pid
+    wait_for $pid 10
+    rc=$?
+}
+
+mkfifo "$TMP/fifo.json"
+for sig in INT TERM HUP; do
+    status=$((128 + $(kill -l $sig)))
+    stop_loading $sig "$TMP/fifo.json" -o "$TMP/fifo.png"
+    check "SIG$sig while opening a FIFO: exit $status within a second (got $rc)" test $rc -eq $status
+    check "SIG$sig while opening a FIFO: says so" test "$(cat "$TMP/err-load")" == "glint: interrupted while loading the scene"
+    check "SIG$sig while opening a FIFO: no image" test ! -e "$TMP/fifo.png"
+done
+stop_loading INT pipe -o "$TMP/pipe.png"
+check "SIGINT while reading a pipe: exit 130 within a second (got $rc)" test $rc -eq 130
+check "SIGINT while reading a pipe: says so" test "$(cat "$TMP/err-load")" == "glint: interrupted while loading the scene"
+check "SIGINT while reading a pipe: no image" test ! -e "$TMP/pipe.png"
+stop_loading TERM pipe --quiet -o "$TMP/pipe.png"
+check "SIGTERM while reading a pipe, --quiet: exit 143 within a second (got $rc)" test $rc -eq 143
+check "SIGTERM while reading a pipe, --quiet: nothing printed" test ! -s "$TMP/err-load"
 
 check "no temporary files left" no_temp_files "$TMP"
 summary

@@ -24,8 +24,8 @@ expect 2 "glint: unknown option '--foo'
 $HINT" --foo "$DATA/tiny.json"
 expect 2 "glint: unknown option '-x'
 $HINT" -x "$DATA/tiny.json"
-expect 2 "glint: unknown option '-qh'
-$HINT" -qh "$DATA/tiny.json"
+expect 2 "glint: unknown option '-x'
+$HINT" -qx "$DATA/tiny.json"
 expect 2 "glint: --width: 'abc' is not an integer, expected an integer in [1, 16384]" --width abc "$DATA/tiny.json"
 expect 2 "glint: --width: '12x' is not an integer, expected an integer in [1, 16384]" --width 12x "$DATA/tiny.json"
 expect 2 "glint: --width: ' 12' is not an integer, expected an integer in [1, 16384]" --width " 12" "$DATA/tiny.json"
@@ -38,12 +38,15 @@ expect 2 "glint: --width: 99999999999999999999999 is out of range, expected an i
 expect 2 "glint: --spp: -1 is out of range, expected an integer in [1, 1000000]" --spp -1 "$DATA/tiny.json"
 expect 2 "glint: --depth: 10001 is out of range, expected an integer in [0, 10000]" --depth 10001 "$DATA/tiny.json"
 expect 2 "glint: --seed: -1 is out of range, expected an integer in [0, 9007199254740992]" --seed -1 "$DATA/tiny.json"
-expect 2 "glint: --threads: 0 is out of range, expected an integer in [1, 256]" --threads 0 "$DATA/tiny.json"
+expect 2 "glint: --threads: -1 is out of range, expected an integer in [0, 256]" --threads -1 "$DATA/tiny.json"
+expect 2 "glint: --threads: 257 is out of range, expected an integer in [0, 256]" --threads 257 "$DATA/tiny.json"
 expect 2 "glint: --accel: unknown structure 'kd', expected bvh, bvh2 or none" --accel kd "$DATA/tiny.json"
 expect 2 "glint: option '--width' needs a value
 $HINT" "$DATA/tiny.json" --width
 expect 2 "glint: option '-o' needs a value
 $HINT" "$DATA/tiny.json" -o
+expect 2 "glint: option '-o' needs a value
+$HINT" "$DATA/tiny.json" -qo
 expect 2 "glint: option '--quiet' takes no value
 $HINT" --quiet=yes "$DATA/tiny.json"
 expect 2 "glint: unexpected argument 'b.json': only one scene file can be given
@@ -51,6 +54,24 @@ $HINT" a.json b.json
 expect 2 "glint: --output: empty file name, expected an image file name or -" -o "" "$DATA/tiny.json"
 expect 2 "glint: --ascii-ppm: the output '$TMP/a.png' is not a .ppm file (or -)" \
     --ascii-ppm -o "$TMP/a.png" "$DATA/tiny.json"
+
+# Short options combine as getopt_long's do: -qo FILE, -qoFILE, -qh.
+run -qh
+check "-qh prints the help: exit 0" test "$rc" -eq 0
+check "-qh prints the help" grep -q -- '--output' "$TMP/out"
+run -qo "$TMP/combined.ppm" "$DATA/tiny.json"
+check "-qo FILE: exit 0" test "$rc" -eq 0
+check "-qo FILE: quiet" test ! -s "$TMP/err"
+check "-qo FILE: the image written" test -s "$TMP/combined.ppm"
+run "$DATA/tiny.json" -qo"$TMP/combined2.ppm"
+check "SCENE -qoFILE: the image written, quietly" test "$rc" -eq 0 -a -s "$TMP/combined2.ppm" -a ! -s "$TMP/err"
+check "-qo and -qoFILE: the same image" cmp -s "$TMP/combined.ppm" "$TMP/combined2.ppm"
+
+# --threads 0 is every online CPU, as the library counts them (and as no --threads does).
+cpus=$(getconf _NPROCESSORS_ONLN)
+run --threads 0 -o "$TMP/threads0.ppm" "$DATA/tiny.json"
+check "--threads 0: exit 0" test "$rc" -eq 0
+check "--threads 0: all $cpus online CPUs" grep -q "($cpus thread" "$TMP/err"
 
 # Outputs are checked before the scene is even read: no render is wasted on a typo.
 expect 2 "glint: $TMP/x.jpg: unknown image format '.jpg', expected .png, .ppm or .pfm (or - for PPM on standard output)" \
@@ -90,5 +111,19 @@ check "mesh warnings: exit 0" test "$rc" -eq 0
 check "mesh warnings: printed with file and line" grep -qx "glint: $DATA/warn.obj:6: warning: face has zero area; skipped" "$TMP/err"
 run --quiet -o "$TMP/warn.ppm" "$DATA/warn.json"
 check "mesh warnings: silenced by --quiet" test ! -s "$TMP/err"
+
+# Brute force on meshes tests every triangle for every ray: said before the (possibly endless) render.
+BRUTE="warning: brute force tests every one of the 1 triangle of the scene's meshes for every ray; the render may take far longer than with the default, bvh"
+run --accel none -o "$TMP/warn.ppm" "$DATA/warn.json"
+check "--accel none on meshes: exit 0" test "$rc" -eq 0
+check "--accel none on meshes: a warning" grep -qxF "glint: ${BRUTE/warning:/warning: --accel none:}" "$TMP/err"
+sed 's/"render": {/"render": {"accel": "none", /' "$DATA/warn.json" >"$TMP/brute.json"
+cp "$DATA/warn.obj" "$TMP/warn.obj"
+run -o "$TMP/warn.ppm" "$TMP/brute.json"
+check "\"accel\": \"none\" on meshes: a warning" grep -qxF "glint: ${BRUTE/warning:/warning: \"accel\": \"none\":}" "$TMP/err"
+run --quiet --accel none -o "$TMP/warn.ppm" "$DATA/warn.json"
+check "--accel none on meshes: silenced by --quiet" test ! -s "$TMP/err"
+run --accel none -o "$TMP/brute.ppm" "$DATA/tiny.json"
+check "--accel none without meshes: no warning" test "$(grep -c warning "$TMP/err")" -eq 0
 
 summary
