@@ -32,8 +32,9 @@ static bool any_emitter(const glint_scene *s) {
     return false;
 }
 
-// Whether the background can light anything: a sky, or a constant colour that is not black.
+// Whether the background can light anything: a sky, an environment map, or a constant colour that is not black.
 static bool background_lights(const render_settings *rs) {
+    if (rs->background == BACKGROUND_ENVMAP) return true;
     if (rs->background == BACKGROUND_SKY) return v3_max_comp(rs->sky_horizon) > 0.0f || v3_max_comp(rs->sky_zenith) > 0.0f;
     return v3_max_comp(rs->background_color) > 0.0f;
 }
