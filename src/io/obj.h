@@ -46,6 +46,15 @@
 
 /// Concave faces with more corners than this are fan-triangulated (ear clipping is quadratic).
 #define OBJ_MAX_EAR_CLIP 256
+/// Largest OBJ file read, in bytes (2 GiB): a mesh takes memory in proportion to its file.
+#define OBJ_MAX_FILE_BYTES ((size_t)1 << 31)
+/// Largest MTL file read, in bytes (64 MiB): material libraries are small.
+#define MTL_MAX_FILE_BYTES ((size_t)64 << 20)
+/// Longest line of an OBJ or MTL file, in bytes (32 MiB): a face of OBJ_MAX_FACE_CORNERS corners written
+/// v/vt/vn with 8-digit indices fits.
+#define OBJ_MAX_LINE_BYTES ((size_t)32 << 20)
+/// Most corners of one face (2^20): triangulating a face takes 36 bytes of scratch memory per corner.
+#define OBJ_MAX_FACE_CORNERS (1 << 20)
 
 /// One material slot of a mesh, in the order of first `usemtl`; mesh_triangle.material indexes these.
 typedef struct obj_material {
