@@ -307,6 +307,17 @@ static void test_real_files(void) {
 
 static void write_bytes(const char *path, const void *data, size_t n) { (void)tmp_write(path, data, n); }
 
+// Makes the baseline frame header (SOF0) of a JPEG declare side x side pixels; false when it has none.
+static bool patch_jpeg_size(unsigned char *jpg, size_t n, unsigned side) {
+    for (size_t i = 2; i + 9 < n && jpg[i] == 0xff; i += 2 + ((size_t)jpg[i + 2] << 8 | jpg[i + 3]))
+        if (jpg[i + 1] == 0xc0) {
+            jpg[i + 5] = jpg[i + 7] = (unsigned char)(side >> 8); // height, then width, big-endian
+            jpg[i + 6] = jpg[i + 8] = (unsigned char)(side & 0xffu);
+            return true;
+        }
+    return false;
+}
+
 // The CRC-32 of PNG chunks (ISO 3309, the polynomial 0xEDB88320 bit by bit): patched headers need a new one.
 static uint32_t crc32_png(const unsigned char *p, size_t n) {
     uint32_t c = 0xFFFFFFFFu;
@@ -352,25 +363,11 @@ static void test_errors(void) {
     static unsigned char jpg[1 << 16];
     n = f ? fread(jpg, 1, sizeof jpg, f) : 0;
     if (f) fclose(f);
-    bool patched = false;
-    for (size_t i = 2; i + 9 < n && !patched && jpg[i] == 0xff; i += 2 + ((size_t)jpg[i + 2] << 8 | jpg[i + 3]))
-        if (jpg[i + 1] == 0xc0) {
-            jpg[i + 5] = jpg[i + 7] = 0xfd; // height and width 0xfde8 = 65000
-            jpg[i + 6] = jpg[i + 8] = 0xe8;
-            patched = true;
-        }
-    CHECK(patched);
+    CHECK(patch_jpeg_size(jpg, n, 65000));
     write_bytes(tmp_path("huge.jpg"), jpg, n);
     check_error(tmp_path("huge.jpg"), "image size 65000x65000 is not supported, expected at most 16777216 pixels");
     // The same header declaring 8192 x 8192 (2^26 pixels, 1 GiB to decode): over IMAGE_READ_MAX_PIXELS.
-    patched = false;
-    for (size_t i = 2; i + 9 < n && !patched && jpg[i] == 0xff; i += 2 + ((size_t)jpg[i + 2] << 8 | jpg[i + 3]))
-        if (jpg[i + 1] == 0xc0) {
-            jpg[i + 5] = jpg[i + 7] = 0x20; // height and width 0x2000 = 8192
-            jpg[i + 6] = jpg[i + 8] = 0x00;
-            patched = true;
-        }
-    CHECK(patched);
+    CHECK(patch_jpeg_size(jpg, n, 8192));
     write_bytes(tmp_path("bomb.jpg"), jpg, n);
     check_error(tmp_path("bomb.jpg"), "image size 8192x8192 is not supported, expected at most 16777216 pixels");
     // A PNG bomb: a small image whose header (with its checksum redone) declares 8192 x 8192.
