@@ -88,6 +88,8 @@ typedef struct glint_render_stats {
 /// Called from one thread at a time with the fraction of work done, a few times a second at most.
 typedef void (*glint_progress_fn)(double fraction_done, void *user);
 
+/// Largest scene text accepted, in bytes (256 MiB); a reader of other sources (standard input) stops there.
+#define GLINT_MAX_SCENE_BYTES ((size_t)256 << 20)
 /// Reads and validates a JSON scene file; on failure returns GLINT_ERR_INPUT (GLINT_ERR_RENDER when memory
 /// runs out) with a message in *err, and *out is NULL.
 GLINT_API glint_status glint_scene_load(const char *path, glint_scene **out, glint_error *err);

@@ -374,6 +374,13 @@ static const warn_case warn_cases[] = {
     {TRI "v 1 1 0\nf 1 2 4 3\nf 1 2 1 2\n", NULL, 2, {"@/w.obj:6: warning: face has zero area; skipped"}},
     {"mtllib nothere.mtl\n" TRI "f 1 2 3\n", NULL, 1,
      {"@/w.obj:1: warning: cannot open material library 'nothere.mtl' (No such file or directory); its materials are undefined"}},
+    // Devices and FIFOs are not directories: say what they are.
+    {"mtllib /dev/zero\n" TRI "f 1 2 3\n", NULL, 1,
+     {"@/w.obj:1: warning: cannot open material library '/dev/zero' (not a regular file); its materials are undefined"}},
+    // A long name keeps its end, where the file name is.
+    {"mtllib no/such/directory/of/material/libraries/shapes.mtl\n" TRI "f 1 2 3\n", NULL, 1,
+     {"@/w.obj:1: warning: cannot open material library '...rectory/of/material/libraries/shapes.mtl' (No such file or "
+      "directory); its materials are undefined"}},
     {TRI "usemtl ghost\nf 1 2 3\n", NULL, 1,
      {"@/w.obj:4: warning: material 'ghost' is not defined in any material library; using the default material"}},
     {"mtllib w.mtl\n" TRI "usemtl a\nf 1 2 3\n", "newmtl a\nmap_Kd nothere.png\n", 1,
@@ -584,6 +591,80 @@ static void test_polygons(void) {
     free(big);
 }
 
+// A convex polygon above the ear-clipping limit whose corners, rounded to float, make tiny dents: a fan
+// without a warning (it is not concave; the fan is right). Written with 9 digits, as exact as a float.
+static void test_large_convex_face(void) {
+    enum { N = 100000 };
+    size_t cap = (size_t)N * 48 + 64, k = 0;
+    char *text = malloc(cap);
+    CHECK(text != NULL);
+    if (!text) return;
+    for (int i = 0; i < N; i++) {
+        double a = 2 * 3.14159265358979 * i / N;
+        k += (size_t)snprintf(text + k, cap - k, "v %.9g %.9g 0\n", 3.0 + cos(a), 5.0 + sin(a));
+    }
+    k += (size_t)snprintf(text + k, cap - k, "f");
+    for (int i = 1; i <= N; i++) k += (size_t)snprintf(text + k, cap - k, " %d", i);
+    snprintf(text + k, cap - k, "\n");
+    warnings w;
+    memset(&w, 0, sizeof w);
+    obj_options opt = {collect, &w, false};
+    obj_model m;
+    glint_error err;
+    CHECK(obj_parse("circle.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
+    // A fan of N - 2 triangles, less the few that rounding made exactly flat (dropped: they have no area).
+    CHECK(m.mesh.triangle_count > N - 100 && m.mesh.triangle_count <= N - 2);
+    CHECK(w.count == 0);
+    if (w.count) fprintf(stderr, "  warning: %s\n", w.msg[0]);
+    obj_model_free(&m);
+    free(text);
+}
+
+// Lines, faces and files beyond the documented limits of obj.h: refused with the limit named, before
+// anything in proportion to them is allocated.
+static void test_limits(void) {
+    obj_model m;
+    glint_error err;
+    // A face of OBJ_MAX_FACE_CORNERS + 1 corners.
+    size_t n = (size_t)OBJ_MAX_FACE_CORNERS + 1, len = 0;
+    char *text = malloc(2 * n + 64);
+    CHECK(text != NULL);
+    if (!text) return;
+    len += (size_t)snprintf(text, 64, "%sf", TRI);
+    for (size_t i = 0; i < n; i++) {
+        text[len++] = ' ';
+        text[len++] = '1';
+    }
+    CHECK(obj_parse("big.obj", text, len, NULL, &m, &err) == GLINT_ERR_INPUT);
+    CHECK(same_string(err.message, "big.obj:4: face has more than 1048576 vertices, expected at most 1048576"));
+    free(text);
+    // A line of OBJ_MAX_LINE_BYTES + 1 bytes (a comment: it would cost nothing, but no real file has one).
+    n = OBJ_MAX_LINE_BYTES + 1;
+    text = malloc(n + 16);
+    CHECK(text != NULL);
+    if (!text) return;
+    memcpy(text, "v 0 0 0\n#", 9);
+    memset(text + 9, 'x', n - 1);
+    CHECK(obj_parse("long.obj", text, n + 8, NULL, &m, &err) == GLINT_ERR_INPUT);
+    CHECK(same_string(err.message, "long.obj:2: line is 33554433 bytes long, expected at most 33554432 (32 MiB)"));
+    free(text);
+    // Files over the size limits (sparse: no disk space is used), refused before they are read.
+    FILE *f = fopen(tmp_path("huge.obj"), "wb");
+    CHECK(f && ftruncate(fileno(f), (off_t)OBJ_MAX_FILE_BYTES + 1) == 0);
+    if (f) fclose(f);
+    warnings w;
+    CHECK(load(tmp_path("huge.obj"), &m, &w, &err) == GLINT_ERR_INPUT);
+    CHECK(same_string(err.message, expand("@/huge.obj: the OBJ file is larger than 2147483648 bytes (2 GiB)")));
+    remove(tmp_path("huge.obj"));
+    f = fopen(tmp_path("huge.mtl"), "wb");
+    CHECK(f && ftruncate(fileno(f), (off_t)MTL_MAX_FILE_BYTES + 1) == 0);
+    if (f) fclose(f);
+    write_text("lib.obj", "mtllib huge.mtl\n" TRI "f 1 2 3\n");
+    CHECK(load(tmp_path("lib.obj"), &m, &w, &err) == GLINT_ERR_INPUT);
+    CHECK(same_string(err.message, expand("@/lib.obj:1: material library 'huge.mtl' is larger than 67108864 bytes (64 MiB)")));
+    remove(tmp_path("huge.mtl"));
+}
+
 static void test_materials_in_obj(void) {
     // usemtl before mtllib, two libraries on one line, a library whose name has a space, repeated mtllib,
     // faces before any usemtl, and a name defined in two libraries (the first wins).
@@ -698,6 +779,8 @@ int main(void) {
     test_texture_paths();
     test_index_forms();
     test_polygons();
+    test_large_convex_face();
+    test_limits();
     test_materials_in_obj();
     test_comments_and_blanks();
     test_numbers_match_strtof();

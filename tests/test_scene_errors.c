@@ -60,6 +60,13 @@ static const bad_scene cases[] = {
      "bad.json:1:15: unexpected control character U+0000 after the end of the top-level value; expected end of file"},
     {__LINE__, BYTES("{\"materials\": {\"a\0\": {}}}"),
      "bad.json:1:18: NUL byte inside a string; strings cannot contain U+0000"},
+    // Invisible characters are named by their code point (one byte-order mark at the start is allowed).
+    {__LINE__, TEXT("\xEF\xBB\xBF\xEF\xBB\xBF{}"),
+     "bad.json:1:1: expected a value (object, array, string, number, true, false or null), got byte-order mark U+FEFF"},
+    {__LINE__, TEXT("{}\xEF\xBB\xBF"),
+     "bad.json:1:3: unexpected byte-order mark U+FEFF after the end of the top-level value; expected end of file"},
+    {__LINE__, TEXT("{\xE2\x80\x8B}"),
+     "bad.json:1:2: expected a key in double quotes or '}', got invisible character U+200B"},
     {__LINE__, TEXT("{\"materials\": {\"caf\xe9\": {}}}"),
      "bad.json:1:20: invalid UTF-8 byte 0xE9 in a string; the file must be UTF-8"},
     {__LINE__, TEXT("{\"render\": {\"seed\": 1234567890123456789012345678901234567890123456789012345678901234567890}}"),
@@ -110,6 +117,11 @@ static const bad_scene cases[] = {
      "bad.json:1:26: \"max_depth\" must be an integer in [0, 10000], got -1"},
     {__LINE__, TEXT("{\"render\": {\"seed\": 9007199254740994}}"),
      "bad.json:1:21: \"seed\" must be an integer in [0, 9007199254740992], got 9007199254740994"},
+    // The double rounds 2^53 + 1 to 2^53: the text itself must be in range, as the command line's --seed checks.
+    {__LINE__, TEXT("{\"render\": {\"seed\": 9007199254740993}}"),
+     "bad.json:1:21: \"seed\" must be an integer in [0, 9007199254740992], got 9007199254740993"},
+    {__LINE__, TEXT("{\"render\": {\"width\": 64.00000000000000001}}"),
+     "bad.json:1:22: \"width\" must be an integer in [1, 16384], got 64.00000000000000001"},
     {__LINE__, TEXT("{\"render\": {\"spp\": null}}"),
      "bad.json:1:20: \"spp\" must be an integer in [1, 1000000], got null"},
     {__LINE__, TEXT("{\"render\": {\"output\": \"gamma\"}}"),
@@ -344,6 +356,12 @@ static const bad_scene cases[] = {
                     " \"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [3e38, 0, 0], \"v\": [0, 3e38, 0], "
                     "\"material\": \"m\"}]}"),
      "bad.json:2:71: the quad is too large: its area overflows single precision"},
+    // 1e20 fits in a float; its square, which normalising u x v takes, does not.
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\"}},\n"
+                    " \"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1e10, 0, 0], \"v\": [0, 1e10, 0], "
+                    "\"material\": \"m\"}]}"),
+     "bad.json:2:71: the quad is too large: its area 1e+20 exceeds 1.84e+19, the largest whose square fits in single "
+     "precision"},
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1, 0, 0], \"material\": \"m\"}]}"),
      "bad.json:1:14: missing required key \"v\" in object 0 (quad)"},
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"box\", \"min\": [0, 5, 0], \"max\": [1, 3, 1], "
@@ -497,6 +515,14 @@ static void test_referenced_files(void) {
     check_parse(__LINE__, "bad.json",
                 "{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": {\"type\": \"image\", \"file\": "
                 "\"no.jpg\"}}}}",
+                want);
+    // A long path keeps its end, where a misspelt file name is.
+    snprintf(want, sizeof want,
+             "bad.json:1:39: mesh file \"...scenes/meshes/stanford-bunny/stanfrd-bunny/stanfrd-bunny.obj\": cannot open: %s",
+             strerror(ENOENT));
+    check_parse(__LINE__, "bad.json",
+                "{\"objects\": [{\"type\": \"mesh\", \"file\": "
+                "\"../../../scenes/meshes/stanford-bunny/stanfrd-bunny/stanfrd-bunny.obj\"}]}",
                 want);
     // Devices and other special files are refused before anything reads them.
     check_parse(__LINE__, "bad.json", "{\"objects\": [{\"type\": \"mesh\", \"file\": \"/dev/null\"}]}",

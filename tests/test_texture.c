@@ -307,6 +307,27 @@ static void test_real_files(void) {
 
 static void write_bytes(const char *path, const void *data, size_t n) { (void)tmp_write(path, data, n); }
 
+// Makes the baseline frame header (SOF0) of a JPEG declare side x side pixels; false when it has none.
+static bool patch_jpeg_size(unsigned char *jpg, size_t n, unsigned side) {
+    for (size_t i = 2; i + 9 < n && jpg[i] == 0xff; i += 2 + ((size_t)jpg[i + 2] << 8 | jpg[i + 3]))
+        if (jpg[i + 1] == 0xc0) {
+            jpg[i + 5] = jpg[i + 7] = (unsigned char)(side >> 8); // height, then width, big-endian
+            jpg[i + 6] = jpg[i + 8] = (unsigned char)(side & 0xffu);
+            return true;
+        }
+    return false;
+}
+
+// The CRC-32 of PNG chunks (ISO 3309, the polynomial 0xEDB88320 bit by bit): patched headers need a new one.
+static uint32_t crc32_png(const unsigned char *p, size_t n) {
+    uint32_t c = 0xFFFFFFFFu;
+    for (size_t i = 0; i < n; i++) {
+        c ^= p[i];
+        for (int k = 0; k < 8; k++) c = c & 1u ? 0xEDB88320u ^ (c >> 1) : c >> 1;
+    }
+    return c ^ 0xFFFFFFFFu;
+}
+
 static void check_error(const char *path, const char *expected_suffix) {
     image_rgb img = {7, 7, NULL};
     glint_error err;
@@ -342,16 +363,34 @@ static void test_errors(void) {
     static unsigned char jpg[1 << 16];
     n = f ? fread(jpg, 1, sizeof jpg, f) : 0;
     if (f) fclose(f);
-    bool patched = false;
-    for (size_t i = 2; i + 9 < n && !patched && jpg[i] == 0xff; i += 2 + ((size_t)jpg[i + 2] << 8 | jpg[i + 3]))
-        if (jpg[i + 1] == 0xc0) {
-            jpg[i + 5] = jpg[i + 7] = 0xfd; // height and width 0xfde8 = 65000
-            jpg[i + 6] = jpg[i + 8] = 0xe8;
-            patched = true;
-        }
-    CHECK(patched);
+    CHECK(patch_jpeg_size(jpg, n, 65000));
     write_bytes(tmp_path("huge.jpg"), jpg, n);
-    check_error(tmp_path("huge.jpg"), "image size 65000x65000 is not supported, expected at most 67108864 pixels");
+    check_error(tmp_path("huge.jpg"), "image size 65000x65000 is not supported, expected at most 16777216 pixels");
+    // The same header declaring 8192 x 8192 (2^26 pixels, 1 GiB to decode): over IMAGE_READ_MAX_PIXELS.
+    CHECK(patch_jpeg_size(jpg, n, 8192));
+    write_bytes(tmp_path("bomb.jpg"), jpg, n);
+    check_error(tmp_path("bomb.jpg"), "image size 8192x8192 is not supported, expected at most 16777216 pixels");
+    // A PNG bomb: a small image whose header (with its checksum redone) declares 8192 x 8192.
+    static const unsigned char grey[4] = {0, 64, 128, 255};
+    CHECK(write_png(tmp_path("small.png"), grey, 2, 2, PNG_FORMAT_GRAY));
+    static unsigned char png[4096];
+    f = fopen(tmp_path("small.png"), "rb");
+    n = f ? fread(png, 1, sizeof png, f) : 0;
+    if (f) fclose(f);
+    CHECK(n > 33 && memcmp(png + 12, "IHDR", 4) == 0);
+    const unsigned char side[4] = {0, 0, 0x20, 0};
+    memcpy(png + 16, side, 4);
+    memcpy(png + 20, side, 4);
+    uint32_t crc = crc32_png(png + 12, 17); // over the chunk type and its 13 bytes of data
+    for (int k = 0; k < 4; k++) png[29 + k] = (unsigned char)(crc >> (24 - 8 * k));
+    write_bytes(tmp_path("bomb.png"), png, n);
+    check_error(tmp_path("bomb.png"), "image size 8192x8192 is not supported, expected at most 16777216 pixels");
+    // A file over IMAGE_READ_MAX_FILE_BYTES (sparse, no disk space used) is refused before it is read.
+    f = fopen(tmp_path("huge.png"), "wb");
+    CHECK(f && fwrite(png, 1, 8, f) == 8 && ftruncate(fileno(f), (off_t)IMAGE_READ_MAX_FILE_BYTES + 1) == 0);
+    if (f) fclose(f);
+    check_error(tmp_path("huge.png"), "the image file is larger than 268435456 bytes (256 MiB)");
+    remove(tmp_path("huge.png"));
     glint_error err;
     image_rgb img;
     CHECK(image_read(tmp_path("missing.png"), &img, &err) == GLINT_ERR_INPUT);

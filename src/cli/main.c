@@ -3,6 +3,8 @@
 #include "cli.h"
 #include "glint.h"
 
+#include <errno.h>
+#include <math.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -80,32 +82,50 @@ static const char NOTHING_RENDERED[] = "glint: interrupted before any sample was
 
 static int exit_code(glint_status st) { return st == GLINT_ERR_INPUT ? 2 : 1; }
 
-// Reads all of standard input; NULL (with errno) on failure.
-static char *read_stdin(size_t *length) {
+// Reads standard input as a scene: at most GLINT_MAX_SCENE_BYTES + 1 bytes, one more than a scene may have,
+// so that a larger input (even an endless one) is refused without reading or holding the rest. NULL on
+// failure, with the message in *err and the status in *st (GLINT_ERR_RENDER when memory runs out).
+static char *read_stdin(size_t *length, glint_status *st, glint_error *err) {
+    const size_t most = GLINT_MAX_SCENE_BYTES + 1;
     size_t cap = 1 << 16, n = 0;
     char *buf = malloc(cap);
     while (buf) {
         n += fread(buf + n, 1, cap - n, stdin);
-        if (n < cap) break;
-        char *bigger = realloc(buf, cap * 2);
-        if (!bigger) { free(buf); return NULL; }
-        buf = bigger;
-        cap *= 2;
+        if (n < cap || cap == most) break;
+        size_t bigger = cap > most / 2 ? most : cap * 2;
+        char *grown = realloc(buf, bigger);
+        if (!grown) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        buf = grown;
+        cap = bigger;
     }
-    if (buf && ferror(stdin)) { free(buf); return NULL; }
-    *length = n;
-    return buf;
+    *st = GLINT_ERR_INPUT;
+    if (!buf || (ferror(stdin) && errno == ENOMEM)) {
+        snprintf(err->message, sizeof err->message, "standard input: out of memory while reading the scene");
+        *st = GLINT_ERR_RENDER;
+    } else if (ferror(stdin)) {
+        snprintf(err->message, sizeof err->message, "standard input: cannot read the scene");
+    } else if (n > GLINT_MAX_SCENE_BYTES) {
+        snprintf(err->message, sizeof err->message, "standard input: the scene is larger than %zu bytes (%zu MiB)",
+                 GLINT_MAX_SCENE_BYTES, GLINT_MAX_SCENE_BYTES >> 20);
+    } else {
+        *length = n;
+        return buf;
+    }
+    free(buf);
+    return NULL;
 }
 
 static glint_status load_scene(const char *path, glint_scene **scene, glint_error *err) {
     if (strcmp(path, "-") != 0) return glint_scene_load(path, scene, err);
     size_t length = 0;
-    char *text = read_stdin(&length);
-    if (!text) {
-        snprintf(err->message, sizeof err->message, "standard input: cannot read the scene");
-        return GLINT_ERR_INPUT;
-    }
-    glint_status st = glint_scene_parse("<stdin>", text, length, scene, err);
+    glint_status st;
+    char *text = read_stdin(&length, &st, err);
+    if (!text) return st;
+    st = glint_scene_parse("<stdin>", text, length, scene, err);
     free(text);
     return st;
 }
@@ -186,9 +206,16 @@ int main(int argc, char **argv) {
         int w, h;
         const float *rgb;
         glint_image_info(img, &w, &h, &rgb);
-        double total = (double)w * (double)h;
-        fprintf(stderr, "glint: interrupted; writing the %.1f samples per pixel completed so far to %s\n",
-                (double)stats.samples / total, opt.output);
+        // The mean to one decimal when it is a whole number; else to as many digits as it takes not to look
+        // whole (255 of 256 pixels done: 0.996, not 1.0).
+        unsigned long long pixels = (unsigned long long)w * (unsigned long long)h, done = stats.samples;
+        double mean = (double)done / (double)pixels;
+        char shown[32];
+        int digits = 1;
+        snprintf(shown, sizeof shown, "%.1f", mean);
+        while (done % pixels && digits < 12 && fmod(strtod(shown, NULL), 1.0) == 0.0)
+            snprintf(shown, sizeof shown, "%.*f", ++digits, mean);
+        fprintf(stderr, "glint: interrupted; writing the %s samples per pixel completed so far to %s\n", shown, opt.output);
     }
 
     if (strcmp(opt.output, "-") != 0) block_stop_signals();

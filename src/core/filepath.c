@@ -1,6 +1,8 @@
 // filepath.c — directory part, absolute test and joining of POSIX paths.
 #include "core/filepath.h"
 
+#include <errno.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -19,4 +21,24 @@ char *filepath_join(const char *dir, size_t dir_len, const char *rel, size_t rel
     memcpy(p + d, rel, rel_len);
     p[d + rel_len] = '\0';
     return p;
+}
+
+int filepath_problem(const char *path, struct stat *st) {
+    if (stat(path, st) != 0) return errno ? errno : ENOENT;
+    if (S_ISDIR(st->st_mode)) return EISDIR;
+    return S_ISREG(st->st_mode) ? 0 : -1;
+}
+
+const char *filepath_problem_text(int problem) { return problem > 0 ? strerror(problem) : "not a regular file"; }
+
+const char *filepath_tail(const char *path, size_t limit, char *buf, size_t size) {
+    size_t n = strlen(path);
+    if (n <= limit) {
+        snprintf(buf, size, "%s", path);
+        return buf;
+    }
+    const char *tail = path + n - limit;
+    while (*tail && ((unsigned char)*tail & 0xC0u) == 0x80u) tail++; // not inside a UTF-8 sequence
+    snprintf(buf, size, "...%s", tail);
+    return buf;
 }

@@ -6,6 +6,7 @@
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <sys/stat.h>
 
 /// The length of the directory part of `path`, up to and including its last '/': 7 for "scenes/a.json",
 /// 0 for "a.json".
@@ -15,5 +16,13 @@ bool filepath_is_absolute(const char *path, size_t len);
 /// A new NUL-terminated string: rel[0, rel_len) as it is when absolute, else the first dir_len bytes of
 /// `dir` followed by it. NULL when out of memory; free with free().
 char *filepath_join(const char *dir, size_t dir_len, const char *rel, size_t rel_len);
+/// Why `path` cannot be read as a file: 0 for a regular file (*st then holds it), an errno value (EISDIR for
+/// a directory), or -1 for a special file (device, FIFO, socket), which could block or never end.
+int filepath_problem(const char *path, struct stat *st);
+/// The text of a filepath_problem value: strerror's, or "not a regular file" for -1.
+const char *filepath_problem_text(int problem);
+/// `path` for a message, at most `limit` bytes of it: when longer, "..." and its last bytes (the file name
+/// and the directories nearest it, where a misspelling matters), cut on a UTF-8 boundary. Returns buf.
+const char *filepath_tail(const char *path, size_t limit, char *buf, size_t size);
 
 #endif

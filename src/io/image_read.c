@@ -11,6 +11,7 @@
 #include <sys/stat.h>
 
 #include <jpeglib.h>
+#include <jerror.h>
 #include <png.h>
 
 #if defined(__GNUC__)
@@ -37,13 +38,25 @@ static bool size_ok(const char *name, size_t w, size_t h, glint_error *err) {
     return false;
 }
 
-// Checks the size and allocates the float pixels; NULL (with a message) when too large or out of memory.
-static float *alloc_pixels(const char *name, size_t w, size_t h, glint_error *err) {
-    if (!size_ok(name, w, h, err)) return NULL;
-    float *p = malloc(w * h * 3 * sizeof *p);
-    if (!p) set_error(err, "%s: out of memory for a %zux%zu image", name, w, h);
-    return p;
+// Checks the size and allocates the float pixels into *out: GLINT_ERR_INPUT (with a message) when too
+// large, GLINT_ERR_RENDER when out of memory.
+static glint_status alloc_pixels(const char *name, size_t w, size_t h, float **out, glint_error *err) {
+    *out = NULL;
+    if (!size_ok(name, w, h, err)) return GLINT_ERR_INPUT;
+    *out = malloc(w * h * 3 * sizeof **out);
+    if (*out) return GLINT_OK;
+    set_error(err, "%s: out of memory for a %zux%zu image", name, w, h);
+    return GLINT_ERR_RENDER;
 }
+
+// "name: out of memory" with GLINT_ERR_RENDER: running out of memory is a resource failure, not bad input.
+static glint_status out_of_memory(const char *name, glint_error *err) {
+    set_error(err, "%s: out of memory", name);
+    return GLINT_ERR_RENDER;
+}
+
+// libpng's simplified API reports its allocation failures only in words: "Out of memory", "...: out of memory".
+static bool png_out_of_memory(const png_image *img) { return strstr(img->message, "ut of memory") != NULL; }
 
 static glint_status decode_png(const char *name, const unsigned char *data, size_t size, image_rgb *out,
                                glint_error *err) {
@@ -51,28 +64,30 @@ static glint_status decode_png(const char *name, const unsigned char *data, size
     memset(&img, 0, sizeof img);
     img.version = PNG_IMAGE_VERSION;
     if (!png_image_begin_read_from_memory(&img, data, size)) {
-        set_error(err, "%s: cannot decode PNG: %s", name, img.message);
+        glint_status st = png_out_of_memory(&img) ? out_of_memory(name, err) : GLINT_ERR_INPUT;
+        if (st == GLINT_ERR_INPUT) set_error(err, "%s: cannot decode PNG: %s", name, img.message);
         png_image_free(&img);
-        return GLINT_ERR_INPUT;
+        return st;
     }
     // 8-bit sRGB RGBA whatever the file holds (palette, grey, 16 bit); alpha is not used by textures.
     img.format = PNG_FORMAT_RGBA;
-    float *pixels = alloc_pixels(name, img.width, img.height, err);
-    if (!pixels) { png_image_free(&img); return GLINT_ERR_INPUT; }
+    float *pixels;
+    glint_status st = alloc_pixels(name, img.width, img.height, &pixels, err);
+    if (st != GLINT_OK) { png_image_free(&img); return st; }
     size_t n = (size_t)img.width * img.height;
     unsigned char *buf = malloc(n * 4);
     if (!buf) {
-        set_error(err, "%s: out of memory", name);
         free(pixels);
         png_image_free(&img);
-        return GLINT_ERR_INPUT;
+        return out_of_memory(name, err);
     }
     if (!png_image_finish_read(&img, NULL, buf, 0, NULL)) {
-        set_error(err, "%s: cannot decode PNG: %s", name, img.message);
+        st = png_out_of_memory(&img) ? out_of_memory(name, err) : GLINT_ERR_INPUT;
+        if (st == GLINT_ERR_INPUT) set_error(err, "%s: cannot decode PNG: %s", name, img.message);
         free(buf);
         free(pixels);
         png_image_free(&img);
-        return GLINT_ERR_INPUT;
+        return st;
     }
     float table[256];
     for (int i = 0; i < 256; i++) table[i] = image_srgb_to_linear((unsigned char)i);
@@ -108,17 +123,18 @@ static void jpeg_quiet(j_common_ptr cinfo) { (void)cinfo; }
 static glint_status decode_jpeg(const char *name, const unsigned char *data, size_t size, image_rgb *out,
                                 glint_error *err) {
     jpeg_state *st = calloc(1, sizeof *st);
-    if (!st) { set_error(err, "%s: out of memory", name); return GLINT_ERR_INPUT; }
+    if (!st) return out_of_memory(name, err);
     st->cinfo.err = jpeg_std_error(&st->mgr);
     st->mgr.error_exit = jpeg_fail;
     st->mgr.output_message = jpeg_quiet;
     if (setjmp(st->jump)) {
-        set_error(err, "%s: cannot decode JPEG: %s", name, st->message);
+        glint_status failed = st->mgr.msg_code == JERR_OUT_OF_MEMORY ? out_of_memory(name, err) : GLINT_ERR_INPUT;
+        if (failed == GLINT_ERR_INPUT) set_error(err, "%s: cannot decode JPEG: %s", name, st->message);
         jpeg_destroy_decompress(&st->cinfo);
         free(st->row);
         free(st->pixels);
         free(st);
-        return GLINT_ERR_INPUT;
+        return failed;
     }
     jpeg_create_decompress(&st->cinfo);
     st->cinfo.client_data = st;
@@ -127,16 +143,16 @@ static glint_status decode_jpeg(const char *name, const unsigned char *data, siz
     st->cinfo.out_color_space = JCS_RGB; // grey and YCbCr alike come out as RGB
     size_t w = st->cinfo.image_width, h = st->cinfo.image_height;
     // Check the size before jpeg_start_decompress, which allocates whole-image buffers for progressive files.
+    glint_status status = GLINT_ERR_INPUT;
     if (size_ok(name, w, h, err)) {
         jpeg_start_decompress(&st->cinfo);
         w = st->cinfo.output_width;
         h = st->cinfo.output_height;
         if (st->cinfo.output_components != 3)
             set_error(err, "%s: cannot decode JPEG: %d colour components, expected 3", name, st->cinfo.output_components);
-        else if ((st->pixels = alloc_pixels(name, w, h, err)) && !(st->row = malloc(w * 3)))
-            set_error(err, "%s: out of memory", name);
+        else if ((status = alloc_pixels(name, w, h, &st->pixels, err)) == GLINT_OK && !(st->row = malloc(w * 3)))
+            status = out_of_memory(name, err);
     }
-    glint_status status = st->row ? GLINT_OK : GLINT_ERR_INPUT;
     if (status != GLINT_OK) {
         jpeg_destroy_decompress(&st->cinfo);
         free(st->row);
@@ -180,6 +196,7 @@ glint_status image_read(const char *path, image_rgb *out, glint_error *err) {
     out->pixels = NULL;
     FILE *f = fopen(path, "rb");
     if (!f) {
+        if (errno == ENOMEM) return out_of_memory(path, err);
         set_error(err, "%s: cannot open: %s", path, strerror(errno));
         return GLINT_ERR_INPUT;
     }
@@ -190,21 +207,30 @@ glint_status image_read(const char *path, image_rgb *out, glint_error *err) {
         fclose(f);
         return GLINT_ERR_INPUT;
     }
-    size_t cap = 1 << 16, len = 0;
-    unsigned char *buf = malloc(cap);
+    // Read up to one byte past the limit, so that a file that grew since fstat is noticed too.
+    size_t cap = 1 << 16, len = 0, most = IMAGE_READ_MAX_FILE_BYTES + 1;
+    bool too_large = (unsigned long long)st.st_size > IMAGE_READ_MAX_FILE_BYTES;
+    unsigned char *buf = too_large ? NULL : malloc(cap);
     while (buf) {
         len += fread(buf + len, 1, cap - len, f);
-        if (len < cap) break;
-        unsigned char *bigger = cap <= SIZE_MAX / 2 ? realloc(buf, cap * 2) : NULL;
+        if (len < cap || cap == most) break;
+        size_t grown_cap = cap > most / 2 ? most : cap * 2;
+        unsigned char *bigger = realloc(buf, grown_cap);
         if (!bigger) { free(buf); buf = NULL; break; }
         buf = bigger;
-        cap *= 2;
+        cap = grown_cap;
     }
     bool failed = buf && ferror(f);
     fclose(f);
+    if (too_large || len > IMAGE_READ_MAX_FILE_BYTES) {
+        set_error(err, "%s: the image file is larger than %zu bytes (%zu MiB)", path, (size_t)IMAGE_READ_MAX_FILE_BYTES,
+                  (size_t)IMAGE_READ_MAX_FILE_BYTES >> 20);
+        free(buf);
+        return GLINT_ERR_INPUT;
+    }
     if (!buf) {
         set_error(err, "%s: out of memory while reading", path);
-        return GLINT_ERR_INPUT;
+        return GLINT_ERR_RENDER;
     }
     if (failed) {
         set_error(err, "%s: read error", path);

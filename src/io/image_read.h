@@ -7,11 +7,16 @@
 
 #include <stddef.h>
 
-/// Largest image accepted, in pixels (8192 x 8192): a texture must not exhaust memory.
-#define IMAGE_READ_MAX_PIXELS ((size_t)1 << 26)
+/// Largest image accepted, in pixels (2^24: 16 M, e.g. 8192 x 2048 or 4096 x 4096), checked against the
+/// size the file declares before anything is allocated: decoding takes up to 16 bytes per pixel (linear
+/// RGB floats, and for PNG an 8-bit RGBA copy), 256 MiB at the limit.
+#define IMAGE_READ_MAX_PIXELS ((size_t)1 << 24)
+/// Largest image file read, in bytes (256 MiB): more than any PNG or JPEG within the pixel limit needs.
+#define IMAGE_READ_MAX_FILE_BYTES ((size_t)256 << 20)
 
 /// Reads a PNG or JPEG file (recognised by its first bytes, not its name), decodes sRGB to linear.
-/// On failure returns GLINT_ERR_INPUT with "path: what is wrong" in *err and leaves *out empty.
+/// On failure returns GLINT_ERR_INPUT with "path: what is wrong" in *err and leaves *out empty;
+/// GLINT_ERR_RENDER with "path: out of memory ..." when memory runs out.
 glint_status image_read(const char *path, image_rgb *out, glint_error *err);
 /// The same from memory; `name` is used in messages.
 glint_status image_read_memory(const char *name, const unsigned char *data, size_t size, image_rgb *out,

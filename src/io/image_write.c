@@ -8,6 +8,7 @@
 
 #include <errno.h>
 #include <fcntl.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -186,12 +187,15 @@ static size_t dir_length(const char *path) {
 }
 
 // "dir/.name.tmp-XXXXXX" next to path, so that rename() stays within one file system; NULL when out of memory.
+// The name part is cut so that the whole fits in NAME_MAX bytes, as the output's own name does.
 static char *temp_name_for(const char *path) {
     size_t dir_len = dir_length(path);
     const char *base = path + dir_len;
-    size_t n = dir_len + 1 + strlen(base) + sizeof ".tmp-XXXXXX";
+    size_t base_len = strlen(base), most = NAME_MAX - (sizeof ".tmp-XXXXXX" - 1) - 1;
+    if (base_len > most) base_len = most;
+    size_t n = dir_len + 1 + base_len + sizeof ".tmp-XXXXXX";
     char *tmp = malloc(n);
-    if (tmp) snprintf(tmp, n, "%.*s.%s.tmp-XXXXXX", (int)dir_len, path, base);
+    if (tmp) snprintf(tmp, n, "%.*s.%.*s.tmp-XXXXXX", (int)dir_len, path, (int)base_len, base);
     return tmp;
 }
 

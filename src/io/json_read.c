@@ -51,13 +51,30 @@ static void copy_source(const json_reader *rd, size_t from, size_t to, size_t li
     snprintf(buf, size, "%.*s%s", (int)n, rd->text + from, cut ? ellipsis : "");
 }
 
-/// The string whose opening quote is at p as the file spells it, quotes included, cut after 40 bytes.
-static const char *describe_string(const json_reader *rd, size_t p, char *buf, size_t size) {
+/// The end of the string whose opening quote is at p: the offset of its closing quote (or of the end).
+static size_t string_end(const json_reader *rd, size_t p) {
     size_t q = p + 1, len = rd->len;
     while (q < len && rd->text[q] != '"') q += rd->text[q] == '\\' ? 2 : 1;
-    if (q > len) q = len;
+    return q > len ? len : q;
+}
+
+/// The string whose opening quote is at p as the file spells it, quotes included, cut after 40 bytes.
+static const char *describe_string(const json_reader *rd, size_t p, char *buf, size_t size) {
+    size_t q = string_end(rd, p), len = rd->len;
     if (q - p > 40) copy_source(rd, p, q, 40, "...\"", buf, size);
     else copy_source(rd, p, q < len ? q + 1 : len, 41, "", buf, size);
+    return buf;
+}
+
+const char *jr_describe_path(const json_reader *rd, jr_val v, char *buf, size_t size) {
+    if (!cJSON_IsString(v.item)) return jr_describe(rd, v, buf, size);
+    size_t p = jr_offset(rd, v.tok), q = string_end(rd, p);
+    if (q - (p + 1) <= JR_PATH_SHOWN) return describe_string(rd, p, buf, size);
+    // Keep the end, where the file name is: start after an escape's backslash or inside a UTF-8 sequence
+    // never, so the excerpt stays valid text.
+    size_t from = q - JR_PATH_SHOWN;
+    while (from < q && (((unsigned char)rd->text[from] & 0xC0u) == 0x80u || rd->text[from - 1] == '\\')) from++;
+    snprintf(buf, size, "\"...%.*s\"", (int)(q - from), rd->text + from);
     return buf;
 }
 
@@ -357,6 +374,48 @@ bool jr_read_double(json_reader *rd, const jr_obj *o, const char *key, bool requ
     return !m || jr_check_number(rd, m->val, key, -1, sp, out);
 }
 
+/// Whether the JSON number at s (the text ends at end) is exactly the integer x: its significant digits, with
+/// trailing zeros moved into the exponent, followed by that many zeros, spell x.
+static bool spells_integer(const char *s, const char *end, long long x) {
+    bool neg = s < end && *s == '-';
+    if (neg) s++;
+    char digits[24];
+    size_t n = 0;
+    long long exp10 = 0;
+    bool fraction = false;
+    for (; s < end && ((*s >= '0' && *s <= '9') || *s == '.'); s++) {
+        if (*s == '.') {
+            fraction = true;
+            continue;
+        }
+        if (fraction) exp10--;
+        if (n == 0 && *s == '0') continue; // leading zeros
+        if (n == sizeof digits) return false; // more significant digits than any long long has
+        digits[n++] = *s;
+    }
+    if (s < end && (*s == 'e' || *s == 'E')) {
+        s++;
+        bool eneg = s < end && *s == '-';
+        if (s < end && (*s == '-' || *s == '+')) s++;
+        long long e = 0;
+        for (; s < end && *s >= '0' && *s <= '9'; s++)
+            if (e < 1000) e = e * 10 + (*s - '0');
+        exp10 += eneg ? -e : e;
+    }
+    while (n > 0 && digits[n - 1] == '0') { // trailing zeros of the digits are a power of ten
+        n--;
+        exp10++;
+    }
+    if (n == 0) return x == 0;
+    if (exp10 < 0 || (long long)n + exp10 > 20 || neg != (x < 0)) return false;
+    char want[24], got[24 + 21];
+    snprintf(want, sizeof want, "%llu", x < 0 ? 0ULL - (unsigned long long)x : (unsigned long long)x);
+    memcpy(got, digits, n);
+    memset(got + n, '0', (size_t)exp10);
+    got[n + (size_t)exp10] = '\0';
+    return strcmp(want, got) == 0;
+}
+
 bool jr_read_int(json_reader *rd, const jr_obj *o, const char *key, bool required, long long lo, long long hi,
                      long long *out) {
     const jr_member *m;
@@ -364,8 +423,10 @@ bool jr_read_int(json_reader *rd, const jr_obj *o, const char *key, bool require
     if (!m) return true;
     const cJSON *it = m->val.item;
     double x = cJSON_IsNumber(it) ? it->valuedouble : NAN;
-    // Integral and in range; both bounds are exact in double (|hi| <= 2^53).
-    if (isfinite(x) && x == floor(x) && x >= (double)lo && x <= (double)hi) {
+    // Integral and in range; both bounds are exact in double (|hi| <= 2^53). The double is the number rounded,
+    // so the text must say that integer exactly: 9007199254740993 rounds to 2^53, 1.0000000000000001 to 1.
+    if (isfinite(x) && x == floor(x) && x >= (double)lo && x <= (double)hi &&
+        spells_integer(rd->text + jr_offset(rd, m->val.tok), rd->text + rd->len, (long long)x)) {
         *out = (long long)x;
         return true;
     }

@@ -114,6 +114,11 @@ bool jr_root(json_reader *rd, const cJSON *root, jr_val *out);
 
 /// The value as the file spells it, for "got ..." clauses: "abc", 1e999, [1, 2], or "an object".
 const char *jr_describe(const json_reader *rd, jr_val v, char *buf, size_t size);
+/// Bytes of a long file name that messages show: its end, after "...".
+#define JR_PATH_SHOWN 60
+/// A string naming a file as the file spells it, with its quotes; a long one keeps its last JR_PATH_SHOWN
+/// bytes (the file name and its nearest directories), after "...". Other values as jr_describe.
+const char *jr_describe_path(const json_reader *rd, jr_val v, char *buf, size_t size);
 /// A key as the file spells it, with its quotes, cut after 40 bytes.
 const char *jr_key_source(const json_reader *rd, uint32_t key_tok, char *buf, size_t size);
 

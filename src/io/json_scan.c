@@ -58,6 +58,13 @@ static size_t utf8_sequence(const unsigned char *s, size_t len, size_t p) {
     return n;
 }
 
+/// Whether code point cp shows as nothing or as a blank: no-break and typographic spaces, zero-width and
+/// direction marks, line and paragraph separators, the soft hyphen and the word joiners.
+static bool is_invisible(unsigned cp) {
+    return cp == 0x00A0 || cp == 0x00AD || cp == 0x1680 || (cp >= 0x2000 && cp <= 0x200F) ||
+           (cp >= 0x2028 && cp <= 0x202F) || (cp >= 0x205F && cp <= 0x2064) || cp == 0x3000;
+}
+
 /// Describes what stands at p for a "got ..." clause: a quoted word or character, or "end of file".
 static const char *describe_at(const scanner *sc, size_t p, char *buf, size_t size) {
     if (p >= sc->len) return "end of file";
@@ -71,7 +78,13 @@ static const char *describe_at(const scanner *sc, size_t p, char *buf, size_t si
         snprintf(buf, size, "control character U+%04X", c);
     } else if (c >= 0x80) {
         size_t n = utf8_sequence(sc->s, sc->len, p);
-        if (n) snprintf(buf, size, "'%.*s'", (int)n, (const char *)sc->s + p);
+        unsigned cp = n ? c & (0x7Fu >> n) : 0;
+        for (size_t i = 1; i < n; i++) cp = cp << 6 | (sc->s[p + i] & 0x3Fu);
+        // Characters that print as nothing (or as a plain space) are named by their code point.
+        if (cp == 0xFEFF) snprintf(buf, size, "byte-order mark U+FEFF");
+        else if (n && cp < 0xA0) snprintf(buf, size, "control character U+%04X", cp);
+        else if (n && is_invisible(cp)) snprintf(buf, size, "invisible character U+%04X", cp);
+        else if (n) snprintf(buf, size, "'%.*s'", (int)n, (const char *)sc->s + p);
         else snprintf(buf, size, "byte 0x%02X (not UTF-8)", c);
     } else {
         snprintf(buf, size, "'%c'", (char)c);

@@ -33,6 +33,7 @@ typedef struct reporter {
     size_t *warnings;
     char ignored[MAX_IGNORED_KEYWORDS][QUOTE_MAX + 4];
     int ignored_count;
+    bool nomem; // the failure is running out of memory: a resource failure (GLINT_ERR_RENDER), not bad input
 } reporter;
 
 typedef struct quoted {
@@ -55,6 +56,15 @@ static quoted quote(const char *s, size_t n) {
     return q;
 }
 
+// A file name fit for a message: as quote(), but a long one keeps its end (the file name), not its start.
+static quoted quote_path(const char *s, size_t n) {
+    if (n <= QUOTE_MAX) return quote(s, n);
+    quoted tail = quote(s + n - QUOTE_MAX, QUOTE_MAX), q;
+    memcpy(q.s, "...", 3);
+    memcpy(q.s + 3, tail.s, QUOTE_MAX + 1);
+    return q;
+}
+
 PRINTF_LIKE(2, 3)
 static bool fail(reporter *r, const char *fmt, ...) {
     if (!r->err) return false;
@@ -65,6 +75,12 @@ static bool fail(reporter *r, const char *fmt, ...) {
     vsnprintf(r->err->message + k, sizeof r->err->message - (size_t)k, fmt, ap);
     va_end(ap);
     return false;
+}
+
+// "file:line: out of memory"; the load then fails with GLINT_ERR_RENDER.
+static bool out_of_memory(reporter *r) {
+    r->nomem = true;
+    return fail(r, "out of memory");
 }
 
 PRINTF_LIKE(3, 4)
@@ -137,7 +153,7 @@ static bool token_is(const char *tok, size_t n, const char *word) {
     return n == k && memcmp(tok, word, k) == 0;
 }
 
-typedef enum num_status { NUM_OK, NUM_MALFORMED, NUM_NOT_FINITE, NUM_RANGE } num_status;
+typedef enum num_status { NUM_OK, NUM_MALFORMED, NUM_NOT_FINITE, NUM_RANGE, NUM_NOMEM } num_status;
 
 static const double pow10_table[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
                                        1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
@@ -152,16 +168,17 @@ static bool float_rounding_unsafe(double d) {
     return (bits & ((UINT64_C(1) << 29) - 1)) == (UINT64_C(1) << 28);
 }
 
-// strtof on a NUL-terminated copy of the token: the rare numbers the exact fast path cannot take.
-static float slow_float(const char *s, size_t n) {
+// |strtof| of a NUL-terminated copy of the token: the rare numbers the exact fast path cannot take. False
+// when there is no memory for the copy of a long token.
+static bool slow_float(const char *s, size_t n, float *out) {
     char small[128];
     char *buf = n < sizeof small ? small : malloc(n + 1);
-    if (!buf) return NAN;
+    if (!buf) return false;
     memcpy(buf, s, n);
     buf[n] = '\0';
-    float f = strtof(buf, NULL);
+    *out = fabsf(strtof(buf, NULL));
     if (buf != small) free(buf);
-    return f;
+    return true;
 }
 
 // Whether s starts with the lower-case word w, ignoring case.
@@ -225,14 +242,16 @@ static num_status parse_float(const char *s, size_t n, float *out) {
     if (m == 0) f = 0.0f;
     else if (exact && m <= (UINT64_C(1) << 53) && exp10 >= -22 && exp10 <= 22) {
         double d = exp10 < 0 ? (double)m / pow10_table[-exp10] : (double)m * pow10_table[exp10];
-        f = float_rounding_unsafe(d) ? fabsf(slow_float(s, n)) : (float)d;
-    } else f = fabsf(slow_float(s, n));
+        f = (float)d;
+        if (float_rounding_unsafe(d) && !slow_float(s, n, &f)) return NUM_NOMEM;
+    } else if (!slow_float(s, n, &f)) return NUM_NOMEM;
     if (!isfinite(f)) return NUM_RANGE;
     *out = neg ? -f : f;
     return NUM_OK;
 }
 
 static bool number_error(reporter *r, num_status st, const char *tok, size_t n) {
+    if (st == NUM_NOMEM) return out_of_memory(r);
     quoted q = quote(tok, n);
     if (st == NUM_NOT_FINITE) return fail(r, "'%s' is not a finite number, expected a decimal number", q.s);
     if (st == NUM_RANGE) return fail(r, "number '%s' is out of the range of a float, expected a magnitude below 3.4e38", q.s);
@@ -304,36 +323,46 @@ static char *join_path(const char *dir, size_t dir_len, const char *name, size_t
     return p;
 }
 
-// 0 when path names a regular file, else an errno value saying why not.
-static int check_file(const char *path) {
+// The whole of a regular file of at most `max` bytes, NUL-terminated; NULL on failure, with *errnum a
+// filepath_problem value (ENOMEM when memory ran out, EFBIG when the file is larger than max).
+static char *read_file(const char *path, size_t max, size_t *len, int *errnum) {
     struct stat st;
-    if (stat(path, &st) != 0) return errno ? errno : ENOENT;
-    return S_ISREG(st.st_mode) ? 0 : EISDIR;
-}
-
-// The whole of a regular file, NUL-terminated; NULL with *errnum set on failure.
-static char *read_file(const char *path, size_t *len, int *errnum) {
-    *errnum = check_file(path);
+    *errnum = filepath_problem(path, &st);
     if (*errnum) return NULL;
+    if ((unsigned long long)st.st_size > max) {
+        *errnum = EFBIG;
+        return NULL;
+    }
     FILE *f = fopen(path, "rb");
     if (!f) {
         *errnum = errno ? errno : EIO;
         return NULL;
     }
-    size_t cap = 0, n = 0;
-    char *buf = NULL;
-    for (;;) {
-        if (!array_reserve((void **)&buf, &cap, n + 65536 + 1, 1)) {
-            *errnum = ENOMEM;
+    // The size is known: one allocation holds the file. Should it grow meanwhile, it is read on (the buffer
+    // doubling) up to max + 1 bytes, enough to tell that it is too large.
+    size_t cap = (size_t)st.st_size + 1, n = 0;
+    char *buf = malloc(cap);
+    while (buf) {
+        n += fread(buf + n, 1, cap - 1 - n, f);
+        if (n > max) {
+            *errnum = EFBIG;
             break;
         }
-        size_t got = fread(buf + n, 1, cap - n - 1, f);
-        n += got;
-        if (got == 0) {
-            if (ferror(f)) *errnum = EIO;
+        if (n < cap - 1) { // a short read: the end of the file, or an error
+            if (ferror(f)) *errnum = errno == ENOMEM ? ENOMEM : EIO;
             break;
         }
+        size_t bigger = cap > max / 2 ? max + 2 : cap * 2;
+        char *grown = realloc(buf, bigger);
+        if (!grown) {
+            free(buf);
+            buf = NULL;
+            break;
+        }
+        buf = grown;
+        cap = bigger;
     }
+    if (!buf && !*errnum) *errnum = ENOMEM;
     fclose(f);
     if (*errnum) {
         free(buf);
@@ -417,7 +446,7 @@ static bool mtl_finish_block(mtl_parser *ps) {
     if (ps->count >= MAX_ELEMENTS || !array_reserve((void **)&ps->out, &ps->cap, ps->count + 1, sizeof *ps->out)) {
         free(b->name);
         free(b->map_kd);
-        return fail(&ps->rep, "out of memory");
+        return out_of_memory(&ps->rep);
     }
     obj_material *m = &ps->out[ps->count];
     m->name = b->name;
@@ -429,7 +458,7 @@ static bool mtl_finish_block(mtl_parser *ps) {
         m->name = NULL;
         free(b->name);
         free(b->map_kd);
-        return fail(&ps->rep, "out of memory");
+        return out_of_memory(&ps->rep);
     }
     ps->count++;
     return true;
@@ -503,20 +532,21 @@ static bool mtl_map_kd(mtl_parser *ps, cursor *c) {
     rest_of_line(c, &file, &n);
     if (n == 0) return fail(&ps->rep, "'map_Kd' needs a file name");
     char *path = join_path(ps->dir, ps->dir_len, file, n);
-    if (!path) return fail(&ps->rep, "out of memory");
+    if (!path) return out_of_memory(&ps->rep);
     if (!ps->rep.opt || !ps->rep.opt->skip_files) {
-        int e = check_file(path);
+        struct stat st;
+        int e = filepath_problem(path, &st);
         if (e) {
             // Exporters on Windows write absolute paths: try the bare file name next to the MTL file.
             const char *slash = strrchr(path, '/');
             char *alt = slash ? join_path(ps->dir, ps->dir_len, slash + 1, strlen(slash + 1)) : NULL;
-            if (alt && check_file(alt) == 0) {
+            if (alt && filepath_problem(alt, &st) == 0) {
                 free(path);
                 path = alt;
             } else {
                 free(alt);
                 warn_at(&ps->rep, ps->rep.line, "texture '%s' not found (%s); material '%s' uses its Kd colour",
-                        quote(file, n).s, strerror(e), quote(ps->cur.name, ps->cur.name_len).s);
+                        quote_path(file, n).s, filepath_problem_text(e), quote(ps->cur.name, ps->cur.name_len).s);
                 free(path);
                 return true;
             }
@@ -539,7 +569,7 @@ static bool mtl_statement(mtl_parser *ps, cursor *c) {
         if (n == 0) return fail(&ps->rep, "'newmtl' needs a material name");
         memset(&ps->cur, 0, sizeof ps->cur);
         ps->cur.name = dup_n(name, n);
-        if (!ps->cur.name) return fail(&ps->rep, "out of memory");
+        if (!ps->cur.name) return out_of_memory(&ps->rep);
         ps->cur.name_len = n;
         ps->cur.line = ps->rep.line;
         ps->cur.illum = -1;
@@ -607,6 +637,9 @@ static bool for_each_line(const char *text, size_t length, reporter *rep, bool (
         rep->line++;
         const char *nl = memchr(s, '\n', (size_t)(end - s));
         cursor c = {s, nl ? nl : end};
+        if ((size_t)(c.end - s) > OBJ_MAX_LINE_BYTES)
+            return fail(rep, "line is %zu bytes long, expected at most %zu (%zu MiB)", (size_t)(c.end - s),
+                        (size_t)OBJ_MAX_LINE_BYTES, (size_t)OBJ_MAX_LINE_BYTES >> 20);
         if (!fn(state, &c)) return false;
         s = nl ? nl + 1 : end;
     }
@@ -645,7 +678,7 @@ static glint_status mtl_parse_counted(const char *name, const char *text, size_t
         obj_materials_free(ps.out, ps.count);
         *out = NULL;
         *count = 0;
-        return GLINT_ERR_INPUT;
+        return ps.rep.nomem ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
     }
     *out = ps.out;
     *count = ps.count;
@@ -700,7 +733,7 @@ static bool obj_vertex(obj_parser *ps, cursor *c) {
     mesh *m = &ps->model->mesh;
     if (m->position_count >= MAX_ELEMENTS) return too_many(&ps->rep, "vertices");
     if (!array_reserve((void **)&m->positions, &ps->pos_cap, m->position_count + 1, sizeof *m->positions))
-        return fail(&ps->rep, "out of memory");
+        return out_of_memory(&ps->rep);
     m->positions[m->position_count++] = v3(v[0], v[1], v[2]);
     return true;
 }
@@ -713,7 +746,7 @@ static bool obj_normal(obj_parser *ps, cursor *c) {
     mesh *m = &ps->model->mesh;
     if (m->normal_count >= MAX_ELEMENTS) return too_many(&ps->rep, "normals");
     if (!array_reserve((void **)&m->normals, &ps->nrm_cap, m->normal_count + 1, sizeof *m->normals))
-        return fail(&ps->rep, "out of memory");
+        return out_of_memory(&ps->rep);
     m->normals[m->normal_count++] = v3(v[0], v[1], v[2]);
     return true;
 }
@@ -725,7 +758,7 @@ static bool obj_texcoord(obj_parser *ps, cursor *c) {
     if (count < 1 || count > 3) return fail(&ps->rep, "'vt' has %d numbers, expected 1 to 3 (u [v [w]])", count);
     mesh *m = &ps->model->mesh;
     if (m->uv_count >= MAX_ELEMENTS) return too_many(&ps->rep, "texture coordinates");
-    if (!array_reserve((void **)&m->uvs, &ps->uv_cap, m->uv_count + 1, sizeof *m->uvs)) return fail(&ps->rep, "out of memory");
+    if (!array_reserve((void **)&m->uvs, &ps->uv_cap, m->uv_count + 1, sizeof *m->uvs)) return out_of_memory(&ps->rep);
     m->uvs[m->uv_count++] = (uv2){v[0], count > 1 ? v[1] : 0.0f};
     return true;
 }
@@ -792,7 +825,7 @@ static bool emit(obj_parser *ps, const corner *a, const corner *b, const corner 
     if (zero_area(m, a, b, c)) return true;
     if (m->triangle_count >= MAX_ELEMENTS) return too_many(&ps->rep, "triangles");
     if (!array_reserve((void **)&m->triangles, &ps->tri_cap, m->triangle_count + 1, sizeof *m->triangles))
-        return fail(&ps->rep, "out of memory");
+        return out_of_memory(&ps->rep);
     mesh_triangle *t = &m->triangles[m->triangle_count++];
     const corner *k[3] = {a, b, c};
     for (int i = 0; i < 3; i++) {
@@ -868,6 +901,25 @@ static bool ear_clip(obj_parser *ps, size_t n, double s) {
     return emit(ps, &k[ps->prev[i]], &k[i], &k[ps->next[i]]);
 }
 
+// Whether every corner of the projected face turns the way of the face (sign s), or the other way by no
+// more than moving its three points by the rounding of their coordinates to float could cause. The error of
+// (b - a) x (c - a) when each coordinate is off by up to e is at most 2e (|b - a|_1 + |c - a|_1) + 8e^2; it
+// is doubled to be safe.
+static bool convex_within_rounding(const obj_parser *ps, size_t n, double s) {
+    for (size_t i = 0; i < n; i++) {
+        int a = (int)((i + n - 1) % n), b = (int)i, c = (int)((i + 1) % n);
+        double turn = cross2(ps, a, b, c) * s;
+        if (turn >= 0.0) continue;
+        double m = fmax(fmax(fmax(fabs(ps->px[a]), fabs(ps->py[a])), fmax(fabs(ps->px[b]), fabs(ps->py[b]))),
+                        fmax(fabs(ps->px[c]), fabs(ps->py[c])));
+        double e = 0x1p-24 * m;
+        double l1 = fabs(ps->px[b] - ps->px[a]) + fabs(ps->py[b] - ps->py[a]) + fabs(ps->px[c] - ps->px[a]) +
+                    fabs(ps->py[c] - ps->py[a]);
+        if (-turn > 2.0 * (2.0 * e * l1 + 8.0 * e * e)) return false;
+    }
+    return true;
+}
+
 static bool fan(obj_parser *ps, size_t n) {
     for (size_t i = 1; i + 1 < n; i++)
         if (!emit(ps, &ps->corners[0], &ps->corners[i], &ps->corners[i + 1])) return false;
@@ -903,7 +955,7 @@ static bool triangulate(obj_parser *ps, size_t n) {
         size_t c1 = ps->scratch_cap, c2 = c1, c3 = c1, c4 = c1;
         if (!array_reserve((void **)&ps->px, &c1, n, sizeof *ps->px) || !array_reserve((void **)&ps->py, &c2, n, sizeof *ps->py) ||
             !array_reserve((void **)&ps->next, &c3, n, sizeof *ps->next) || !array_reserve((void **)&ps->prev, &c4, n, sizeof *ps->prev))
-            return fail(&ps->rep, "out of memory");
+            return out_of_memory(&ps->rep);
         ps->scratch_cap = c1;
     }
     // Project on the plane of the largest normal component; the cyclic axis order makes the sign of the
@@ -920,7 +972,9 @@ static bool triangulate(obj_parser *ps, size_t n) {
         convex = cross2(ps, (int)((i + n - 1) % n), (int)i, (int)((i + 1) % n)) * s >= 0.0;
     if (convex) return fan(ps, n);
     if (n > OBJ_MAX_EAR_CLIP) {
-        if (!ps->warned_fan) {
+        // Too many corners for ear clipping: a fan, which is right when the face is convex but for the
+        // rounding of its corners (a finely divided circle), and worth a warning only when it is not.
+        if (!convex_within_rounding(ps, n, s) && !ps->warned_fan) {
             ps->warned_fan = true;
             warn_at(&ps->rep, ps->rep.line, "concave face with %zu vertices triangulated as a fan; it may be wrong", n);
         }
@@ -933,8 +987,11 @@ static bool obj_face(obj_parser *ps, cursor *c) {
     const char *tok;
     size_t len, n = 0;
     while (next_token(c, &tok, &len)) {
+        if (n == OBJ_MAX_FACE_CORNERS)
+            return fail(&ps->rep, "face has more than %d vertices, expected at most %d", OBJ_MAX_FACE_CORNERS,
+                        OBJ_MAX_FACE_CORNERS);
         if (!array_reserve((void **)&ps->corners, &ps->corner_cap, n + 1, sizeof *ps->corners))
-            return fail(&ps->rep, "out of memory");
+            return out_of_memory(&ps->rep);
         if (!parse_corner(ps, tok, len, &ps->corners[n])) return false;
         n++;
     }
@@ -953,15 +1010,15 @@ static bool obj_usemtl(obj_parser *ps, cursor *c) {
         obj_model *mo = ps->model;
         if (mo->material_count >= MAX_ELEMENTS) return too_many(&ps->rep, "materials");
         if (!array_reserve((void **)&mo->materials, &ps->slot_cap, mo->material_count + 1, sizeof *mo->materials))
-            return fail(&ps->rep, "out of memory");
+            return out_of_memory(&ps->rep);
         obj_material *m = &mo->materials[mo->material_count];
         memset(m, 0, sizeof *m);
         m->name = dup_n(name, n);
-        if (!m->name) return fail(&ps->rep, "out of memory");
+        if (!m->name) return out_of_memory(&ps->rep);
         m->mat = material_default(MAT_LAMBERTIAN);
         m->line = ps->rep.line;
         slot = (int32_t)mo->material_count++;
-        if (!strmap_put(&ps->slots, m->name, n, (size_t)slot)) return fail(&ps->rep, "out of memory");
+        if (!strmap_put(&ps->slots, m->name, n, (size_t)slot)) return out_of_memory(&ps->rep);
     }
     ps->material = slot;
     return true;
@@ -973,24 +1030,35 @@ static bool obj_library(obj_parser *ps, const char *path, const char *shown, siz
         if (strcmp(ps->libs[i], path) == 0) return true;
     size_t len;
     int e;
-    char *text = read_file(path, &len, &e);
+    char *text = read_file(path, MTL_MAX_FILE_BYTES, &len, &e);
     if (!text) {
-        warn_at(&ps->rep, ps->rep.line, "cannot open material library '%s' (%s); its materials are undefined",
-                quote(shown, shown_len).s, strerror(e));
+        quoted q = quote_path(shown, shown_len);
+        if (e == ENOMEM) {
+            ps->rep.nomem = true;
+            return fail(&ps->rep, "out of memory reading material library '%s'", q.s);
+        }
+        if (e == EFBIG)
+            return fail(&ps->rep, "material library '%s' is larger than %zu bytes (%zu MiB)", q.s,
+                        (size_t)MTL_MAX_FILE_BYTES, (size_t)MTL_MAX_FILE_BYTES >> 20);
+        warn_at(&ps->rep, ps->rep.line, "cannot open material library '%s' (%s); its materials are undefined", q.s,
+                filepath_problem_text(e));
         return true;
     }
     char *copy = dup_n(path, strlen(path));
     if (!copy || !array_reserve((void **)&ps->libs, &ps->lib_cap, ps->lib_count + 1, sizeof *ps->libs)) {
         free(copy);
         free(text);
-        return fail(&ps->rep, "out of memory");
+        return out_of_memory(&ps->rep);
     }
     ps->libs[ps->lib_count++] = copy;
     obj_material *defs;
     size_t count;
-    glint_status st = mtl_parse_counted(path, text, len, ps->opt, &defs, &count, &ps->model->warning_count, ps->rep.err);
+    glint_status status = mtl_parse_counted(path, text, len, ps->opt, &defs, &count, &ps->model->warning_count, ps->rep.err);
     free(text);
-    if (st != GLINT_OK) return false;
+    if (status != GLINT_OK) {
+        ps->rep.nomem = status == GLINT_ERR_RENDER;
+        return false;
+    }
     bool ok = true;
     for (size_t i = 0; i < count; i++) {
         obj_material *d = &defs[i];
@@ -1000,7 +1068,7 @@ static bool obj_library(obj_parser *ps, const char *path, const char *shown, siz
         if (keep && (ps->def_count >= MAX_ELEMENTS ||
                      !array_reserve((void **)&ps->defs, &ps->def_cap, ps->def_count + 1, sizeof *ps->defs) ||
                      !strmap_put(&ps->def_names, d->name, nl, ps->def_count)))
-            keep = ok = fail(&ps->rep, "out of memory");
+            keep = ok = out_of_memory(&ps->rep);
         if (keep) {
             ps->defs[ps->def_count++] = *d; // the strings now belong to ps->defs
             continue;
@@ -1019,9 +1087,10 @@ static bool obj_mtllib(obj_parser *ps, cursor *c) {
     if (n == 0) return fail(&ps->rep, "'mtllib' needs a file name");
     if (ps->opt && ps->opt->skip_files) return true;
     char *whole = join_path(ps->dir, ps->dir_len, names, n);
-    if (!whole) return fail(&ps->rep, "out of memory");
+    if (!whole) return out_of_memory(&ps->rep);
     // The whole argument may be one name with blanks; otherwise it is a list of names.
-    bool single = check_file(whole) == 0 || (!memchr(names, ' ', n) && !memchr(names, '\t', n));
+    struct stat st;
+    bool single = filepath_problem(whole, &st) == 0 || (!memchr(names, ' ', n) && !memchr(names, '\t', n));
     if (single) {
         bool ok = obj_library(ps, whole, names, n);
         free(whole);
@@ -1033,7 +1102,7 @@ static bool obj_mtllib(obj_parser *ps, cursor *c) {
     size_t len;
     while (next_token(&list, &tok, &len)) {
         char *path = join_path(ps->dir, ps->dir_len, tok, len);
-        if (!path) return fail(&ps->rep, "out of memory");
+        if (!path) return out_of_memory(&ps->rep);
         bool ok = obj_library(ps, path, tok, len);
         free(path);
         if (!ok) return false;
@@ -1088,7 +1157,7 @@ static bool resolve_materials(obj_parser *ps) {
         slot->defined = true;
         slot->mat = def->mat;
         if (def->diffuse_map && !(slot->diffuse_map = dup_n(def->diffuse_map, strlen(def->diffuse_map))))
-            return fail(&ps->rep, "out of memory");
+            return out_of_memory(&ps->rep);
     }
     return true;
 }
@@ -1129,7 +1198,7 @@ glint_status obj_parse(const char *name, const char *text, size_t length, const 
     free(ps.libs);
     if (!ok) {
         obj_model_free(out);
-        return GLINT_ERR_INPUT;
+        return ps.rep.nomem ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
     }
     return GLINT_OK;
 }
@@ -1139,9 +1208,17 @@ glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, 
     out->mesh.bounds = bounds3_empty();
     size_t len;
     int e;
-    char *text = read_file(path, &len, &e);
+    char *text = read_file(path, OBJ_MAX_FILE_BYTES, &len, &e);
     if (!text) {
-        if (err) snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, strerror(e));
+        if (!err) return e == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
+        if (e == ENOMEM) {
+            snprintf(err->message, sizeof err->message, "%s: out of memory reading the file", path);
+            return GLINT_ERR_RENDER;
+        }
+        if (e == EFBIG)
+            snprintf(err->message, sizeof err->message, "%s: the OBJ file is larger than %zu bytes (%zu GiB)", path,
+                     (size_t)OBJ_MAX_FILE_BYTES, (size_t)OBJ_MAX_FILE_BYTES >> 30);
+        else snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, filepath_problem_text(e));
         return GLINT_ERR_INPUT;
     }
     glint_status st = obj_parse(path, text, len, opt, out, err);

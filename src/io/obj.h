@@ -4,7 +4,8 @@
 // more corners in any of the forms v, v/vt, v//vn, v/vt/vn, with positive (1-based) or negative (relative)
 // indices that must refer to elements defined earlier in the file. Faces are triangulated: convex ones
 // (after projection on the plane of their Newell normal) as a fan from their first corner, concave ones by
-// ear clipping (up to OBJ_MAX_EAR_CLIP corners; larger concave faces become a fan with a warning). `o`, `g`,
+// ear clipping (up to OBJ_MAX_EAR_CLIP corners; larger concave faces become a fan with a warning, larger
+// faces that are convex but for the rounding of their corners to float a fan without one). `o`, `g`,
 // `s` are accepted and ignored, `usemtl` switches the material, `mtllib` reads material libraries relative
 // to the OBJ file's directory (several names on one line allowed). CRLF line endings, tabs and `#` comments
 // (a token starting with `#` ends the line) are accepted; `\` line continuation is not.
@@ -25,9 +26,14 @@
 // Errors (the load fails; the message is "file:line: what is wrong, expected what"): malformed or
 // non-finite numbers, index 0 or out of range, too few/many numbers, faces with fewer than 3 corners,
 // malformed face corners, statements missing their argument, MTL values out of range, more than 2^31 - 1
-// elements. Warnings (reported through the callback, counted; the load goes on):
+// elements. Limits (errors too; they bound memory by the file, not by what it declares): OBJ files up to
+// OBJ_MAX_FILE_BYTES (2 GiB), MTL files up to MTL_MAX_FILE_BYTES (64 MiB), lines up to OBJ_MAX_LINE_BYTES
+// (32 MiB), faces up to OBJ_MAX_FACE_CORNERS (2^20) corners. Running out of memory fails the load with
+// GLINT_ERR_RENDER and "out of memory" in the message; every other failure is GLINT_ERR_INPUT.
+// Warnings (reported through the callback, counted; the load goes on):
 //   - a face of zero area (collinear or repeated corners): skipped;
-//   - a material library that cannot be opened: its materials are undefined;
+//   - a material library that cannot be opened (missing, a directory, or not a regular file such as a
+//     device or FIFO): its materials are undefined;
 //   - `usemtl` of a name no library defines: the slot stays with defined = false and a 0.5 grey
 //     Lambertian, so the scene can substitute the material the scene file gives the mesh;
 //   - a texture file that cannot be found: diffuse_map is NULL, the material keeps its Kd colour
@@ -46,6 +52,15 @@
 
 /// Concave faces with more corners than this are fan-triangulated (ear clipping is quadratic).
 #define OBJ_MAX_EAR_CLIP 256
+/// Largest OBJ file read, in bytes (2 GiB): a mesh takes memory in proportion to its file.
+#define OBJ_MAX_FILE_BYTES ((size_t)1 << 31)
+/// Largest MTL file read, in bytes (64 MiB): material libraries are small.
+#define MTL_MAX_FILE_BYTES ((size_t)64 << 20)
+/// Longest line of an OBJ or MTL file, in bytes (32 MiB): a face of OBJ_MAX_FACE_CORNERS corners written
+/// v/vt/vn with 8-digit indices fits.
+#define OBJ_MAX_LINE_BYTES ((size_t)32 << 20)
+/// Most corners of one face (2^20): triangulating a face takes 36 bytes of scratch memory per corner.
+#define OBJ_MAX_FACE_CORNERS (1 << 20)
 
 /// One material slot of a mesh, in the order of first `usemtl`; mesh_triangle.material indexes these.
 typedef struct obj_material {
@@ -75,8 +90,8 @@ typedef struct obj_options {
     bool skip_files;     ///< do not open material libraries or check textures (fuzzing, in-memory use)
 } obj_options;
 
-/// Loads an OBJ file and its material libraries. On failure returns GLINT_ERR_INPUT and a message in *err,
-/// and *out is empty. On success free *out with obj_model_free().
+/// Loads an OBJ file and its material libraries. On failure returns GLINT_ERR_INPUT (GLINT_ERR_RENDER when
+/// memory runs out) and a message in *err, and *out is empty. On success free *out with obj_model_free().
 glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, glint_error *err);
 /// The same from memory; `name` names the file in messages and gives the directory for `mtllib`.
 glint_status obj_parse(const char *name, const char *text, size_t length, const obj_options *opt, obj_model *out,

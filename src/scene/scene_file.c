@@ -119,19 +119,10 @@ static char *resolve_path(const sf_loader *ld, const char *file) {
 // " (resolved/path)" when the path opened differs from the one written, else "".
 const char *sf_resolved_note(const char *written, const char *path, char *buf, size_t size) {
     if (strcmp(written, path) == 0) return "";
-    snprintf(buf, size, " (%.400s)", path);
+    char tail[404];
+    snprintf(buf, size, " (%s)", filepath_tail(path, 400, tail, sizeof tail));
     return buf;
 }
-
-// Why `path` cannot be read as a file: 0 when it is a regular file (*st then holds its identity), an errno
-// value, or -1 for a special file (device, FIFO, socket), which could block or never end.
-int sf_file_problem(const char *path, struct stat *st) {
-    if (stat(path, st) != 0) return errno ? errno : ENOENT;
-    if (S_ISDIR(st->st_mode)) return EISDIR;
-    return S_ISREG(st->st_mode) ? 0 : -1;
-}
-
-const char *sf_file_problem_text(int e) { return e > 0 ? strerror(e) : "not a regular file"; }
 
 /// Reads the required path `key` of o, resolves it (*path, malloc'd) and checks that it names a regular
 /// file (*id). `kind` ("mesh", "image") names the file in messages: `image file "a.png": cannot open: reason`.
@@ -150,10 +141,10 @@ bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const ch
     char *p = resolve_path(ld, written);
     if (!p) return sf_fail_oom(ld);
     struct stat st;
-    int e = sf_file_problem(p, &st);
+    int e = filepath_problem(p, &st);
     if (e != 0) {
-        jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s file %s%s: cannot open: %s", kind, jr_describe(&ld->r, v, got, sizeof got),
-                   sf_resolved_note(written, p, note, sizeof note), sf_file_problem_text(e));
+        jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s file %s%s: cannot open: %s", kind, jr_describe_path(&ld->r, v, got, sizeof got),
+                   sf_resolved_note(written, p, note, sizeof note), filepath_problem_text(e));
         free(p);
         return false;
     }
@@ -532,10 +523,17 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
     return GLINT_OK;
 }
 
+// Memory ran out while a scene file was opened or read: a resource failure.
+static glint_status out_of_memory_reading(const char *path, glint_error *err) {
+    snprintf(err->message, sizeof err->message, "%s: out of memory while reading the scene file", path);
+    return GLINT_ERR_RENDER;
+}
+
 glint_status scene_file_load(const char *path, glint_scene **out, glint_error *err) {
     *out = NULL;
     FILE *f = fopen(path, "rb");
     if (!f) {
+        if (errno == ENOMEM) return out_of_memory_reading(path, err);
         snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, strerror(errno));
         return GLINT_ERR_INPUT;
     }
@@ -563,7 +561,9 @@ glint_status scene_file_load(const char *path, glint_scene **out, glint_error *e
             break;
         }
         if (n < cap) {
-            if (ferror(f)) {
+            if (ferror(f) && errno == ENOMEM) {
+                status = out_of_memory_reading(path, err);
+            } else if (ferror(f)) {
                 snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, strerror(errno));
                 status = GLINT_ERR_INPUT;
             }
@@ -581,10 +581,7 @@ glint_status scene_file_load(const char *path, glint_scene **out, glint_error *e
         cap = bigger;
     }
     fclose(f);
-    if (!buf) {
-        snprintf(err->message, sizeof err->message, "%s: out of memory while reading the scene file", path);
-        return GLINT_ERR_RENDER;
-    }
+    if (!buf) return out_of_memory_reading(path, err);
     if (status == GLINT_OK) status = scene_file_parse(path, buf, n, out, err);
     free(buf);
     return status;

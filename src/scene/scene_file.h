@@ -23,6 +23,8 @@ enum {
     SF_MAX_NOISE_DEPTH = 32,       ///< octaves of turbulence (2^32 p is already far beyond any detail)
 };
 
+_Static_assert((size_t)SF_MAX_FILE_BYTES == GLINT_MAX_SCENE_BYTES, "one scene size limit, public and private");
+
 /// A name defined in "materials" or "textures".
 typedef struct sf_name {
     const char *name; ///< owned by the cJSON tree, alive while the scene is read
@@ -94,11 +96,6 @@ const sf_name *sf_names_find(const sf_names *t, const char *name);
 bool sf_fail_undefined(sf_loader *ld, jr_val v, const sf_names *map, const char *kind);
 /// " (resolved/path)" when the path opened differs from the one written, else "".
 const char *sf_resolved_note(const char *written, const char *path, char *buf, size_t size);
-/// Why `path` cannot be read as a file: 0 for a regular file (*st then holds its identity), an errno value,
-/// or -1 for a special file (device, FIFO, socket), which could block or never end.
-int sf_file_problem(const char *path, struct stat *st);
-/// The text of an sf_file_problem value.
-const char *sf_file_problem_text(int e);
 /// Reads the required path `key` of o, resolves it against the scene file's directory (*path, malloc'd)
 /// and checks that it names a regular file (*id); `kind` ("mesh", "image") names it in messages.
 bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const char *kind, char **path,

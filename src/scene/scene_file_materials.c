@@ -2,6 +2,7 @@
 // colour parameters given as numbers or textures, and the cache of image files decoded into textures.
 #include "scene/scene_file.h"
 #include "core/array.h"
+#include "core/filepath.h"
 #include "io/image_read.h"
 
 #include <float.h>
@@ -34,10 +35,13 @@ bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *
     // The file is decoded here (io/), and the texture module only takes the pixels.
     image_rgb img;
     glint_error err;
-    if (image_read(path, &img, &err) != GLINT_OK) {
-        char note[420];
-        return jr_fail_at(&ld->r, where, "%simage file \"%.300s\"%s: %s", prefix, written,
-                          sf_resolved_note(written, path, note, sizeof note), strip_path(err.message, path));
+    glint_status st = image_read(path, &img, &err);
+    if (st != GLINT_OK) {
+        char note[420], shown[304];
+        jr_fail_at(&ld->r, where, "%simage file \"%s\"%s: %s", prefix, filepath_tail(written, 300, shown, sizeof shown),
+                   sf_resolved_note(written, path, note, sizeof note), strip_path(err.message, path));
+        ld->r.status = st; // running out of memory stays a resource failure
+        return false;
     }
     texture t = texture_image(img);
     long i = scene_add_texture(ld->scene, &t, NULL);

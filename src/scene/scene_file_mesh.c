@@ -3,6 +3,7 @@
 // object that names the file places an instance of it.
 #include "scene/scene_file.h"
 #include "core/array.h"
+#include "core/filepath.h"
 #include "io/obj.h"
 
 #include <stdio.h>
@@ -57,12 +58,13 @@ static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model
         if (om->diffuse_map && m.kind == MAT_LAMBERTIAN) {
             // The OBJ reader has resolved the path and warned about (and dropped) missing files.
             struct stat st;
-            int e = sf_file_problem(om->diffuse_map, &st);
-            char prefix[512];
-            snprintf(prefix, sizeof prefix, "mesh file \"%.200s\": material \"%.100s\": ", written, om->name);
+            int e = filepath_problem(om->diffuse_map, &st);
+            char prefix[512], mesh_path[204], image_path[304];
+            snprintf(prefix, sizeof prefix, "mesh file \"%s\": material \"%.100s\": ",
+                     filepath_tail(written, 200, mesh_path, sizeof mesh_path), om->name);
             if (e)
-                return jr_fail_at(&ld->r, where, "%simage file \"%.300s\": cannot open: %s", prefix, om->diffuse_map,
-                                  sf_file_problem_text(e));
+                return jr_fail_at(&ld->r, where, "%simage file \"%s\": cannot open: %s", prefix,
+                                  filepath_tail(om->diffuse_map, 300, image_path, sizeof image_path), filepath_problem_text(e));
             uint32_t t;
             if (!sf_load_image(ld, where, prefix, om->diffuse_map, om->diffuse_map, (sf_file_id){st.st_dev, st.st_ino}, &t))
                 return false;
@@ -90,9 +92,13 @@ static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id i
     glint_error err;
     obj_options opt = {collect_warning, ld, false};
     char got[96], note[420];
-    if (obj_load(path, &opt, &model, &err) != GLINT_OK)
-        return jr_fail_at(&ld->r, jr_offset(&ld->r, file.tok), "mesh file %s%s: %s", jr_describe(&ld->r, file, got, sizeof got),
-                          sf_resolved_note(file.item->valuestring, path, note, sizeof note), err.message);
+    glint_status st = obj_load(path, &opt, &model, &err);
+    if (st != GLINT_OK) {
+        jr_fail_at(&ld->r, jr_offset(&ld->r, file.tok), "mesh file %s%s: %s", jr_describe_path(&ld->r, file, got, sizeof got),
+                   sf_resolved_note(file.item->valuestring, path, note, sizeof note), err.message);
+        ld->r.status = st; // running out of memory stays a resource failure
+        return false;
+    }
     if (ld->warning_oom) {
         obj_model_free(&model);
         return sf_fail_oom(ld);
@@ -141,7 +147,7 @@ bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
     if (!has_obj_extension(path))
         ok = jr_fail_at(
             &ld->r, jr_offset(&ld->r, file.tok), "mesh file %s%s: unsupported format; expected a Wavefront OBJ file (.obj)",
-            jr_describe(&ld->r, file, got, sizeof got), sf_resolved_note(file.item->valuestring, path, note, sizeof note));
+            jr_describe_path(&ld->r, file, got, sizeof got), sf_resolved_note(file.item->valuestring, path, note, sizeof note));
     ok = ok && jr_read_bool(&ld->r, o, "face_normals", &face_normals) && (!override || sf_read_material_ref(ld, o, what, &mat)) &&
          sf_read_transform(ld, o, &xf, &moved);
     sf_mesh_entry *entry = NULL;
@@ -165,7 +171,7 @@ bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
         sf_warn_at(ld, jr_offset(&ld->r, file.tok),
                    "some faces of mesh file %s have no material (no usemtl, or one no material library defines); they "
                    "are grey Lambertian unless the object gives a \"material\"",
-                   jr_describe(&ld->r, file, got, sizeof got));
+                   jr_describe_path(&ld->r, file, got, sizeof got));
     }
     instance in = {INSTANCE_MESH, entry->mesh, xf, override ? (int32_t)mat : -1};
     return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);

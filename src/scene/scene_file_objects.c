@@ -2,6 +2,7 @@
 // their "transform" operations, and its "lights".
 #include "scene/scene_file.h"
 
+#include <float.h>
 #include <math.h>
 #include <stdio.h>
 #include <string.h>
@@ -184,7 +185,13 @@ static bool read_quad(sf_loader *ld, const jr_obj *o, const char *what) {
         if (v3_is_finite(n) && n.x == 0.0f && n.y == 0.0f && n.z == 0.0f)
             return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "v"),
                               "\"u\" and \"v\" must be non-zero and not parallel (the quad has no area)");
-        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "v"), "the quad is too large: its area overflows single precision");
+        if (!v3_is_finite(n))
+            return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "v"), "the quad is too large: its area overflows single precision");
+        // The area fits, but its square (the squared length of u x v, which normalising the normal takes) does not.
+        double area = sqrt((double)n.x * n.x + (double)n.y * n.y + (double)n.z * n.z);
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "v"),
+                          "the quad is too large: its area %g exceeds %.3g, the largest whose square fits in single "
+                          "precision", area, sqrt((double)FLT_MAX));
     }
     return add_quads(ld, o, &qd, 1, &xf, moved);
 }
