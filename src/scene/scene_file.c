@@ -220,6 +220,35 @@ static const struct camera_type {
     {"lookat", CAMERA_LOOKAT, lookat_keys},
 };
 
+bool sf_check_extent(sf_loader *ld, size_t offset, const char *what, bounds3 b) {
+    for (int k = 0; k < 3; k++) {
+        float lo = v3_comp(b.lo, k), hi = v3_comp(b.hi, k), far = fabsf(lo) > fabsf(hi) ? lo : hi;
+        if (fabsf(lo) <= (float)SF_MAX_EXTENT && fabsf(hi) <= (float)SF_MAX_EXTENT) continue;
+        return jr_fail_at(&ld->r, offset,
+                          "%s reaches %g on the %c axis; glint renders within [-1e9, 1e9] on every axis (beyond, "
+                          "squared distances overflow single precision and samples would be NaN)",
+                          what, (double)far, "xyz"[k]);
+    }
+    return true;
+}
+
+// The camera's film for the widest and the tallest image allowed must lie within the extent (a huge focus
+// distance or a field of view near 180 degrees put it far away, and its rays' squared lengths overflow).
+static bool check_camera_extent(sf_loader *ld, const jr_obj *o, const camera *c) {
+    static const int sizes[2][2] = {{SCENE_MAX_DIMENSION, 1}, {1, SCENE_MAX_DIMENSION}};
+    for (int i = 0; i < 2; i++) {
+        camera p = *c;
+        camera_prepare(&p, sizes[i][0], sizes[i][1]);
+        vec3 corner = v3_add(p.pixel00, v3_add(v3_scale(p.pixel_du, (float)sizes[i][0]), v3_scale(p.pixel_dv, (float)sizes[i][1])));
+        bounds3 b = bounds3_add(bounds3_add(bounds3_add(bounds3_empty(), p.pixel00), corner), p.origin);
+        b = bounds3_add(bounds3_add(b, v3_add(p.origin, p.defocus_u)), v3_add(p.origin, p.defocus_v));
+        const char *key = jr_get(o, "focus_distance") ? "focus_distance" : jr_get(o, "vfov") ? "vfov" : "lookfrom";
+        if (c->kind == CAMERA_VIEWPORT) key = jr_get(o, "position") ? "position" : jr_get(o, "viewport") ? "viewport" : "distance";
+        if (!sf_check_extent(ld, jr_member_offset(&ld->r, o, key), "the camera's view", b)) return false;
+    }
+    return true;
+}
+
 static bool read_lookat(sf_loader *ld, const jr_obj *o, camera *c) {
     if (!jr_read_vec3(&ld->r, o, "lookfrom", false, &JR_FINITE, &c->lookfrom) ||
         !jr_read_vec3(&ld->r, o, "lookat", false, &JR_FINITE, &c->lookat) ||
@@ -271,9 +300,9 @@ static bool read_camera(sf_loader *ld, jr_val v) {
     if (c->kind == CAMERA_VIEWPORT) {
         c->position[0] = c->position[1] = c->position[2] = 0.0;
         c->viewport_width = c->viewport_height = c->distance = 1.0;
-        return read_viewport(ld, &o, c);
+        return read_viewport(ld, &o, c) && check_camera_extent(ld, &o, c);
     }
-    return read_lookat(ld, &o, c);
+    return read_lookat(ld, &o, c) && check_camera_extent(ld, &o, c);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -18,6 +18,7 @@
 enum {
     SF_MAX_FILE_BYTES = 256 << 20, ///< larger scene files are refused before parsing
     SF_MAX_ITEMS = 10000000,       ///< at most this many objects, materials and lights each
+    SF_MAX_EXTENT = 1000000000,    ///< what renders lies within [-1e9, 1e9] on every axis (sf_check_extent)
     SF_LIST_NAMES = 10,            ///< material names listed in an "is not defined" message
     SF_MAX_WARNINGS = 100,         ///< warnings kept in the scene; the rest are counted in one more
     SF_MAX_NOISE_DEPTH = 32,       ///< octaves of turbulence (2^32 p is already far beyond any detail)
@@ -100,6 +101,11 @@ const char *sf_resolved_note(const char *written, const char *path, char *buf, s
 /// and checks that it names a regular file (*id); `kind` ("mesh", "image") names it in messages.
 bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const char *kind, char **path,
                        sf_file_id *id, jr_val *where);
+
+/// Checks that box b (world space) lies within SF_MAX_EXTENT on every axis, so that no squared distance,
+/// ray-sphere discriminant or edge function of the intersection tests can overflow single precision (which
+/// would make samples NaN); otherwise writes "<what> reaches <x> on the <axis> axis; ..." at `offset`.
+bool sf_check_extent(sf_loader *ld, size_t offset, const char *what, bounds3 b);
 
 // scene_file_materials.c: textures, images, materials
 

@@ -173,6 +173,11 @@ bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
                    "are grey Lambertian unless the object gives a \"material\"",
                    jr_describe_path(&ld->r, file, got, sizeof got));
     }
+    bounds3 ob = ld->scene->meshes[entry->mesh].geometry.bounds;
+    if (!bounds3_is_empty(ob) &&
+        !sf_check_extent(ld, jr_member_offset(&ld->r, o, moved ? "transform" : "file"),
+                         moved ? "the transformed mesh" : "the mesh", mat4_apply_bounds(&xf.m, ob)))
+        return false;
     instance in = {INSTANCE_MESH, entry->mesh, xf, override ? (int32_t)mat : -1};
     return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
 }

@@ -139,7 +139,13 @@ static bool read_sphere(sf_loader *ld, const jr_obj *o, const char *what) {
         !jr_read_float(&ld->r, o, "radius", true, &JR_NONZERO_FINITE, &s.radius) ||
         !sf_read_material_ref(ld, o, what, &s.material) || !sf_read_transform(ld, o, &xf, &moved))
         return false;
-    if (!moved) return scene_add_sphere(ld->scene, s) || sf_fail_oom(ld);
+    size_t where = jr_member_offset(&ld->r, o, moved ? "transform" : "center");
+    if (!moved) {
+        float r = fabsf(s.radius);
+        bounds3 b = {v3_sub(s.center, v3s(r)), v3_add(s.center, v3s(r))};
+        if (!sf_check_extent(ld, where, "the sphere", b)) return false;
+        return scene_add_sphere(ld->scene, s) || sf_fail_oom(ld);
+    }
     double scale;
     const material *m = &ld->scene->materials[s.material];
     bool textured = m->albedo_texture >= 0 || m->emission_texture >= 0;
@@ -150,8 +156,14 @@ static bool read_sphere(sf_loader *ld, const jr_obj *o, const char *what) {
         if (!v3_is_finite(w.center) || !isfinite(w.radius) || w.radius == 0.0f)
             return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "transform"),
                               "the transformed sphere is not representable in single precision");
+        float r = fabsf(w.radius);
+        bounds3 b = {v3_sub(w.center, v3s(r)), v3_add(w.center, v3s(r))};
+        if (!sf_check_extent(ld, where, "the transformed sphere", b)) return false;
         return scene_add_sphere(ld->scene, w) || sf_fail_oom(ld);
     }
+    float r = fabsf(s.radius);
+    bounds3 ob = {v3_sub(s.center, v3s(r)), v3_add(s.center, v3s(r))};
+    if (!sf_check_extent(ld, where, "the transformed sphere", mat4_apply_bounds(&xf.m, ob))) return false;
     long i = scene_add_instance_sphere(ld->scene, s);
     if (i < 0) return sf_fail_oom(ld);
     instance in = {INSTANCE_SPHERE, (uint32_t)i, xf, (int32_t)s.material};
@@ -165,6 +177,9 @@ static bool add_quads(sf_loader *ld, const jr_obj *o, const quad *q, int count, 
         if (moved && !quad_transform(&q[i], &xf->m, &w))
             return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "transform"),
                               "the transformed shape has no area or is not representable in single precision");
+        if (!sf_check_extent(ld, jr_member_offset(&ld->r, o, moved ? "transform" : count == 1 ? "q" : "max"),
+                             moved ? "the transformed shape" : "the shape", quad_bounds(&w)))
+            return false;
         if (!scene_add_quad(ld->scene, w)) return sf_fail_oom(ld);
     }
     return true;
@@ -276,7 +291,10 @@ bool sf_read_light(sf_loader *ld, jr_val v, size_t i) {
     light l = {0};
     l.kind = light_types[t].kind;
     if (!jr_read_color(&ld->r, &o, "intensity", true, &JR_NONNEG, &l.intensity)) return false;
-    if (l.kind == LIGHT_POINT && !jr_read_vec3(&ld->r, &o, "position", true, &JR_FINITE, &l.position)) return false;
+    if (l.kind == LIGHT_POINT && (!jr_read_vec3(&ld->r, &o, "position", true, &JR_FINITE, &l.position) ||
+                                  !sf_check_extent(ld, jr_member_offset(&ld->r, &o, "position"), "the light",
+                                                   (bounds3){l.position, l.position})))
+        return false;
     if (l.kind == LIGHT_DIRECTIONAL) {
         if (!jr_read_vec3(&ld->r, &o, "direction", true, &JR_FINITE, &l.direction)) return false;
         if (l.direction.x == 0.0f && l.direction.y == 0.0f && l.direction.z == 0.0f) {
