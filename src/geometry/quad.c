@@ -17,6 +17,8 @@ bool quad_make(vec3 q, vec3 u, vec3 v, uint32_t material, quad *out) {
     out->p[3] = v3_add(q, v);
     out->normal = v3_scale(n, 1.0f / area);
     out->area = area;
+    out->inv_len_u = 1.0f / v3_len(u); // finite: u x v is not zero, so neither is u nor v
+    out->inv_len_v = 1.0f / v3_len(v);
     out->material = material;
     return true;
 }

@@ -16,6 +16,7 @@ typedef struct quad {
     vec3 p[4];         ///< corners q, q+u, q+u+v, q+v: the two triangles (p0,p1,p2), (p0,p2,p3) are tested
     vec3 normal;       ///< unit u x v
     float area;        ///< |u x v|
+    float inv_len_u, inv_len_v; ///< 1 / |u| and 1 / |v|: distances along an edge in parameter units (spawn.h)
     uint32_t material; ///< index into the scene's materials
 } quad;
 

@@ -69,11 +69,11 @@ static inline spawn_point spawn_point_sphere(vec3 p, vec3 n, float r) {
     return out;
 }
 
-/// Moves p, at parallelogram coordinate x along edge e (|e| = len), at least `margin` inside the quad's two edges
-/// across e: a hit near an edge may round to beyond the neighbouring face's plane (a closed mirror box's
-/// corner), and an origin offset only along the normal would start outside that face and escape through it.
-static inline vec3 spawn_inside_edges(vec3 p, float x, vec3 e, float len, float margin) {
-    float m = margin / len; // the margin in parameter units; an edge shorter than two margins keeps its point
+/// Moves p, at parallelogram coordinate x along edge e (1 / |e| = inv_len), at least `margin` inside the quad's
+/// two edges across e: a hit near an edge may round to beyond the neighbouring face's plane (a closed mirror
+/// box's corner), and an origin offset only along the normal would start outside that face and escape through it.
+static inline vec3 spawn_inside_edges(vec3 p, float x, vec3 e, float inv_len, float margin) {
+    float m = margin * inv_len; // the margin in parameter units; an edge shorter than two margins keeps its point
     if (!(m < 0.5f)) return p;
     if (x < m) return v3_fma(p, e, m - x);
     if (x > 1.0f - m) return v3_fma(p, e, (1.0f - m) - x);
@@ -95,8 +95,8 @@ static inline spawn_point spawn_point_of(const glint_scene *s, const surface *sf
     out.offset = sf->error + SPAWN_OFFSET_REL * (prim > mag ? prim : mag) + 1e-30f;
     if (sf->kind == HIT_QUAD && sf->instance == HIT_NO_INSTANCE) { // (u, v) are the quad's (alpha, beta)
         const quad *q = &s->quads[sf->prim];
-        out.p = spawn_inside_edges(out.p, sf->u, q->u, v3_len(q->u), out.offset);
-        out.p = spawn_inside_edges(out.p, sf->v, q->v, v3_len(q->v), out.offset);
+        out.p = spawn_inside_edges(out.p, sf->u, q->u, q->inv_len_u, out.offset);
+        out.p = spawn_inside_edges(out.p, sf->v, q->v, q->inv_len_v, out.offset);
     }
     return out;
 }

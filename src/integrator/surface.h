@@ -64,9 +64,10 @@ static inline surface surface_at(const glint_scene *s, const ray *r, const hit *
 
 /// Where solid (3D) textures are evaluated for sf: on a world quad the point q + alpha u + beta v, exactly in
 /// the quad's plane for an axis-aligned quad (u and v are 0 across it), so that a checker on a floor at
-/// exactly a cell boundary (y = 0) does not turn to noise as o + t d rounds to either side; elsewhere sf->p.
-static inline vec3 surface_texture_point(const glint_scene *s, const surface *sf) {
-    if (sf->kind != HIT_QUAD || sf->instance != HIT_NO_INSTANCE) return sf->p;
+/// exactly a cell boundary (y = 0) does not turn to noise as o + t d rounds to either side; elsewhere, and
+/// for a material slot with no texture (`texture_index` < 0, where the point is not looked at), sf->p.
+static inline vec3 surface_texture_point(const glint_scene *s, const surface *sf, int32_t texture_index) {
+    if (texture_index < 0 || sf->kind != HIT_QUAD || sf->instance != HIT_NO_INSTANCE) return sf->p;
     const quad *q = &s->quads[sf->prim];
     return v3_add(q->q, v3_add(v3_scale(q->u, sf->u), v3_scale(q->v, sf->v)));
 }

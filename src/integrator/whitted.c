@@ -406,8 +406,8 @@ static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thre
         const material *m = &s->materials[sf.material];
         if (m->kind == MAT_DIFFUSE_LIGHT)
             return v3_add(sum,
-                          v3_mul(w, mat_emitted(m, s->textures, sf.front, sf.u, sf.v, surface_texture_point(s, &sf))));
-        vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf));
+                          v3_mul(w, mat_emitted(m, s->textures, sf.front, sf.u, sf.v, surface_texture_point(s, &sf, m->emission_texture))));
+        vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
         color_origin co = color_origin_of(s, &sf);
         switch (m->kind) {
         case MAT_DIFFUSE_LIGHT: return sum; // handled above
