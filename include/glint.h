@@ -107,6 +107,9 @@ GLINT_API size_t glint_scene_warning_count(const glint_scene *scene);
 /// Warning i (0-based), formatted "file:line: warning: what happened; what is done instead" (a warning about the
 /// settings: "warning: setting: what will happen"), or NULL past the end.
 GLINT_API const char *glint_scene_warning(const glint_scene *scene, size_t i);
+/// Whether `path` names a file the scene was read from (the scene file, its meshes, image textures, environment
+/// map; symbolic links followed): a program that writes an image should refuse to overwrite one.
+GLINT_API bool glint_scene_reads_file(const glint_scene *scene, const char *path);
 /// Frees a scene (NULL is allowed).
 GLINT_API void glint_scene_free(glint_scene *scene);
 

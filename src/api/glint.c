@@ -50,6 +50,10 @@ const char *glint_scene_warning(const glint_scene *scene, size_t i) {
     return scene && i < scene->warning_count ? scene->warnings[i] : NULL;
 }
 
+bool glint_scene_reads_file(const glint_scene *scene, const char *path) {
+    return scene && scene_reads_file(scene, path);
+}
+
 void glint_scene_free(glint_scene *scene) { scene_free(scene); }
 
 glint_status glint_render(const glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,

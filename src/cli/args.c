@@ -79,9 +79,13 @@ static void print_usage(FILE *f) {
             "Samples that come out NaN or infinite are dropped, with a warning on stderr (even with\n"
             "--quiet); when more than 1 %% of them were dropped the image is written and the exit status is 1.\n"
             "\n"
-            "exit status: 0 success; 1 render or I/O failure (a read-only output too), or more than 1 %%\n"
-            "             of samples dropped; 2 usage or scene error; 128 + the signal when stopped by one:\n"
-            "             130 SIGINT, 143 SIGTERM, 129 SIGHUP\n",
+            "Scene files (and standard input), meshes and images have size limits, and what renders must lie\n"
+            "within [-1e9, 1e9] on every axis: docs/scene-format.md, section Errors, lists them.\n"
+            "\n"
+            "exit status: 0 success; 1 render, I/O or out-of-memory failure (a read-only output too), or\n"
+            "             more than 1 %% of samples dropped; 2 usage or scene error (an output that is one of\n"
+            "             the scene's files too); 128 + the signal when stopped by one: 130 SIGINT,\n"
+            "             143 SIGTERM, 129 SIGHUP\n",
             cpus > 0 ? cpus : 1);
 }
 

@@ -169,6 +169,13 @@ int main(int argc, char **argv) {
         glint_scene_free(scene);
         return exit_code(st);
     }
+    // Nor any other file the scene was read from: a mesh, a texture, an environment map.
+    if (glint_scene_reads_file(scene, opt.output)) {
+        fprintf(stderr, "glint: %s: cannot write: the scene reads it (a mesh, texture or environment map), which "
+                        "would be lost\n", opt.output);
+        glint_scene_free(scene);
+        return exit_code(GLINT_ERR_INPUT);
+    }
     // The library never prints: what it worked around in mesh files is reported here, unless --quiet.
     for (size_t i = 0; !opt.quiet && i < glint_scene_warning_count(scene); i++)
         fprintf(stderr, "glint: %s\n", glint_scene_warning(scene, i));

@@ -5,6 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 static char *dup_string(const char *s) {
     size_t n = strlen(s) + 1;
@@ -119,6 +120,22 @@ bool scene_add_instance(glint_scene *s, instance in) {
     return true;
 }
 
+bool scene_add_input(glint_scene *s, uint64_t dev, uint64_t ino) {
+    for (size_t i = 0; i < s->input_count; i++)
+        if (s->inputs[i].dev == dev && s->inputs[i].ino == ino) return true;
+    if (!SCENE_RESERVE(s, inputs, s->input_count)) return false;
+    s->inputs[s->input_count++] = (scene_input){dev, ino};
+    return true;
+}
+
+bool scene_reads_file(const glint_scene *s, const char *path) {
+    struct stat st;
+    if (!path || stat(path, &st) != 0) return false;
+    for (size_t i = 0; i < s->input_count; i++)
+        if (s->inputs[i].dev == (uint64_t)st.st_dev && s->inputs[i].ino == (uint64_t)st.st_ino) return true;
+    return false;
+}
+
 bool scene_add_warning(glint_scene *s, const char *message) {
     if (!SCENE_RESERVE(s, warnings, s->warning_count)) return false;
     char *copy = dup_string(message);
@@ -201,6 +218,7 @@ void scene_free(glint_scene *s) {
     free(s->instance_spheres);
     free(s->instances);
     envmap_free(&s->environment);
+    free(s->inputs);
     for (size_t i = 0; i < s->warning_count; i++) free(s->warnings[i]);
     free(s->warnings);
     free(s->path);

@@ -56,6 +56,11 @@ typedef struct scene_mesh {
     char *path;                ///< file it was loaded from, to load each file once
 } scene_mesh;
 
+/// A file a scene was read from, by identity (device and inode): two spellings of a path are one file.
+typedef struct scene_input {
+    uint64_t dev, ino;
+} scene_input;
+
 struct glint_scene {
     char *path;            ///< scene file name, as given, for messages
     render_settings settings;
@@ -87,13 +92,16 @@ struct glint_scene {
 
     envmap environment;      ///< the background of BACKGROUND_ENVMAP (an empty image otherwise)
 
+    scene_input *inputs;     ///< the files the scene was read from (scene file, meshes, images), each once
+    size_t input_count;
+
     char **warnings;         ///< problems the loader worked around ("file:line: warning: ..."); never printed by the library
     size_t warning_count;
 
     /// Room allocated in each array above (core/array.h), in elements; the counts say how many are used.
     struct {
         size_t materials, material_names, spheres, lights, quads, textures, texture_names, meshes, instance_spheres,
-            instances, warnings;
+            instances, warnings, inputs;
     } capacity;
 };
 
@@ -117,6 +125,10 @@ long scene_add_mesh(glint_scene *s, scene_mesh *m);
 long scene_add_instance_sphere(glint_scene *s, sphere sp);
 /// Appends an instance; false when out of memory.
 bool scene_add_instance(glint_scene *s, instance in);
+/// Records that the scene was read from file (dev, ino), once; false when out of memory.
+bool scene_add_input(glint_scene *s, uint64_t dev, uint64_t ino);
+/// Whether path names one of the files the scene was read from (following symbolic links).
+bool scene_reads_file(const glint_scene *s, const char *path);
 /// Appends a copy of a warning message; false when out of memory.
 bool scene_add_warning(glint_scene *s, const char *message);
 /// An empty scene with every render setting at its documented default.

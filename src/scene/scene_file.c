@@ -148,6 +148,10 @@ bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const ch
         free(p);
         return false;
     }
+    if (!scene_add_input(ld->scene, (uint64_t)st.st_dev, (uint64_t)st.st_ino)) {
+        free(p);
+        return sf_fail_oom(ld);
+    }
     *path = p;
     *id = (sf_file_id){st.st_dev, st.st_ino};
     return true;
@@ -613,5 +617,11 @@ glint_status scene_file_load(const char *path, glint_scene **out, glint_error *e
     if (!buf) return out_of_memory_reading(path, err);
     if (status == GLINT_OK) status = scene_file_parse(path, buf, n, out, err);
     free(buf);
+    // The scene file is an input too: nothing should overwrite it.
+    if (status == GLINT_OK && S_ISREG(st.st_mode) && !scene_add_input(*out, (uint64_t)st.st_dev, (uint64_t)st.st_ino)) {
+        scene_free(*out);
+        *out = NULL;
+        return out_of_memory_reading(path, err);
+    }
     return status;
 }

@@ -65,6 +65,15 @@ check "a scene on stdin from the output: exit 2" test $? -eq 2
 check "the scene file is unchanged" cmp -s "$TMP/in/same.png" "$TINY"
 check "the link is unchanged" test "$(readlink "$TMP/in/link-to-scene.png")" == same.png
 
+# Nor any other file the scene reads: an image texture (exit 2, the texture intact).
+cp "$SRC/scenes/meshes/spot/spot_texture.png" "$TMP/in/wood.png"
+printf '%s' '{"render":{"width":4,"height":3},"objects":[{"type":"sphere","center":[0,0,-1],"radius":0.5,
+"material":{"type":"lambertian","albedo":{"type":"image","file":"wood.png"}}}],"lights":[{"type":"ambient","intensity":1}]}' \
+    >"$TMP/in/textured.json"
+expect 2 "glint: $TMP/in/wood.png: cannot write: the scene reads it (a mesh, texture or environment map), which would be lost" \
+    -o "$TMP/in/wood.png" "$TMP/in/textured.json"
+check "the texture is unchanged" cmp -s "$TMP/in/wood.png" "$SRC/scenes/meshes/spot/spot_texture.png"
+
 # A symbolic link as the output: the image is written to the file it names (through a chain of links,
 # relative to each link's directory, even dangling), and the links stay links.
 run --quiet -o "$TMP/plain.ppm" "$TINY"
