@@ -96,7 +96,7 @@ static void test_deterministic(integrator_kind kind, int width, int height, int 
     CHECK(stats.threads == 1);
     render_frame frame;
     glint_error err;
-    CHECK(frame_build(&frame, s, NULL, &err) == GLINT_OK);
+    CHECK(frame_build(&frame, s, NULL, NULL, &err) == GLINT_OK);
     int mismatches = 0;
     for (int y = 0; y < height; y++)
         for (int x = 0; x < width; x++) {
@@ -186,7 +186,7 @@ static void test_stop_during(void) {
     if (!img) { glint_scene_free(s); return; }
     if (st == GLINT_ERR_INTERRUPTED) CHECK(stats.samples < (uint64_t)SW * SH * SPP);
     render_frame frame;
-    CHECK(frame_build(&frame, s, NULL, &err) == GLINT_OK);
+    CHECK(frame_build(&frame, s, NULL, NULL, &err) == GLINT_OK);
     const integrator *it = frame.integrator;
     int inconsistent = 0;
     uint64_t matched_samples = 0;
@@ -255,7 +255,27 @@ static void test_override_after_render(void) {
     glint_scene_free(s);
 }
 
+// A stop requested while the BVH is built ends the build (a large scene must not keep a stopped program
+// busy), says so, and leaves nothing behind; without the request the same scene builds.
+static void test_stop_during_build(void) {
+    glint_scene *s = make_scene(INTEGRATOR_PATH, 8, 8, 1);
+    for (int i = 0; i < 20000; i++)
+        scene_add_sphere(s, (sphere){v3((float)(i % 100), (float)(i / 100 % 100), (float)(i / 10000) - 5.0f), 0.3f, 0});
+    atomic_int stop;
+    atomic_init(&stop, 1);
+    render_frame frame;
+    glint_error err;
+    CHECK(frame_build(&frame, s, NULL, &stop, &err) == GLINT_ERR_INTERRUPTED);
+    CHECK(strcmp(err.message, "interrupted while building the BVH") == 0);
+    CHECK(frame.accel == NULL && frame.integrator == NULL);
+    atomic_store(&stop, 0);
+    CHECK(frame_build(&frame, s, NULL, &stop, &err) == GLINT_OK);
+    frame_release(&frame);
+    glint_scene_free(s);
+}
+
 int main(void) {
+    test_stop_during_build();
     test_override_after_render();
     test_deterministic(INTEGRATOR_WHITTED, 37, 21, 1);
     test_deterministic(INTEGRATOR_WHITTED, 37, 21, 5);

@@ -39,7 +39,7 @@ accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
         a->blas = in->mesh_count ? calloc(in->mesh_count, sizeof *a->blas) : NULL;
         bool ok = !in->mesh_count || a->blas;
         for (size_t i = 0; ok && i < in->mesh_count; i++, a->blas_count++) {
-            bvh_input mi = {.mesh = meshes[i]};
+            bvh_input mi = {.mesh = meshes[i], .stop = in->stop};
             ok = bvh_build(&a->blas[i], &mi, wide);
             a->stats.nodes += a->blas[i].stats.nodes;
             a->stats.leaves += a->blas[i].stats.leaves;
@@ -52,11 +52,14 @@ accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
                            .instances = in->instances,
                            .instance_count = in->instance_count,
                            .blas = a->blas,
-                           .instance_spheres = in->instance_spheres};
+                           .instance_spheres = in->instance_spheres,
+                           .stop = in->stop};
         ok = ok && bvh_build(&a->world, &world, wide);
         if (!ok) {
             accel_free(a);
-            snprintf(err->message, sizeof err->message, "out of memory building the BVH");
+            bool stopped = in->stop && atomic_load(in->stop);
+            snprintf(err->message, sizeof err->message, "%s",
+                     stopped ? "interrupted while building the BVH" : "out of memory building the BVH");
             return NULL;
         }
         // Counts add up over the world BVH and the meshes' BVHs; depth is the world's plus the deepest mesh's.

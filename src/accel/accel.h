@@ -10,6 +10,7 @@
 #include "geometry/quad.h"
 #include "geometry/sphere.h"
 
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stdint.h>
 
@@ -28,6 +29,7 @@ typedef struct accel_input {
     const sphere *instance_spheres; ///< the object-space spheres INSTANCE_SPHERE instances place
     const instance *instances;
     size_t instance_count;
+    const atomic_int *stop; ///< nonzero once a stop is requested: the build gives up (NULL: never)
 } accel_input;
 
 /// Kinds of primitive a hit can be on.
@@ -55,7 +57,7 @@ typedef struct accel_stats {
 typedef struct accel accel;
 
 /// Builds a structure of the given kind over in's primitives (the arrays, not copied, must outlive it; the
-/// list of meshes is copied). NULL, with a message in *err, when out of memory.
+/// list of meshes is copied). NULL, with a message in *err, when out of memory or stopped (in->stop).
 accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err);
 /// Frees the structure (NULL is allowed).
 void accel_free(accel *a);

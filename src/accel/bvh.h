@@ -11,6 +11,7 @@
 #include "geometry/quad.h"
 #include "geometry/triangle.h"
 
+#include <stdatomic.h>
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
@@ -103,6 +104,7 @@ typedef struct bvh_input {
     size_t instance_count;
     const struct bvh *blas;        ///< blas[i]: the BVH of mesh i, for INSTANCE_MESH instances
     const sphere *instance_spheres; ///< object-space spheres of INSTANCE_SPHERE instances
+    const atomic_int *stop;         ///< nonzero once a stop is requested: the build gives up (NULL: never)
 } bvh_input;
 
 /// Everything the traversals need; built once, then read-only.
@@ -148,7 +150,8 @@ static inline hit bvh_no_hit(const ray *r) {
     return h;
 }
 
-/// Builds the binary BVH (wide = false) or the wide one; false when out of memory (b is then empty).
+/// Builds the binary BVH (wide = false) or the wide one; false when out of memory or stopped by in->stop (b is
+/// then empty).
 bool bvh_build(bvh *b, const bvh_input *in, bool wide);
 /// Frees what bvh_build allocated.
 void bvh_release(bvh *b);

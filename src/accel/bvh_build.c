@@ -2,6 +2,8 @@
 // structure-of-arrays leaf packets.
 #include "accel/bvh.h"
 
+#include <stdatomic.h>
+
 #include <math.h>
 #include <stddef.h>
 #include <stdlib.h>
@@ -75,6 +77,8 @@ typedef struct builder {
     size_t block_mask;  ///< (1 << block_shift) - 1
     int max_leaf;       ///< largest leaf the SAH may choose (deeper than BVH_MAX_DEPTH forces a leaf)
     uint64_t depth, leaves;
+    const atomic_int *stop; ///< nonzero once a stop is requested (NULL: never): the build gives up
+    bool stopped;
 } builder;
 
 // Padding that keeps a box conservative after float rounding of the centre, radius and the slab test.
@@ -117,6 +121,14 @@ static uint32_t build_range(builder *bd, size_t begin, size_t end, uint64_t dept
     memcpy(node->box, bounds.lo, 3 * sizeof(float));
     memcpy(node->box + 3, bounds.hi, 3 * sizeof(float));
     size_t n = end - begin;
+    // A stop request ends the build: every range left becomes a leaf, and bvh_build discards the tree.
+    if (!bd->stopped && bd->stop && atomic_load_explicit(bd->stop, memory_order_relaxed)) bd->stopped = true;
+    if (bd->stopped) {
+        node->offset = (uint32_t)begin;
+        node->count = (uint32_t)n;
+        bd->leaves++;
+        return id;
+    }
 
     // Best binned SAH split over the three axes.
     float leaf_cost = leaf_blocks(bd, n) * SAH_INTERSECT_COST;
@@ -488,8 +500,13 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     }
     int shift = wide ? (BVH_PACKET == 8 ? 3 : 2) : 0;
     builder bd = {.prims = prims, .nodes = b->nodes2, .block_shift = shift, .block_mask = ((size_t)1 << shift) - 1,
-                  .max_leaf = wide ? BVH_PACKET : BIN_MAX_LEAF};
+                  .max_leaf = wide ? BVH_PACKET : BIN_MAX_LEAF, .stop = in->stop};
     if (tree) build_range(&bd, 0, tree, 0);
+    if (bd.stopped) {
+        free(prims);
+        bvh_release(b);
+        return false;
+    }
     b->node2_count = bd.node_count;
     b->ref_count = n;
     for (size_t i = 0; i < n; i++) b->refs[i] = prims[i].ref;

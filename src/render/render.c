@@ -241,7 +241,18 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
     *out = NULL;
     double t0 = clock_seconds();
     render_frame frame;
-    glint_status st = frame_build(&frame, s, opt ? &opt->integrator : NULL, err);
+    glint_status st = frame_build(&frame, s, opt ? &opt->integrator : NULL, &stop_requested, err);
+    if (st == GLINT_ERR_INTERRUPTED) { // stopped while the BVH was built: no sample, a black image
+        atomic_store(&stop_requested, 0);
+        if (stats) memset(stats, 0, sizeof *stats);
+        *out = film_image_new(s->settings.width, s->settings.height, s->settings.transform);
+        if (!*out) {
+            snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image", s->settings.width,
+                     s->settings.height);
+            return GLINT_ERR_RENDER;
+        }
+        return st;
+    }
     if (st != GLINT_OK) return st;
     double t_built = clock_seconds();
     const render_settings *rs = &s->settings;
