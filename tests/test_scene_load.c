@@ -770,9 +770,12 @@ static void test_paper_mode_warnings(void) {
         "refraction or reflection)",
         "good.json: warning: paper mode shades diffuse_light as a matte colour: 1 sphere is made of diffuse_light (no "
         "emission)",
+        "good.json: warning: paper mode makes highlights white: 1 sphere is given a specular_color (it is not used)",
+        "good.json: warning: paper mode ignores \"background\": rays that miss everything are white, as in the "
+        "paper's program",
         NULL};
     check_warnings(
-        "{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"paper\"}},"
+        "{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"paper\"}, \"background\": \"sky\"},"
         " \"materials\": {\"m\": {\"type\": \"metal\"}, \"p\": {\"type\": \"phong\"}},"
         " \"objects\": ["
         "  {\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1, 0, 0], \"v\": [0, 1, 0], \"material\": \"p\"},"
@@ -785,12 +788,15 @@ static void test_paper_mode_warnings(void) {
         "  {\"type\": \"sphere\", \"center\": [0, 0, 7], \"radius\": 1, \"material\": {\"type\": \"dielectric\"}},"
         "  {\"type\": \"sphere\", \"center\": [0, 0, 8], \"radius\": 1, \"material\": {\"type\": \"diffuse_light\"}},"
         "  {\"type\": \"sphere\", \"center\": [0, 0, 9], \"radius\": 1, \"material\": {\"type\": \"lambertian\","
-        "   \"albedo\": {\"type\": \"checker\"}}}"
+        "   \"albedo\": {\"type\": \"checker\"}}},"
+        "  {\"type\": \"sphere\", \"center\": [0, 0, 10], \"radius\": 1, \"material\": {\"type\": \"phong\","
+        "   \"specular_color\": [1, 0, 0]}}"
         " ]}",
         expected);
-    // The paper's own scene drops nothing.
+    // The paper's own kind of scene (white background, Phong spheres) drops nothing.
     static const char *const none[] = {NULL};
-    check_warnings("{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"paper\"}}, \"objects\": "
+    check_warnings("{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"paper\"}, \"background\": 1},"
+                   " \"objects\": "
                    "[{\"type\": \"sphere\", \"center\": [0, 0, 5], \"radius\": 1, \"material\": {\"type\": \"phong\"}}]}",
                    none);
 }

@@ -100,6 +100,21 @@ static void warn_paper_mode(sf_loader *ld) {
                "made of dielectric (no refraction or reflection)");
     warn_paper(ld, kinds[MAT_DIFFUSE_LIGHT], "shades diffuse_light as a matte colour", "sphere",
                "made of diffuse_light (no emission)");
+    size_t tinted = 0;
+    for (size_t i = 0; i < s->sphere_count; i++) tinted += s->materials[s->spheres[i].material].has_specular_color;
+    warn_paper(ld, tinted, "makes highlights white", "sphere", "given a specular_color (it is not used)");
+    // The program's rays that miss everything are white, whatever the scene's background says: a background
+    // other than white (as the paper's scene says) or the default black is not what the image will show.
+    const render_settings *rs = &s->settings;
+    vec3 bg = rs->background_color;
+    bool constant = rs->background == BACKGROUND_CONSTANT;
+    bool white = constant && bg.x == 1.0f && bg.y == 1.0f && bg.z == 1.0f;
+    if (!white && !(constant && v3_max_comp(bg) == 0.0f)) {
+        char msg[512];
+        snprintf(msg, sizeof msg, "%s: warning: paper mode ignores \"background\": rays that miss everything are white, "
+                 "as in the paper's program", ld->r.name);
+        sf_add_warning(ld, msg);
+    }
 }
 
 void sf_warn_unseen(sf_loader *ld) {
