@@ -1,6 +1,6 @@
 // bvh_simd.h — the AVX2 + FMA kernels of the wide BVH (private to src/accel): the ray broadcast into
-// registers, eight box tests at once, and a packet of spheres at once, each lane bit-identical to the scalar
-// test. Included only where BVH_SIMD is 1.
+// registers, eight box tests at once, and packets of spheres and of triangles at once, each lane bit-identical
+// to the scalar test. Included only where BVH_SIMD is 1.
 #ifndef GLINT_BVH_SIMD_H
 #define GLINT_BVH_SIMD_H
 
@@ -17,69 +17,6 @@ typedef __m128 pk;
 #define PK(op) _mm_##op
 #else
 #error "BVH_PACKET must be 4 or 8"
-// One half (four lanes) of triangles_simd's double-precision part: the edge functions, the rejections and
-// the distance, each lane exactly as tri_intersect computes it (products and sums one by one, no fused
-// multiply-add, in its order). Returns the 4-bit mask of lanes not rejected, and t, b1, b2 of every lane.
-static inline unsigned triangles_half(__m128 x0, __m128 y0, __m128 z0, __m128 x1, __m128 y1, __m128 z1, __m128 x2,
-                                      __m128 y2, __m128 z2, __m256d sz, __m128 *t, __m128 *b1, __m128 *b2) {
-    __m256d ax = _mm256_cvtps_pd(x0), ay = _mm256_cvtps_pd(y0), az = _mm256_cvtps_pd(z0);
-    __m256d bx = _mm256_cvtps_pd(x1), by = _mm256_cvtps_pd(y1), bz = _mm256_cvtps_pd(z1);
-    __m256d cx = _mm256_cvtps_pd(x2), cy = _mm256_cvtps_pd(y2), cz = _mm256_cvtps_pd(z2);
-    __m256d u = _mm256_sub_pd(_mm256_mul_pd(cx, by), _mm256_mul_pd(cy, bx));
-    __m256d v = _mm256_sub_pd(_mm256_mul_pd(ax, cy), _mm256_mul_pd(ay, cx));
-    __m256d w = _mm256_sub_pd(_mm256_mul_pd(bx, ay), _mm256_mul_pd(by, ax));
-    const __m256d zero = _mm256_setzero_pd();
-    __m256d neg = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
-                               _mm256_cmp_pd(w, zero, _CMP_LT_OQ));
-    __m256d pos = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
-                               _mm256_cmp_pd(w, zero, _CMP_GT_OQ));
-    __m256d det = _mm256_add_pd(_mm256_add_pd(u, v), w);
-    // Edges of both signs (outside), a zero determinant (edge-on or degenerate), or NaN (an unused lane).
-    __m256d bad = _mm256_or_pd(_mm256_and_pd(neg, pos),
-                               _mm256_or_pd(_mm256_cmp_pd(det, zero, _CMP_EQ_OQ), _mm256_cmp_pd(det, det, _CMP_UNORD_Q)));
-    __m256d scaled = _mm256_mul_pd(
-        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(u, az), _mm256_mul_pd(v, bz)), _mm256_mul_pd(w, cz)), sz);
-    __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0), det);
-    *t = _mm256_cvtpd_ps(_mm256_mul_pd(scaled, inv));
-    *b1 = _mm256_cvtpd_ps(_mm256_mul_pd(v, inv));
-    *b2 = _mm256_cvtpd_ps(_mm256_mul_pd(w, inv));
-    return ~(unsigned)_mm256_movemask_pd(bad) & 0xfu;
-}
-
-// A packet of eight triangles at once, each lane computing exactly what tri_intersect computes for it (the
-// same float shear into ray space, then triangles_half in double), so t and the barycentrics are
-// bit-identical to the scalar test. Returns the mask of lanes hit with tmin < t < tmax, with t, b1, b2.
-static inline unsigned triangles_simd(const bvh_triangle_packet *p, const tri_ray *tr, float tmin, float tmax,
-                                      __m256 *t, __m256 *b1, __m256 *b2) {
-    const float o[3] = {tr->o.x, tr->o.y, tr->o.z};
-    const __m256 ox = _mm256_set1_ps(o[tr->kx]), oy = _mm256_set1_ps(o[tr->ky]), oz = _mm256_set1_ps(o[tr->kz]);
-    const __m256 sx = _mm256_set1_ps(tr->sx), sy = _mm256_set1_ps(tr->sy);
-    __m256 x[3], y[3], z[3];
-    for (int j = 0; j < 3; j++) { // vertex j - o, sheared: x - sx z, y - sy z (products, then differences)
-        z[j] = _mm256_sub_ps(_mm256_load_ps(p->v[j][tr->kz]), oz);
-        x[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][tr->kx]), ox), _mm256_mul_ps(sx, z[j]));
-        y[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][tr->ky]), oy), _mm256_mul_ps(sy, z[j]));
-    }
-    const __m256d sz = _mm256_set1_pd((double)tr->sz);
-    __m128 tl, th, b1l, b1h, b2l, b2h;
-#define GLINT_LO(r) _mm256_castps256_ps128(r)
-#define GLINT_HI(r) _mm256_extractf128_ps(r, 1)
-    unsigned lo = triangles_half(GLINT_LO(x[0]), GLINT_LO(y[0]), GLINT_LO(z[0]), GLINT_LO(x[1]), GLINT_LO(y[1]),
-                                 GLINT_LO(z[1]), GLINT_LO(x[2]), GLINT_LO(y[2]), GLINT_LO(z[2]), sz, &tl, &b1l, &b2l);
-    unsigned hi = triangles_half(GLINT_HI(x[0]), GLINT_HI(y[0]), GLINT_HI(z[0]), GLINT_HI(x[1]), GLINT_HI(y[1]),
-                                 GLINT_HI(z[1]), GLINT_HI(x[2]), GLINT_HI(y[2]), GLINT_HI(z[2]), sz, &th, &b1h, &b2h);
-#undef GLINT_LO
-#undef GLINT_HI
-    unsigned mask = lo | hi << 4;
-    if (!mask) return 0;
-    *t = _mm256_set_m128(th, tl);
-    *b1 = _mm256_set_m128(b1h, b1l);
-    *b2 = _mm256_set_m128(b2h, b2l);
-    __m256 in = _mm256_and_ps(_mm256_cmp_ps(*t, _mm256_set1_ps(tmin), _CMP_GT_OQ),
-                              _mm256_cmp_ps(*t, _mm256_set1_ps(tmax), _CMP_LT_OQ));
-    return mask & (unsigned)_mm256_movemask_ps(in);
-}
-
 #endif
 
 /// The ray broadcast into registers.
@@ -136,69 +73,6 @@ static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, fl
     __m256 tmin = s->tmin;
 #else
     __m256 tmin = _mm256_set_m128(s->tmin, s->tmin);
-// One half (four lanes) of triangles_simd's double-precision part: the edge functions, the rejections and
-// the distance, each lane exactly as tri_intersect computes it (products and sums one by one, no fused
-// multiply-add, in its order). Returns the 4-bit mask of lanes not rejected, and t, b1, b2 of every lane.
-static inline unsigned triangles_half(__m128 x0, __m128 y0, __m128 z0, __m128 x1, __m128 y1, __m128 z1, __m128 x2,
-                                      __m128 y2, __m128 z2, __m256d sz, __m128 *t, __m128 *b1, __m128 *b2) {
-    __m256d ax = _mm256_cvtps_pd(x0), ay = _mm256_cvtps_pd(y0), az = _mm256_cvtps_pd(z0);
-    __m256d bx = _mm256_cvtps_pd(x1), by = _mm256_cvtps_pd(y1), bz = _mm256_cvtps_pd(z1);
-    __m256d cx = _mm256_cvtps_pd(x2), cy = _mm256_cvtps_pd(y2), cz = _mm256_cvtps_pd(z2);
-    __m256d u = _mm256_sub_pd(_mm256_mul_pd(cx, by), _mm256_mul_pd(cy, bx));
-    __m256d v = _mm256_sub_pd(_mm256_mul_pd(ax, cy), _mm256_mul_pd(ay, cx));
-    __m256d w = _mm256_sub_pd(_mm256_mul_pd(bx, ay), _mm256_mul_pd(by, ax));
-    const __m256d zero = _mm256_setzero_pd();
-    __m256d neg = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
-                               _mm256_cmp_pd(w, zero, _CMP_LT_OQ));
-    __m256d pos = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
-                               _mm256_cmp_pd(w, zero, _CMP_GT_OQ));
-    __m256d det = _mm256_add_pd(_mm256_add_pd(u, v), w);
-    // Edges of both signs (outside), a zero determinant (edge-on or degenerate), or NaN (an unused lane).
-    __m256d bad = _mm256_or_pd(_mm256_and_pd(neg, pos),
-                               _mm256_or_pd(_mm256_cmp_pd(det, zero, _CMP_EQ_OQ), _mm256_cmp_pd(det, det, _CMP_UNORD_Q)));
-    __m256d scaled = _mm256_mul_pd(
-        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(u, az), _mm256_mul_pd(v, bz)), _mm256_mul_pd(w, cz)), sz);
-    __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0), det);
-    *t = _mm256_cvtpd_ps(_mm256_mul_pd(scaled, inv));
-    *b1 = _mm256_cvtpd_ps(_mm256_mul_pd(v, inv));
-    *b2 = _mm256_cvtpd_ps(_mm256_mul_pd(w, inv));
-    return ~(unsigned)_mm256_movemask_pd(bad) & 0xfu;
-}
-
-// A packet of eight triangles at once, each lane computing exactly what tri_intersect computes for it (the
-// same float shear into ray space, then triangles_half in double), so t and the barycentrics are
-// bit-identical to the scalar test. Returns the mask of lanes hit with tmin < t < tmax, with t, b1, b2.
-static inline unsigned triangles_simd(const bvh_triangle_packet *p, const tri_ray *tr, float tmin, float tmax,
-                                      __m256 *t, __m256 *b1, __m256 *b2) {
-    const float o[3] = {tr->o.x, tr->o.y, tr->o.z};
-    const __m256 ox = _mm256_set1_ps(o[tr->kx]), oy = _mm256_set1_ps(o[tr->ky]), oz = _mm256_set1_ps(o[tr->kz]);
-    const __m256 sx = _mm256_set1_ps(tr->sx), sy = _mm256_set1_ps(tr->sy);
-    __m256 x[3], y[3], z[3];
-    for (int j = 0; j < 3; j++) { // vertex j - o, sheared: x - sx z, y - sy z (products, then differences)
-        z[j] = _mm256_sub_ps(_mm256_load_ps(p->v[j][tr->kz]), oz);
-        x[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][tr->kx]), ox), _mm256_mul_ps(sx, z[j]));
-        y[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][tr->ky]), oy), _mm256_mul_ps(sy, z[j]));
-    }
-    const __m256d sz = _mm256_set1_pd((double)tr->sz);
-    __m128 tl, th, b1l, b1h, b2l, b2h;
-#define GLINT_LO(r) _mm256_castps256_ps128(r)
-#define GLINT_HI(r) _mm256_extractf128_ps(r, 1)
-    unsigned lo = triangles_half(GLINT_LO(x[0]), GLINT_LO(y[0]), GLINT_LO(z[0]), GLINT_LO(x[1]), GLINT_LO(y[1]),
-                                 GLINT_LO(z[1]), GLINT_LO(x[2]), GLINT_LO(y[2]), GLINT_LO(z[2]), sz, &tl, &b1l, &b2l);
-    unsigned hi = triangles_half(GLINT_HI(x[0]), GLINT_HI(y[0]), GLINT_HI(z[0]), GLINT_HI(x[1]), GLINT_HI(y[1]),
-                                 GLINT_HI(z[1]), GLINT_HI(x[2]), GLINT_HI(y[2]), GLINT_HI(z[2]), sz, &th, &b1h, &b2h);
-#undef GLINT_LO
-#undef GLINT_HI
-    unsigned mask = lo | hi << 4;
-    if (!mask) return 0;
-    *t = _mm256_set_m128(th, tl);
-    *b1 = _mm256_set_m128(b1h, b1l);
-    *b2 = _mm256_set_m128(b2h, b2l);
-    __m256 in = _mm256_and_ps(_mm256_cmp_ps(*t, _mm256_set1_ps(tmin), _CMP_GT_OQ),
-                              _mm256_cmp_ps(*t, _mm256_set1_ps(tmax), _CMP_LT_OQ));
-    return mask & (unsigned)_mm256_movemask_ps(in);
-}
-
 #endif
     // Operand order as in wnode_test_scalar: an empty slot's NaN reaches tn.
     __m256 tn = _mm256_max_ps(_mm256_max_ps(tmin, nx), _mm256_max_ps(ny, nz));
