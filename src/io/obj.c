@@ -1,6 +1,7 @@
 // obj.c — the OBJ/MTL reader: one pass over the text, no allocation per line, faces triangulated as read.
 #include "io/obj.h"
 #include "core/array.h"
+#include "core/file_read.h"
 #include "core/filepath.h"
 #include "core/strmap.h"
 
@@ -338,38 +339,9 @@ static char *read_file(const char *path, size_t max, size_t *len, int *errnum) {
         *errnum = errno ? errno : EIO;
         return NULL;
     }
-    // The size is known: one allocation holds the file. Should it grow meanwhile, it is read on (the buffer
-    // doubling) up to max + 1 bytes, enough to tell that it is too large.
-    size_t cap = (size_t)st.st_size + 1, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - 1 - n, f);
-        if (n > max) {
-            *errnum = EFBIG;
-            break;
-        }
-        if (n < cap - 1) { // a short read: the end of the file, or an error
-            if (ferror(f)) *errnum = errno == ENOMEM ? ENOMEM : EIO;
-            break;
-        }
-        size_t bigger = cap > max / 2 ? max + 2 : cap * 2;
-        char *grown = realloc(buf, bigger);
-        if (!grown) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = grown;
-        cap = bigger;
-    }
-    if (!buf && !*errnum) *errnum = ENOMEM;
+    // The size is known: one allocation holds the file; should it grow meanwhile, it is read on up to max + 1 bytes.
+    char *buf = file_read_stream(f, (size_t)st.st_size, max, len, errnum);
     fclose(f);
-    if (*errnum) {
-        free(buf);
-        return NULL;
-    }
-    buf[n] = '\0';
-    *len = n;
     return buf;
 }
 

@@ -4,6 +4,7 @@
 // expected" (docs/scene-format.md documents every key).
 #include "scene/scene_file.h"
 #include "core/array.h"
+#include "core/file_read.h"
 #include "core/filepath.h"
 #include "io/hdr_read.h"
 #include "io/json_scan.h"
@@ -571,54 +572,37 @@ glint_status scene_file_load(const char *path, glint_scene **out, glint_error *e
         return GLINT_ERR_INPUT;
     }
     struct stat st;
-    size_t cap = 1 << 16;
-    if (fstat(fileno(f), &st) == 0) {
+    size_t initial = 1 << 16;
+    bool stat_ok = fstat(fileno(f), &st) == 0;
+    if (stat_ok) {
         if (S_ISDIR(st.st_mode)) {
             fclose(f);
             snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, strerror(EISDIR));
             return GLINT_ERR_INPUT;
         }
         // A regular file's size is known: read it in one piece (files of other kinds grow the buffer).
-        if (S_ISREG(st.st_mode) && st.st_size >= 0 && (unsigned long long)st.st_size <= SF_MAX_FILE_BYTES)
-            cap = (size_t)st.st_size + 1;
+        if (S_ISREG(st.st_mode) && st.st_size >= 0) initial = (size_t)st.st_size;
     }
-    char *buf = malloc(cap);
-    size_t n = 0;
-    glint_status status = GLINT_OK;
-    while (buf) {
-        n += fread(buf + n, 1, cap - n, f);
-        if (n > (size_t)SF_MAX_FILE_BYTES) {
-            snprintf(err->message, sizeof err->message, "%s: the scene file is larger than %d bytes (256 MiB)", path,
-                     SF_MAX_FILE_BYTES);
-            status = GLINT_ERR_INPUT;
-            break;
-        }
-        if (n < cap) {
-            if (ferror(f) && errno == ENOMEM) {
-                status = out_of_memory_reading(path, err);
-            } else if (ferror(f)) {
-                snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, strerror(errno));
-                status = GLINT_ERR_INPUT;
-            }
-            break;
-        }
-        // Full: grow, up to one byte more than the limit so that a too-large file is noticed.
-        size_t bigger = cap * 2 > (size_t)SF_MAX_FILE_BYTES + 1 ? (size_t)SF_MAX_FILE_BYTES + 1 : cap * 2;
-        char *grown = realloc(buf, bigger);
-        if (!grown) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = grown;
-        cap = bigger;
-    }
+    size_t n;
+    int e;
+    char *buf = file_read_stream(f, initial, (size_t)SF_MAX_FILE_BYTES, &n, &e);
     fclose(f);
-    if (!buf) return out_of_memory_reading(path, err);
+    glint_status status = GLINT_OK;
+    if (e == EFBIG) {
+        snprintf(err->message, sizeof err->message, "%s: the scene file is larger than %d bytes (256 MiB)", path,
+                 SF_MAX_FILE_BYTES);
+        status = GLINT_ERR_INPUT;
+    } else if (e == ENOMEM) {
+        return out_of_memory_reading(path, err);
+    } else if (e) {
+        snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, strerror(e));
+        status = GLINT_ERR_INPUT;
+    }
     if (status == GLINT_OK) status = scene_file_parse(path, buf, n, out, err);
     free(buf);
     // The scene file is an input too: nothing should overwrite it.
-    if (status == GLINT_OK && S_ISREG(st.st_mode) && !scene_add_input(*out, (uint64_t)st.st_dev, (uint64_t)st.st_ino)) {
+    if (status == GLINT_OK && stat_ok && S_ISREG(st.st_mode) &&
+        !scene_add_input(*out, (uint64_t)st.st_dev, (uint64_t)st.st_ino)) {
         scene_free(*out);
         *out = NULL;
         return out_of_memory_reading(path, err);
