@@ -66,6 +66,7 @@ typedef struct glint_overrides {
     long width, height, spp, max_depth;
     long long seed;
     const char *accel; ///< "bvh" (default), "bvh2" or "none"
+    const char *output_encoding; ///< how 8-bit output encodes linear values: "linear", "gamma2" or "srgb"
 } glint_overrides;
 
 /// Sets every field of *o to "not overridden".

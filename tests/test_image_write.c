@@ -183,6 +183,50 @@ static void test_png(void) {
     glint_image_free(img);
 }
 
+// The colour chunks a PNG carries: whether it says sRGB, and its gAMA (file gamma) value.
+static bool png_colour_chunks(const char *path, bool *srgb, double *gamma) {
+    FILE *f = fopen(path, "rb");
+    if (!f) return false;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, NULL, NULL, NULL);
+    png_infop info = png ? png_create_info_struct(png) : NULL;
+    bool ok = info != NULL;
+    if (ok && setjmp(png_jmpbuf(png))) ok = false;
+    else if (ok) {
+        png_init_io(png, f);
+        png_read_info(png, info);
+        int intent;
+        *srgb = png_get_sRGB(png, info, &intent) != 0;
+        *gamma = 0.0;
+        if (!png_get_gAMA(png, info, gamma)) *gamma = -1.0;
+        ok = png_get_valid(png, info, PNG_INFO_cHRM) != 0; // the primaries are stated too
+    }
+    png_destroy_read_struct(&png, info ? &info : NULL, NULL);
+    fclose(f);
+    return ok;
+}
+
+// Each encoding writes the chunk that says what the bytes mean: sRGB (with its gAMA of 1/2.2), or the gAMA of
+// the power law the bytes follow (1/2 for gamma 2, 1 for linear), each with the sRGB primaries in cHRM.
+static void test_png_colour_chunks(void) {
+    static const struct {
+        output_transform encoding;
+        bool srgb;
+        double gamma;
+    } cases[] = {{TRANSFORM_SRGB, true, 0.45455}, {TRANSFORM_GAMMA2, false, 0.5}, {TRANSFORM_LINEAR, false, 1.0}};
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        glint_image *img = test_image(cases[i].encoding);
+        glint_error err;
+        CHECK(glint_image_write(img, tmp_path("c.png"), GLINT_FORMAT_AUTO, &err) == GLINT_OK);
+        bool srgb = false;
+        double gamma = 0.0;
+        CHECK(png_colour_chunks(tmp_path("c.png"), &srgb, &gamma));
+        CHECK(srgb == cases[i].srgb);
+        CHECK_NEAR(gamma, cases[i].gamma, 1e-5);
+        glint_image_free(img);
+    }
+    unlink(tmp_path("c.png")); // the tests after this one count the directory's files
+}
+
 static void test_mode(void) {
     glint_image *img = film_image_new(2, 2, TRANSFORM_LINEAR);
     mode_t mask = umask(022);
@@ -262,6 +306,7 @@ int main(void) {
     test_ppm_ascii();
     test_pfm();
     test_png();
+    test_png_colour_chunks();
     test_mode();
     test_errors();
     CHECK(dir_entries() == 7); // a.ppm b.ppm c.pfm d.png e.PNG mode.ppm full.ppm, and nothing else

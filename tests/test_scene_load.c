@@ -37,7 +37,7 @@ static void test_defaults(void) {
     CHECK(rs->integrator == INTEGRATOR_WHITTED && rs->whitted_mode == WHITTED_COLOR);
     CHECK(rs->background == BACKGROUND_CONSTANT);
     CHECK_VEC(rs->background_color, 0, 0, 0);
-    CHECK(rs->transform == TRANSFORM_LINEAR);
+    CHECK(rs->transform == TRANSFORM_SRGB); // 8-bit output is sRGB unless the file says otherwise
     CHECK(rs->accel == ACCEL_BVH);
     CHECK(s->camera.kind == CAMERA_LOOKAT);
     CHECK_VEC(s->camera.lookfrom, 0, 0, 0);
@@ -46,6 +46,28 @@ static void test_defaults(void) {
     CHECK_NEAR(s->camera.vfov_degrees, 90, 0);
     CHECK(s->material_count == 0 && s->sphere_count == 0 && s->light_count == 0);
     CHECK(strcmp(s->path, "good.json") == 0);
+    glint_scene_free(s);
+    // The default encoding: sRGB for the path tracer too, linear in paper mode (the paper's program wrote its
+    // values as they are); what the file says wins, and so does an override.
+    s = parse("{\"render\": {\"integrator\": \"path\"}}");
+    CHECK(s && s->settings.transform == TRANSFORM_SRGB);
+    glint_scene_free(s);
+    s = parse("{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"paper\"}}}");
+    CHECK(s && s->settings.transform == TRANSFORM_LINEAR);
+    glint_scene_free(s);
+    s = parse("{\"render\": {\"output\": \"gamma2\"}}");
+    CHECK(s && s->settings.transform == TRANSFORM_GAMMA2);
+    if (s) {
+        glint_overrides o;
+        glint_overrides_init(&o);
+        o.output_encoding = "linear";
+        glint_error err;
+        CHECK(glint_scene_override(s, &o, &err) == GLINT_OK && s->settings.transform == TRANSFORM_LINEAR);
+        o.output_encoding = "gamma";
+        CHECK(glint_scene_override(s, &o, &err) == GLINT_ERR_INPUT);
+        CHECK(strcmp(err.message, "--output-encoding: unknown encoding 'gamma', expected linear, gamma2 or srgb") == 0);
+        CHECK(s->settings.transform == TRANSFORM_LINEAR); // a refused override changes nothing
+    }
     glint_scene_free(s);
 
     // Empty sections are fine too.

@@ -15,6 +15,7 @@ void glint_overrides_init(glint_overrides *o) {
     o->width = o->height = o->spp = o->max_depth = -1;
     o->seed = -1;
     o->accel = NULL;
+    o->output_encoding = NULL;
 }
 
 glint_status glint_scene_load(const char *path, glint_scene **out, glint_error *err) {

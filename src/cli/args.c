@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 typedef enum option_id {
-    OPT_OUTPUT, OPT_ASCII_PPM, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED, OPT_THREADS, OPT_ACCEL,
+    OPT_OUTPUT, OPT_ASCII_PPM, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED, OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING,
     OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
@@ -33,6 +33,7 @@ static const option_spec OPTIONS[] = {
     {"seed", 0, true, OPT_SEED, 0, 9007199254740992LL}, // 2^53: every seed a JSON number holds exactly
     {"threads", 0, true, OPT_THREADS, 0, 256}, // 0: all online CPUs, as the library counts them
     {"accel", 0, true, OPT_ACCEL, 1, 0},
+    {"output-encoding", 0, true, OPT_OUTPUT_ENCODING, 1, 0},
     {"quiet", 'q', false, OPT_QUIET, 1, 0},
     {"help", 'h', false, OPT_HELP, 1, 0},
     {"version", 'V', false, OPT_VERSION, 1, 0},
@@ -62,6 +63,8 @@ static void print_usage(FILE *f) {
             "      --seed N       random seed, 0..9007199254740992 (2^53)\n"
             "      --threads N    worker threads, 0..256; 0 and the default: all online CPUs (%ld here);\n"
             "                     1 renders sequentially. The image is the same for every N\n"
+            "      --output-encoding E  how .png and .ppm encode linear values: linear, gamma2 or srgb\n"
+            "                     (default: the scene's \"output\"; without it srgb, linear in paper mode)\n"
             "      --accel KIND   acceleration structure: bvh, bvh2 or none (brute force: every ray tests\n"
             "                     every object and triangle; a warning says so when there are meshes)\n"
             "  -q, --quiet        no progress bar, statistics line or warnings; errors are still printed\n"
@@ -158,6 +161,13 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
             return CLI_EXIT_USAGE;
         }
         o->overrides.accel = value;
+        break;
+    case OPT_OUTPUT_ENCODING:
+        if (strcmp(value, "linear") != 0 && strcmp(value, "gamma2") != 0 && strcmp(value, "srgb") != 0) {
+            fprintf(stderr, "glint: --output-encoding: unknown encoding '%s', expected linear, gamma2 or srgb\n", value);
+            return CLI_EXIT_USAGE;
+        }
+        o->overrides.output_encoding = value;
         break;
     case OPT_QUIET: o->quiet = true; break;
     case OPT_HELP: print_usage(stdout); return CLI_EXIT_OK;

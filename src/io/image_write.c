@@ -136,6 +136,14 @@ static bool png_encode(png_writer *w, const glint_image *img) {
     png_set_write_fn(w->png, w, png_on_write, png_on_flush);
     png_set_IHDR(w->png, w->info, (png_uint_32)img->width, (png_uint_32)img->height, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    // The colour chunks say how the bytes were encoded, so that viewers decode them right: sRGB (with the
+    // gAMA and cHRM that stand for it), or the plain power law of gamma 2 or linear, on sRGB primaries.
+    if (img->transform == TRANSFORM_SRGB) {
+        png_set_sRGB_gAMA_and_cHRM(w->png, w->info, PNG_sRGB_INTENT_PERCEPTUAL);
+    } else {
+        png_set_gAMA(w->png, w->info, img->transform == TRANSFORM_GAMMA2 ? 0.5 : 1.0);
+        png_set_cHRM(w->png, w->info, 0.3127, 0.3290, 0.64, 0.33, 0.30, 0.60, 0.15, 0.06);
+    }
     png_write_info(w->png, w->info);
     for (int y = 0; y < img->height; y++) {
         encode_row(img, y, w->row);

@@ -190,6 +190,18 @@ glint_status scene_override(glint_scene *s, const glint_overrides *o, glint_erro
             return GLINT_ERR_INPUT;
         }
     }
+    output_transform encoding = rs->transform;
+    if (o->output_encoding) {
+        if (strcmp(o->output_encoding, "linear") == 0) encoding = TRANSFORM_LINEAR;
+        else if (strcmp(o->output_encoding, "gamma2") == 0) encoding = TRANSFORM_GAMMA2;
+        else if (strcmp(o->output_encoding, "srgb") == 0) encoding = TRANSFORM_SRGB;
+        else {
+            snprintf(err->message, sizeof err->message,
+                     "--output-encoding: unknown encoding '%s', expected linear, gamma2 or srgb", o->output_encoding);
+            return GLINT_ERR_INPUT;
+        }
+    }
+    rs->transform = encoding;
     if (o->width >= 0) rs->width = (int)o->width;
     if (o->height >= 0) rs->height = (int)o->height;
     if (o->spp >= 0) rs->spp = (int)o->spp;

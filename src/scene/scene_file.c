@@ -453,6 +453,7 @@ static bool read_render(sf_loader *ld, jr_val v) {
         !jr_read_enum(&ld->r, &o, "accel", accels, 3, &structure))
         return false;
     if (output >= 0) rs->transform = transform_kinds[output];
+    ld->output_given = output >= 0;
     if (structure >= 0) rs->accel = accel_kinds[structure];
     rs->width = (int)width;
     rs->height = (int)height;
@@ -487,6 +488,12 @@ static bool read_scene(sf_loader *ld, jr_val root) {
         return false;
     if ((m = jr_get(&o, "objects")) && !read_array(ld, m->val, "objects", sf_read_object)) return false;
     if ((m = jr_get(&o, "lights")) && !read_array(ld, m->val, "lights", sf_read_light)) return false;
+    // Without "output", 8-bit images are sRGB (what displays and image viewers expect), except in paper mode,
+    // whose program wrote its linear values as they are.
+    render_settings *rs = &ld->scene->settings;
+    if (!ld->output_given)
+        rs->transform = rs->integrator == INTEGRATOR_WHITTED && rs->whitted_mode == WHITTED_PAPER ? TRANSFORM_LINEAR
+                                                                                                  : TRANSFORM_SRGB;
     sf_warn_unseen(ld);
     if (ld->warnings_dropped) {
         char msg[256];

@@ -77,6 +77,7 @@ typedef struct sf_loader {
     long fallback_material;  ///< the grey Lambertian of faces without a material, once created; else -1
     size_t warnings_dropped; ///< warnings past SF_MAX_WARNINGS
     bool warning_oom;        ///< a warning could not be stored
+    bool output_given;       ///< render.output was in the file (else the integrator's default applies)
     size_t object_counts[SF_OBJECT_KINDS]; ///< objects read, by type (for the warnings of sf_warn_unseen)
 } sf_loader;
 

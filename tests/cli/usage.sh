@@ -41,6 +41,15 @@ expect 2 "glint: --seed: -1 is out of range, expected an integer in [0, 90071992
 expect 2 "glint: --threads: -1 is out of range, expected an integer in [0, 256]" --threads -1 "$DATA/tiny.json"
 expect 2 "glint: --threads: 257 is out of range, expected an integer in [0, 256]" --threads 257 "$DATA/tiny.json"
 expect 2 "glint: --accel: unknown structure 'kd', expected bvh, bvh2 or none" --accel kd "$DATA/tiny.json"
+expect 2 "glint: --output-encoding: unknown encoding 'gamma', expected linear, gamma2 or srgb" \
+    --output-encoding gamma "$DATA/tiny.json"
+# --output-encoding changes the 8-bit bytes and nothing else: srgb and linear differ, the PFM is the same.
+run --quiet --output-encoding linear -o "$TMP/lin.ppm" "$DATA/tiny.json"
+run --quiet --output-encoding srgb -o "$TMP/srgb.ppm" "$DATA/tiny.json"
+check "--output-encoding: the encodings differ" test "$(cmp -s "$TMP/lin.ppm" "$TMP/srgb.ppm"; echo $?)" = 1
+run --quiet --output-encoding linear -o "$TMP/lin.pfm" "$DATA/tiny.json"
+run --quiet --output-encoding srgb -o "$TMP/srgb.pfm" "$DATA/tiny.json"
+check "--output-encoding: the linear values are the same" cmp -s "$TMP/lin.pfm" "$TMP/srgb.pfm"
 expect 2 "glint: option '--width' needs a value
 $HINT" "$DATA/tiny.json" --width
 expect 2 "glint: option '-o' needs a value
