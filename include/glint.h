@@ -132,7 +132,10 @@ typedef enum glint_format {
     GLINT_FORMAT_PNG,
     GLINT_FORMAT_PPM,
     GLINT_FORMAT_PPM_ASCII,
-    GLINT_FORMAT_PFM
+    GLINT_FORMAT_PFM,
+    GLINT_FORMAT_EXR,      ///< OpenEXR, linear RGB as 32-bit floats (.exr)
+    GLINT_FORMAT_EXR_HALF, ///< OpenEXR, linear RGB as 16-bit halves
+    GLINT_FORMAT_HDR       ///< Radiance RGBE, linear (.hdr)
 } glint_format;
 
 /// Writes the image; "-" writes PPM to standard output. Writes an unnamed temporary file (Linux O_TMPFILE; a

@@ -246,7 +246,7 @@ static void test_errors(void) {
 
     CHECK(glint_image_write(img, tmp_path("x.jpg"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);
     snprintf(expected, sizeof expected,
-             "%s: unknown image format '.jpg', expected .png, .ppm or .pfm (or - for PPM on standard output)",
+             "%s: unknown image format '.jpg', expected .png, .ppm, .pfm, .exr or .hdr (or - for PPM on standard output)",
              tmp_path("x.jpg"));
     CHECK(strcmp(err.message, expected) == 0);
     CHECK(glint_image_check_path(tmp_path("x.jpg"), GLINT_FORMAT_AUTO, &err) == GLINT_ERR_INPUT);

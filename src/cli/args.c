@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 typedef enum option_id {
-    OPT_OUTPUT, OPT_ASCII_PPM, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED, OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING,
+    OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED, OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING,
     OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
@@ -26,6 +26,7 @@ typedef struct option_spec {
 static const option_spec OPTIONS[] = {
     {"output", 'o', true, OPT_OUTPUT, 1, 0},
     {"ascii-ppm", 0, false, OPT_ASCII_PPM, 1, 0},
+    {"half", 0, false, OPT_HALF, 1, 0},
     {"width", 0, true, OPT_WIDTH, 1, 16384},
     {"height", 0, true, OPT_HEIGHT, 1, 16384},
     {"spp", 0, true, OPT_SPP, 1, 1000000},
@@ -50,12 +51,14 @@ static void print_usage(FILE *f) {
             "\n"
             "options:\n"
             "  -o, --output FILE  the image to write; its extension chooses the format:\n"
-            "                     .png (8-bit RGB), .ppm (binary P6), .pfm (linear float RGB);\n"
+            "                     .png (8-bit RGB), .ppm (binary P6), .pfm (linear float RGB),\n"
+            "                     .exr (OpenEXR, linear float RGB), .hdr (Radiance RGBE, linear);\n"
             "                     - writes PPM to standard output. Default: the scene's file name with\n"
             "                     .png, in the current directory (scenes/paper.json -> paper.png;\n"
             "                     out.png when the scene comes from standard input). A symbolic link is\n"
             "                     written through; the scene file and read-only files are never replaced\n"
             "      --ascii-ppm    write PPM as ASCII P3, as the seeds print it, instead of binary P6\n"
+            "      --half         write EXR channels as 16-bit halves instead of 32-bit floats\n"
             "      --width N      image width in pixels, 1..16384\n"
             "      --height N     image height in pixels, 1..16384\n"
             "      --spp N        samples per pixel, 1..1000000\n"
@@ -149,6 +152,7 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
         o->output = value;
         break;
     case OPT_ASCII_PPM: o->ascii_ppm = true; break;
+    case OPT_HALF: o->half = true; break;
     case OPT_WIDTH: o->overrides.width = (long)v; break;
     case OPT_HEIGHT: o->overrides.height = (long)v; break;
     case OPT_SPP: o->overrides.spp = (long)v; break;
@@ -242,6 +246,11 @@ cli_action cli_parse(int argc, char **argv, cli_options *o) {
     if (!o->output) set_default_output(o);
     if (o->ascii_ppm && !is_ppm_path(o->output)) {
         fprintf(stderr, "glint: --ascii-ppm: the output '%s' is not a .ppm file (or -)\n", o->output);
+        return CLI_EXIT_USAGE;
+    }
+    size_t out_len = strlen(o->output);
+    if (o->half && !(out_len > 4 && strcasecmp(o->output + out_len - 4, ".exr") == 0)) {
+        fprintf(stderr, "glint: --half: the output '%s' is not an .exr file\n", o->output);
         return CLI_EXIT_USAGE;
     }
     return CLI_RUN;

@@ -13,7 +13,7 @@ typedef struct cli_options {
     char default_output[4096];
     glint_overrides overrides;
     int threads;            ///< 0 = all online CPUs
-    bool quiet, ascii_ppm;
+    bool quiet, ascii_ppm, half;
 } cli_options;
 
 /// What main does after parsing: render, or exit at once with this code.

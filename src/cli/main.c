@@ -145,7 +145,7 @@ int main(int argc, char **argv) {
     if (action != CLI_RUN) return (int)action;
 
     glint_error err;
-    glint_format format = opt.ascii_ppm ? GLINT_FORMAT_PPM_ASCII : GLINT_FORMAT_AUTO;
+    glint_format format = opt.ascii_ppm ? GLINT_FORMAT_PPM_ASCII : opt.half ? GLINT_FORMAT_EXR_HALF : GLINT_FORMAT_AUTO;
     // Before the render, not after it: a typo in -o must not cost a long render.
     glint_status st = glint_image_check_path(opt.output, format, &err);
     if (st != GLINT_OK) {

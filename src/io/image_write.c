@@ -3,8 +3,10 @@
 #define _GNU_SOURCE
 #include "io/image_write.h"
 #include "film/film.h"
+#include "io/exr_write.h"
 
 #include <png.h>
+#include <stb_image_write.h>
 
 #include <errno.h>
 #include <fcntl.h>
@@ -16,7 +18,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-static const char SUPPORTED_FORMATS[] = "expected .png, .ppm or .pfm (or - for PPM on standard output)";
+static const char SUPPORTED_FORMATS[] =
+    "expected .png, .ppm, .pfm, .exr or .hdr (or - for PPM on standard output)";
 
 // ---- choosing the format ----
 
@@ -35,6 +38,8 @@ static glint_status resolve_format(const char *path, glint_format requested, gli
     if (strcasecmp(dot, ".png") == 0) *out = GLINT_FORMAT_PNG;
     else if (strcasecmp(dot, ".ppm") == 0) *out = GLINT_FORMAT_PPM;
     else if (strcasecmp(dot, ".pfm") == 0) *out = GLINT_FORMAT_PFM;
+    else if (strcasecmp(dot, ".exr") == 0) *out = GLINT_FORMAT_EXR;
+    else if (strcasecmp(dot, ".hdr") == 0) *out = GLINT_FORMAT_HDR;
     else {
         snprintf(err->message, sizeof err->message, "%s: unknown image format '%s', %s", path, dot, SUPPORTED_FORMATS);
         return GLINT_ERR_INPUT;
@@ -170,11 +175,27 @@ static int write_png(FILE *f, const glint_image *img, char *why, size_t why_size
     return rc;
 }
 
+// stb_image_write's callback: everything goes to the file, and a short write is remembered.
+static void hdr_on_write(void *user, void *data, int size) {
+    FILE **f = user;
+    if (*f && fwrite(data, 1, (size_t)size, *f) != (size_t)size) *f = NULL;
+}
+
+// Radiance RGBE (.hdr) through stb_image_write: linear values, run-length encoded scanlines.
+static int write_hdr(FILE *f, const glint_image *img) {
+    FILE *out = f;
+    if (!stbi_write_hdr_to_func(hdr_on_write, &out, img->width, img->height, 3, img->rgb)) return EIO;
+    return out ? 0 : (errno ? errno : EIO);
+}
+
 static int write_format(FILE *f, const glint_image *img, glint_format format, char *why, size_t why_size) {
     switch (format) {
     case GLINT_FORMAT_PNG: return write_png(f, img, why, why_size);
     case GLINT_FORMAT_PPM_ASCII: return write_ppm_ascii(f, img);
     case GLINT_FORMAT_PFM: return write_pfm(f, img);
+    case GLINT_FORMAT_EXR: return exr_write(f, img, false, why, why_size);
+    case GLINT_FORMAT_EXR_HALF: return exr_write(f, img, true, why, why_size);
+    case GLINT_FORMAT_HDR: return write_hdr(f, img);
     case GLINT_FORMAT_PPM:
     case GLINT_FORMAT_AUTO: break;
     }

@@ -41,6 +41,9 @@ expect 2 "glint: --seed: -1 is out of range, expected an integer in [0, 90071992
 expect 2 "glint: --threads: -1 is out of range, expected an integer in [0, 256]" --threads -1 "$DATA/tiny.json"
 expect 2 "glint: --threads: 257 is out of range, expected an integer in [0, 256]" --threads 257 "$DATA/tiny.json"
 expect 2 "glint: --accel: unknown structure 'kd', expected bvh, bvh2 or none" --accel kd "$DATA/tiny.json"
+expect 2 "glint: --half: the output '$TMP/h.png' is not an .exr file" --half -o "$TMP/h.png" "$DATA/tiny.json"
+run --quiet --half -o "$TMP/h.exr" "$DATA/tiny.json"
+check "--half writes an EXR" test "$rc" -eq 0 -a "$(head -c 4 "$TMP/h.exr" | od -An -tx1 | tr -d ' ')" = 762f3101
 expect 2 "glint: --output-encoding: unknown encoding 'gamma', expected linear, gamma2 or srgb" \
     --output-encoding gamma "$DATA/tiny.json"
 # --output-encoding changes the 8-bit bytes and nothing else: srgb and linear differ, the PFM is the same.
@@ -83,10 +86,10 @@ check "--threads 0: exit 0" test "$rc" -eq 0
 check "--threads 0: all $cpus online CPUs" grep -q "($cpus thread" "$TMP/err"
 
 # Outputs are checked before the scene is even read: no render is wasted on a typo.
-expect 2 "glint: $TMP/x.jpg: unknown image format '.jpg', expected .png, .ppm or .pfm (or - for PPM on standard output)" \
+expect 2 "glint: $TMP/x.jpg: unknown image format '.jpg', expected .png, .ppm, .pfm, .exr or .hdr (or - for PPM on standard output)" \
     -o "$TMP/x.jpg" "$DATA/tiny.json"
 check "unknown extension: no file" test ! -e "$TMP/x.jpg"
-expect 2 "glint: $TMP/noext: no file extension to choose the image format from, expected .png, .ppm or .pfm (or - for PPM on standard output)" \
+expect 2 "glint: $TMP/noext: no file extension to choose the image format from, expected .png, .ppm, .pfm, .exr or .hdr (or - for PPM on standard output)" \
     -o "$TMP/noext" "$DATA/tiny.json"
 expect 1 "glint: /nonexistent/dir/x.png: cannot write: No such file or directory" \
     -o /nonexistent/dir/x.png "$DATA/tiny.json"

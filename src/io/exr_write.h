@@ -1,0 +1,15 @@
+// exr_write.h — OpenEXR output through the library's C API (Debian's libopenexr-dev, openexr.h): linear RGB
+// as 32-bit float or 16-bit half channels "R", "G", "B", ZIP-compressed scanlines.
+#ifndef GLINT_EXR_WRITE_H
+#define GLINT_EXR_WRITE_H
+
+#include "glint.h"
+
+#include <stdbool.h>
+#include <stdio.h>
+
+/// Writes img to the open, seekable file f as an EXR (half: 16-bit channels, else 32-bit float). 0 on success,
+/// else an errno value, with what went wrong in why.
+int exr_write(FILE *f, const glint_image *img, bool half, char *why, size_t why_size);
+
+#endif
