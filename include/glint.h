@@ -75,6 +75,10 @@ GLINT_API void glint_overrides_init(glint_overrides *o);
 /// A value struct: options of one render that are not part of the scene (zero-initialised: the defaults).
 typedef struct glint_render_options {
     int threads; ///< worker threads; 0 = all online CPUs. The image is the same for every count
+    /// > 0: after this many seconds of rendering no new sample pass starts (passes are 1, 1, 2, 4, ...
+    /// samples per pixel); the render ends with GLINT_OK once the pass in progress is complete, and its
+    /// image is exactly that of a render at the samples per pixel reached (glint_render_stats.spp_done).
+    double time_limit;
 } glint_render_options;
 
 /// A value struct: counters of one render, filled by glint_render.
@@ -84,6 +88,8 @@ typedef struct glint_render_stats {
     uint64_t samples, rays, shadow_rays, discarded_samples;
     uint64_t bvh_nodes, bvh_leaves, bvh_depth;
     int threads;
+    int spp;      ///< samples per pixel the scene asked for
+    int spp_done; ///< samples per pixel every pixel received (spp, or fewer under a time limit; 0 if stopped)
 } glint_render_stats;
 
 /// Called from one thread at a time with the fraction of work done, a few times a second at most.

@@ -274,7 +274,35 @@ static void test_stop_during_build(void) {
     glint_scene_free(s);
 }
 
+// A time limit ends the render after a whole sample pass: with a limit too short for anything but the first
+// pass, the image is exactly that of a 1-spp render, with GLINT_OK; a limit never reached changes nothing.
+static void test_time_limit(void) {
+    glint_scene *s = make_scene(INTEGRATOR_PATH, 21, 13, 8);
+    glint_error err;
+    glint_image *full = NULL, *cut = NULL, *one = NULL, *slow = NULL;
+    glint_render_stats st;
+    glint_render_options opt = {.threads = 2};
+    CHECK(glint_render(s, &opt, NULL, NULL, &full, &st, &err) == GLINT_OK && st.spp_done == 8);
+    opt.time_limit = 1e-9;
+    CHECK(glint_render(s, &opt, NULL, NULL, &cut, &st, &err) == GLINT_OK);
+    CHECK(st.spp_done == 1 && st.samples == 21 * 13);
+    opt.time_limit = 1e6;
+    CHECK(glint_render(s, &opt, NULL, NULL, &slow, &st, &err) == GLINT_OK && st.spp_done == 8);
+    s->settings.spp = 1;
+    opt.time_limit = 0.0;
+    CHECK(glint_render(s, &opt, NULL, NULL, &one, &st, &err) == GLINT_OK);
+    size_t bytes = 21 * 13 * 3 * sizeof(float);
+    CHECK(cut && one && memcmp(cut->rgb, one->rgb, bytes) == 0);
+    CHECK(slow && full && memcmp(slow->rgb, full->rgb, bytes) == 0);
+    glint_image_free(full);
+    glint_image_free(cut);
+    glint_image_free(one);
+    glint_image_free(slow);
+    glint_scene_free(s);
+}
+
 int main(void) {
+    test_time_limit();
     test_stop_during_build();
     test_override_after_render();
     test_deterministic(INTEGRATOR_WHITTED, 37, 21, 1);

@@ -60,7 +60,7 @@ void glint_scene_free(glint_scene *scene) { scene_free(scene); }
 glint_status glint_render(const glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,
                           void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
     glint_error scratch;
-    render_options ro = {.threads = opt ? opt->threads : 0};
+    render_options ro = {.threads = opt ? opt->threads : 0, .time_limit = opt ? opt->time_limit : 0.0};
     return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);
 }
 

@@ -10,7 +10,7 @@
 #include <unistd.h>
 
 typedef enum option_id {
-    OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED, OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING,
+    OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_TIME_LIMIT, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED, OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING,
     OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
@@ -33,6 +33,7 @@ static const option_spec OPTIONS[] = {
     {"depth", 0, true, OPT_DEPTH, 0, 10000},
     {"seed", 0, true, OPT_SEED, 0, 9007199254740992LL}, // 2^53: every seed a JSON number holds exactly
     {"threads", 0, true, OPT_THREADS, 0, 256}, // 0: all online CPUs, as the library counts them
+    {"time-limit", 0, true, OPT_TIME_LIMIT, 1, 100000000},
     {"accel", 0, true, OPT_ACCEL, 1, 0},
     {"output-encoding", 0, true, OPT_OUTPUT_ENCODING, 1, 0},
     {"quiet", 'q', false, OPT_QUIET, 1, 0},
@@ -66,6 +67,8 @@ static void print_usage(FILE *f) {
             "      --seed N       random seed, 0..9007199254740992 (2^53)\n"
             "      --threads N    worker threads, 0..256; 0 and the default: all online CPUs (%ld here);\n"
             "                     1 renders sequentially. The image is the same for every N\n"
+            "      --time-limit S no sample pass starts after S seconds, 1..100000000: the image is that of\n"
+            "                     the samples per pixel reached (1, 2, 4, ...; said on stderr), exit 0\n"
             "      --output-encoding E  how .png and .ppm encode linear values: linear, gamma2 or srgb\n"
             "                     (default: the scene's \"output\"; without it srgb, linear in paper mode)\n"
             "      --accel KIND   acceleration structure: bvh, bvh2 or none (brute force: every ray tests\n"
@@ -159,6 +162,7 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
     case OPT_DEPTH: o->overrides.max_depth = (long)v; break;
     case OPT_SEED: o->overrides.seed = v; break;
     case OPT_THREADS: o->threads = (int)v; break;
+    case OPT_TIME_LIMIT: o->time_limit = (long)v; break;
     case OPT_ACCEL:
         if (strcmp(value, "bvh") != 0 && strcmp(value, "bvh2") != 0 && strcmp(value, "none") != 0) {
             fprintf(stderr, "glint: --accel: unknown structure '%s', expected bvh, bvh2 or none\n", value);

@@ -13,6 +13,7 @@ typedef struct cli_options {
     char default_output[4096];
     glint_overrides overrides;
     int threads;            ///< 0 = all online CPUs
+    long time_limit;        ///< seconds after which no new sample pass starts; 0: none
     bool quiet, ascii_ppm, half;
 } cli_options;
 

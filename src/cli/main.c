@@ -187,7 +187,7 @@ int main(int argc, char **argv) {
 
     cli_progress bar = {.start = cli_now(), .drawn = false};
     bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
-    glint_render_options ropt = {.threads = opt.threads};
+    glint_render_options ropt = {.threads = opt.threads, .time_limit = (double)opt.time_limit};
     glint_image *img = NULL;
     glint_render_stats stats;
     memset(&stats, 0, sizeof stats);
@@ -203,6 +203,9 @@ int main(int argc, char **argv) {
     if (!opt.quiet) cli_print_stats(&stats, interrupted && stats.samples == 0 ? NULL : opt.output);
     // A render that lost more than a small share of its samples is wrong, but its image is still written.
     bool lost = cli_warn_discarded(&stats);
+    if (st == GLINT_OK && stats.spp_done < stats.spp && !opt.quiet)
+        fprintf(stderr, "glint: time limit of %ld s reached: %d of %d samples per pixel rendered\n", opt.time_limit,
+                stats.spp_done, stats.spp);
 
     if (interrupted && stats.samples == 0) {
         if (!opt.quiet) fprintf(stderr, "%s", NOTHING_RENDERED);

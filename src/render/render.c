@@ -8,6 +8,7 @@
 
 #include <errno.h>
 #include <pthread.h>
+#include <sched.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -20,6 +21,8 @@ enum {
     MAX_THREADS = 256,
     MAX_PASSES = 33,            // 0, 1, 2, 4, ..., 2^30, spp: enough for any int spp
     PROGRESS_INTERVAL_MS = 200, // progress callbacks at most five times a second
+    PASS_RUN = 1,
+    PASS_SKIP = 2,
 };
 
 // Set by render_request_stop (possibly from a signal handler), polled before every sample, cleared when a
@@ -44,6 +47,8 @@ typedef struct render_job {
     atomic_int *tile_passes;       ///< passes completed by each tile; pass p of a tile waits for p
     atomic_int waiters;            ///< workers blocked in wait_for_tile
     atomic_int stopping;           ///< a worker saw the stop request; waiters must give up
+    double deadline;               ///< clock_seconds() after which no new pass starts (0: no time limit)
+    atomic_int pass_decision[MAX_PASSES]; ///< under a time limit: 0 undecided, PASS_RUN or PASS_SKIP
     pthread_mutex_t lock;
     pthread_cond_t tile_finished;
 } render_job;
@@ -121,6 +126,20 @@ static bool wait_for_tile(render_job *job, int tile, int pass) {
     return atomic_load(&job->tile_passes[tile]) >= pass;
 }
 
+// Under a time limit, whether pass `pass` runs: the worker that takes its first tile decides, by the clock,
+// once for everyone (items are handed out in order, so no tile of a pass is taken before its first); the
+// others wait for that decision. Every pixel thus ends with the same passes: the image of a shorter render.
+static bool pass_may_run(render_job *job, int pass, int tile) {
+    if (tile == 0)
+        atomic_store(&job->pass_decision[pass], clock_seconds() > job->deadline ? PASS_SKIP : PASS_RUN);
+    int d;
+    while ((d = atomic_load(&job->pass_decision[pass])) == 0) {
+        if (stop_is_requested()) return false;
+        sched_yield();
+    }
+    return d == PASS_RUN;
+}
+
 static void *worker_main(void *arg) {
     worker *w = arg;
     render_job *job = w->job;
@@ -131,6 +150,7 @@ static void *worker_main(void *arg) {
         int item = atomic_fetch_add(&job->next_item, 1);
         if (item >= items) break;
         int pass = item / job->tile_count, tile = item % job->tile_count;
+        if (job->deadline > 0.0 && pass > 0 && !pass_may_run(job, pass, tile)) break;
         if (!wait_for_tile(job, tile, pass)) break;
         if (!render_tile(job, tile, pass, &local, &w->samples_done)) break;
         atomic_store(&job->tile_passes[tile], pass + 1);
@@ -217,6 +237,7 @@ static bool job_init(render_job *job, const glint_scene *s, const integrator *it
     atomic_init(&job->next_item, 0);
     atomic_init(&job->waiters, 0);
     atomic_init(&job->stopping, 0);
+    for (int p = 0; p < MAX_PASSES; p++) atomic_init(&job->pass_decision[p], 0);
     if (!film_init(&job->film, rs->width, rs->height, rs->spp, job->pass_count, rs->transform)) return false;
     job->tile_passes = malloc((size_t)job->tile_count * sizeof *job->tile_passes);
     if (!job->tile_passes) {
@@ -261,6 +282,7 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
 
     render_job job;
     bool job_ready = job_init(&job, s, frame.integrator);
+    if (job_ready && opt && opt->time_limit > 0.0) job.deadline = t_built + opt->time_limit;
     worker *workers = job_ready ? aligned_alloc(64, sizeof(worker) * (size_t)threads) : NULL;
     if (!workers) {
         if (job_ready) job_free(&job);
@@ -313,12 +335,25 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
         stats->render_seconds = t_end - t_built;
         stats->threads = started + 1;
     }
+    // A time limit ends the render after a whole pass: every pixel has the samples of the passes that ran.
+    int passes_run = job.pass_count;
+    for (int p = 1; job.deadline > 0.0 && p < job.pass_count; p++)
+        if (atomic_load(&job.pass_decision[p]) == PASS_SKIP) {
+            passes_run = p;
+            break;
+        }
+    uint64_t pixels = (uint64_t)s->settings.width * (uint64_t)s->settings.height;
+    bool timed_out = passes_run < job.pass_count && total.samples == pixels * (uint64_t)job.pass_start[passes_run];
+    if (stats) stats->spp = s->settings.spp;
+    if (stats) stats->spp_done = total.samples == job.total_samples ? s->settings.spp
+                                 : timed_out                      ? job.pass_start[passes_run]
+                                                                  : 0;
     free(workers);
     *out = film_take_image(&job.film);
     job_free(&job);
     frame_release(&frame);
     atomic_store(&stop_requested, 0); // this render has answered any stop request made so far
-    if (total.samples < job.total_samples) {
+    if (total.samples < job.total_samples && !timed_out) {
         snprintf(err->message, sizeof err->message, "interrupted after %llu of %llu samples",
                  (unsigned long long)total.samples, (unsigned long long)job.total_samples);
         return GLINT_ERR_INTERRUPTED;

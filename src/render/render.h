@@ -9,6 +9,7 @@
 /// Options of one render (the public glint_render_options and what only tests set).
 typedef struct render_options {
     int threads;                   ///< worker threads; 0 = all online CPUs
+    double time_limit;             ///< > 0: no sample pass starts after this many seconds of rendering
     integrator_options integrator; ///< choices of the integrator that are not in the scene
 } render_options;
 

@@ -41,6 +41,14 @@ expect 2 "glint: --seed: -1 is out of range, expected an integer in [0, 90071992
 expect 2 "glint: --threads: -1 is out of range, expected an integer in [0, 256]" --threads -1 "$DATA/tiny.json"
 expect 2 "glint: --threads: 257 is out of range, expected an integer in [0, 256]" --threads 257 "$DATA/tiny.json"
 expect 2 "glint: --accel: unknown structure 'kd', expected bvh, bvh2 or none" --accel kd "$DATA/tiny.json"
+# --time-limit ends after a whole pass: the image of the samples per pixel reached, exit 0, said on stderr.
+run --time-limit 1 --spp 1000000 --width 8 --height 8 -o "$TMP/tl.pfm" "$DATA/tiny-path.json"
+check "--time-limit: exit 0" test "$rc" -eq 0
+spp_reached=$(sed -n 's/^glint: time limit of 1 s reached: \([0-9]*\) of 1000000 samples per pixel rendered$/\1/p' "$TMP/err")
+check "--time-limit: says how far it got" test -n "$spp_reached"
+run --quiet --spp "${spp_reached:-1}" --width 8 --height 8 -o "$TMP/tl-same.pfm" "$DATA/tiny-path.json"
+check "--time-limit: the image of a render at that spp" cmp -s "$TMP/tl.pfm" "$TMP/tl-same.pfm"
+expect 2 "glint: --time-limit: 0 is out of range, expected an integer in [1, 100000000]" --time-limit 0 "$DATA/tiny.json"
 expect 2 "glint: --half: the output '$TMP/h.png' is not an .exr file" --half -o "$TMP/h.png" "$DATA/tiny.json"
 run --quiet --half -o "$TMP/h.exr" "$DATA/tiny.json"
 check "--half writes an EXR" test "$rc" -eq 0 -a "$(head -c 4 "$TMP/h.exr" | od -An -tx1 | tr -d ' ')" = 762f3101
