@@ -20,7 +20,7 @@ static long lit_channels(const char *text) {
         fprintf(stderr, "  %s\n", err.message);
         return -1;
     }
-    glint_render_options opt = {2};
+    glint_render_options opt = {.threads = 2};
     glint_image *img = NULL;
     glint_render_stats stats;
     long lit = -1;

@@ -120,7 +120,7 @@ static glint_image *render_tiny(glint_scene *s, const char *name) {
     o.spp = 2;
     glint_error err;
     CHECK(glint_scene_override(s, &o, &err) == GLINT_OK);
-    glint_render_options opt = {1};
+    glint_render_options opt = {.threads = 1};
     glint_image *img = NULL;
     glint_render_stats st;
     glint_status status = glint_render(s, &opt, NULL, NULL, &img, &st, &err);

@@ -67,7 +67,7 @@ static int32_t add_texture(glint_scene *s, texture t) {
 }
 
 static glint_image *render(glint_scene *s, int threads, glint_render_stats *stats) {
-    glint_render_options opt = {threads};
+    glint_render_options opt = {.threads = threads};
     glint_image *img = NULL;
     glint_error err;
     glint_render_stats local;

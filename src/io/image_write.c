@@ -136,6 +136,14 @@ static bool png_encode(png_writer *w, const glint_image *img) {
     png_set_write_fn(w->png, w, png_on_write, png_on_flush);
     png_set_IHDR(w->png, w->info, (png_uint_32)img->width, (png_uint_32)img->height, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    // A region records where it lies, so that glint_merge can place it; a whole image's bytes stay as they were.
+    char key[] = IMAGE_REGION_KEY, where[6 * 12];
+    png_text text = {.compression = PNG_TEXT_COMPRESSION_NONE, .key = key, .text = where};
+    if (film_image_is_region(img)) {
+        snprintf(where, sizeof where, "%d,%d,%d,%d,%d,%d", img->x0, img->y0, img->x0 + img->width,
+                 img->y0 + img->height, img->full_width, img->full_height);
+        png_set_text(w->png, w->info, &text, 1);
+    }
     png_write_info(w->png, w->info);
     for (int y = 0; y < img->height; y++) {
         encode_row(img, y, w->row);
