@@ -1,9 +1,8 @@
 // image_merge.c — glint merge: region PNGs (placed by their "glint:region" chunk) assembled into the full image.
 #include "io/image_merge.h"
 #include "film/film.h"
+#include "io/image_png.h"
 #include "io/image_write.h"
-
-#include <png.h>
 
 #include <errno.h>
 #include <setjmp.h>
@@ -29,16 +28,8 @@ typedef struct png_reader {
     png_structp png;
     png_infop info;
     png_bytep *rows;
-    char message[256]; ///< libpng's message
+    char message[IMAGE_PNG_MESSAGE]; ///< libpng's message (the error pointer), or why the file is no part
 } png_reader;
-
-static void reader_on_error(png_structp png, png_const_charp msg) {
-    png_reader *r = png_get_error_ptr(png);
-    snprintf(r->message, sizeof r->message, "%s", msg);
-    png_longjmp(png, 1);
-}
-
-static void reader_on_warning(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
 
 // Parses "X0,Y0,X1,Y1,W,H" strictly (six decimal integers, nothing else) into p; false when it is not that.
 static bool parse_region(const char *text, part *p) {
@@ -103,7 +94,7 @@ static glint_status read_part(const char *path, part *p, glint_error *err) {
     if (!ok) snprintf(r.message, sizeof r.message, "not a PNG file, %s", EXPECTED_PART);
     if (ok) {
         rewind(r.f);
-        r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &r, reader_on_error, reader_on_warning);
+        r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r.message, image_png_error, image_png_warning);
         r.info = r.png ? png_create_info_struct(r.png) : NULL;
         if (!r.info) snprintf(r.message, sizeof r.message, "out of memory");
         ok = r.info && png_decode_part(&r, p);
@@ -115,7 +106,8 @@ static glint_status read_part(const char *path, part *p, glint_error *err) {
     free(p->rgb);
     p->rgb = NULL;
     snprintf(err->message, sizeof err->message, "%s: %s", path, r.message);
-    return GLINT_ERR_INPUT;
+    // Running out of memory is a resource failure, not a bad part.
+    return strcmp(r.message, "out of memory") == 0 ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
 }
 
 static bool region_contains(const int r[4], int x, int y) { return x >= r[0] && x < r[2] && y >= r[1] && y < r[3]; }

@@ -3,8 +3,7 @@
 #define _GNU_SOURCE
 #include "io/image_write.h"
 #include "film/film.h"
-
-#include <png.h>
+#include "io/image_png.h"
 
 #include <errno.h>
 #include <fcntl.h>
@@ -109,16 +108,15 @@ typedef struct png_writer {
     png_infop info;
     uint8_t *row;
     int write_errno;      ///< errno of a failed fwrite, 0 if libpng failed for another reason
-    char message[256];    ///< libpng's message
+    char message[IMAGE_PNG_MESSAGE]; ///< libpng's message (the error pointer)
 } png_writer;
 
-static void png_on_error(png_structp png, png_const_charp msg) {
-    png_writer *w = png_get_error_ptr(png);
-    snprintf(w->message, sizeof w->message, "%s", msg);
+void image_png_error(png_structp png, png_const_charp msg) {
+    snprintf(png_get_error_ptr(png), IMAGE_PNG_MESSAGE, "%s", msg);
     png_longjmp(png, 1);
 }
 
-static void png_on_warning(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
+void image_png_warning(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
 
 static void png_on_write(png_structp png, png_bytep data, size_t length) {
     png_writer *w = png_get_io_ptr(png);
@@ -157,7 +155,7 @@ static bool png_encode(png_writer *w, const glint_image *img) {
 static int write_png(FILE *f, const glint_image *img, char *why, size_t why_size) {
     png_writer w = {.f = f};
     w.row = malloc((size_t)img->width * 3u);
-    w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w, png_on_error, png_on_warning);
+    w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, w.message, image_png_error, image_png_warning);
     w.info = w.png ? png_create_info_struct(w.png) : NULL;
     int rc = 0;
     if (!w.row || !w.info) rc = ENOMEM;
