@@ -72,13 +72,18 @@ typedef struct glint_overrides {
 /// Sets every field of *o to "not overridden".
 GLINT_API void glint_overrides_init(glint_overrides *o);
 
-/// A value struct: options of one render that are not part of the scene (zero-initialised: the defaults).
+/// A value struct: options of one render that are not part of the scene (zero-initialised: the defaults). Every
+/// field is a value field; initialise the whole struct ({0} or memset) so that fields added later stay default.
 typedef struct glint_render_options {
     int threads; ///< worker threads; 0 = all online CPUs. The image is the same for every count
     /// > 0: after this many seconds of rendering no new sample pass starts (passes are 1, 1, 2, 4, ...
     /// samples per pixel); the render ends with GLINT_OK once the pass in progress is complete, and its
     /// image is exactly that of a render at the samples per pixel reached (glint_render_stats.spp_done).
     double time_limit;
+    /// Only the pixels X0 <= x < X1, Y0 <= y < Y1 of the full image, {X0, Y0, X1, Y1}; all zero = the whole
+    /// image. Each pixel gets exactly the values it has in a full render; the image is the region's size and
+    /// remembers where it lies (a PNG of it records that for glint_merge).
+    int region[4];
 } glint_render_options;
 
 /// A value struct: counters of one render, filled by glint_render.
@@ -121,9 +126,11 @@ GLINT_API bool glint_scene_reads_file(const glint_scene *scene, const char *path
 GLINT_API void glint_scene_free(glint_scene *scene);
 
 /// Renders the scene: builds what the render needs from it (BVH, light index, camera), renders every sample
-/// on opt->threads threads (opt may be NULL), frees what it built. progress (may be NULL) hears how far it
-/// is; stats (may be NULL) receives the counters. On GLINT_OK and GLINT_ERR_INTERRUPTED *out is the image
-/// (after an interruption, each pixel the mean of its completed samples); otherwise *out is NULL.
+/// of opt->region (the whole image by default) on opt->threads threads (opt may be NULL), frees what it built;
+/// a region that is empty or not inside the image is GLINT_ERR_INPUT, its message naming --region. progress
+/// (may be NULL) hears how far it is; stats (may be NULL) receives the counters. On GLINT_OK and
+/// GLINT_ERR_INTERRUPTED *out is the image (of the region's size; after an interruption, each pixel the mean
+/// of its completed samples); otherwise *out is NULL.
 GLINT_API glint_status glint_render(const glint_scene *scene, const glint_render_options *opt,
                                     glint_progress_fn progress, void *user, glint_image **out,
                                     glint_render_stats *stats, glint_error *err);
@@ -144,10 +151,12 @@ typedef enum glint_format {
     GLINT_FORMAT_HDR       ///< Radiance RGBE, linear (.hdr)
 } glint_format;
 
-/// Writes the image; "-" writes PPM to standard output. Writes an unnamed temporary file (Linux O_TMPFILE; a
-/// named one where unsupported) and links it into place, so a failed or killed write leaves no file behind;
-/// writes through a symbolic link to the file it names, and refuses a read-only file ("PATH: cannot write:
-/// the file is read-only", GLINT_ERR_RENDER).
+/// Writes the image; "-" writes PPM to standard output. The PNG of a region (glint_render_options.region)
+/// holds a tEXt chunk "glint:region" = "X0,Y0,X1,Y1,W,H" (W x H: the full image) for glint_merge; PPM and PFM
+/// have no room for it and hold the region's pixels alone. A whole image's PNG has no such chunk. Writes an
+/// unnamed temporary file (Linux O_TMPFILE; a named one where unsupported) and links it into place, so a
+/// failed or killed write leaves no file behind; writes through a symbolic link to the file it names, and
+/// refuses a read-only file ("PATH: cannot write: the file is read-only", GLINT_ERR_RENDER).
 GLINT_API glint_status glint_image_write(const glint_image *img, const char *path, glint_format format,
                                          glint_error *err);
 /// Checks before a render that the image can be written there: GLINT_ERR_INPUT for an unknown extension,
@@ -159,6 +168,12 @@ GLINT_API void glint_image_info(const glint_image *img, int *width, int *height,
 GLINT_API uint8_t glint_image_byte(const glint_image *img, int x, int y, int c);
 /// Frees an image (NULL is allowed).
 GLINT_API void glint_image_free(glint_image *img);
+
+/// Assembles the PNG files of regions (written by glint_image_write, each with its "glint:region" chunk) into
+/// the full image and writes it to `output` (.png or .ppm: the parts' 8-bit values, unchanged). The parts must
+/// tile the full image exactly: GLINT_ERR_INPUT, naming the part, for a file that is no such PNG, parts of
+/// different full sizes, overlapping parts, or a pixel no part covers; GLINT_ERR_RENDER for I/O and memory.
+GLINT_API glint_status glint_merge(const char *output, const char *const *parts, size_t count, glint_error *err);
 
 /// The library's version, GLINT_VERSION when the header and the library agree.
 GLINT_API const char *glint_version(void);

@@ -227,6 +227,16 @@ static void test_png_colour_chunks(void) {
     unlink(tmp_path("c.png")); // the tests after this one count the directory's files
 }
 
+// Decoding a byte gives a value that encodes back to exactly that byte, under every encoding (what glint merge
+// relies on to keep the parts' bytes).
+static void test_decode_round_trip(void) {
+    const output_transform encodings[] = {TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SRGB};
+    int bad = 0;
+    for (int e = 0; e < 3; e++)
+        for (int v = 0; v < 256; v++) bad += film_encode(film_decode((uint8_t)v, encodings[e]), encodings[e]) != v;
+    CHECK(bad == 0);
+}
+
 static void test_mode(void) {
     glint_image *img = film_image_new(2, 2, TRANSFORM_LINEAR);
     mode_t mask = umask(022);
@@ -307,6 +317,7 @@ int main(void) {
     test_pfm();
     test_png();
     test_png_colour_chunks();
+    test_decode_round_trip();
     test_mode();
     test_errors();
     CHECK(dir_entries() == 7); // a.ppm b.ppm c.pfm d.png e.PNG mode.ppm full.ppm, and nothing else

@@ -2,12 +2,14 @@
 // its arguments and hands over to the module that does the work (as Lua keeps its whole API in lapi.c).
 #include "glint.h"
 #include "film/film.h"
+#include "io/image_merge.h"
 #include "io/image_write.h"
 #include "render/render.h"
 #include "scene/scene.h"
 
 #include <stddef.h>
 #include <stdio.h>
+#include <string.h>
 
 const char *glint_version(void) { return GLINT_VERSION; }
 
@@ -61,6 +63,7 @@ glint_status glint_render(const glint_scene *scene, const glint_render_options *
                           void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
     glint_error scratch;
     render_options ro = {.threads = opt ? opt->threads : 0, .time_limit = opt ? opt->time_limit : 0.0};
+    if (opt) memcpy(ro.region, opt->region, sizeof ro.region);
     return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);
 }
 
@@ -87,3 +90,8 @@ uint8_t glint_image_byte(const glint_image *img, int x, int y, int c) {
 }
 
 void glint_image_free(glint_image *img) { film_image_free(img); }
+
+glint_status glint_merge(const char *output, const char *const *parts, size_t count, glint_error *err) {
+    glint_error scratch;
+    return image_merge(output, parts, count, err ? err : &scratch);
+}

@@ -3,6 +3,7 @@
 
 #include <errno.h>
 #include <getopt.h>
+#include <limits.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,8 +11,8 @@
 #include <unistd.h>
 
 typedef enum option_id {
-    OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_TIME_LIMIT, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED, OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING,
-    OPT_QUIET, OPT_HELP, OPT_VERSION
+    OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_TIME_LIMIT, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED,
+    OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
 typedef struct option_spec {
@@ -36,6 +37,7 @@ static const option_spec OPTIONS[] = {
     {"time-limit", 0, true, OPT_TIME_LIMIT, 1, 100000000},
     {"accel", 0, true, OPT_ACCEL, 1, 0},
     {"output-encoding", 0, true, OPT_OUTPUT_ENCODING, 1, 0},
+    {"region", 0, true, OPT_REGION, 1, 0},
     {"quiet", 'q', false, OPT_QUIET, 1, 0},
     {"help", 'h', false, OPT_HELP, 1, 0},
     {"version", 'V', false, OPT_VERSION, 1, 0},
@@ -46,9 +48,13 @@ static void print_usage(FILE *f) {
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     fprintf(f,
             "usage: glint [options] SCENE\n"
+            "       glint merge OUT PART...\n"
             "\n"
             "Renders the JSON scene file SCENE (- reads it from standard input) and writes the image.\n"
             "Options override the scene file's \"render\" settings.\n"
+            "glint merge assembles the PNG files of regions (--region) into the full image OUT (.png or\n"
+            ".ppm), with the parts' pixels unchanged; they must tile it exactly: no overlap, no gap.\n"
+            "(To render a scene file named merge, write ./merge.)\n"
             "\n"
             "options:\n"
             "  -o, --output FILE  the image to write; its extension chooses the format:\n"
@@ -73,6 +79,10 @@ static void print_usage(FILE *f) {
             "                     (default: the scene's \"output\"; without it srgb, linear in paper mode)\n"
             "      --accel KIND   acceleration structure: bvh, bvh2 or none (brute force: every ray tests\n"
             "                     every object and triangle; a warning says so when there are meshes)\n"
+            "      --region X0,Y0,X1,Y1\n"
+            "                     render only the pixels X0 <= x < X1, Y0 <= y < Y1, each exactly as in the\n"
+            "                     full image; the image written is (X1-X0)x(Y1-Y0), and a PNG records where\n"
+            "                     it lies (a glint:region text chunk) for glint merge\n"
             "  -q, --quiet        no progress bar, statistics line or warnings; errors are still printed\n"
             "  -h, --help         print this help and exit\n"
             "  -V, --version      print the version and exit\n"
@@ -120,6 +130,20 @@ static bool parse_integer(const option_spec *spec, const char *text, long long *
     }
     *out = v;
     return true;
+}
+
+// "X0,Y0,X1,Y1": four decimal integers, digits only, each saturated at INT_MAX (whether they lie inside the
+// image is the library's check, once the image size is known).
+static bool parse_region(const char *text, int region[4]) {
+    const char *p = text;
+    for (int i = 0; i < 4; i++) {
+        if (i > 0 && *p++ != ',') return false;
+        if (*p < '0' || *p > '9') return false;
+        long long v = 0;
+        for (; *p >= '0' && *p <= '9'; p++) v = v >= INT_MAX ? INT_MAX : v * 10 + (*p - '0');
+        region[i] = v > INT_MAX ? INT_MAX : (int)v;
+    }
+    return *p == '\0';
 }
 
 // The default image name: the scene file's base name with its extension replaced by .png.
@@ -176,6 +200,17 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
             return CLI_EXIT_USAGE;
         }
         o->overrides.output_encoding = value;
+        break;
+    case OPT_REGION:
+        if (!parse_region(value, o->region)) {
+            fprintf(stderr, "glint: --region: '%s' is not X0,Y0,X1,Y1, expected four non-negative integers "
+                            "separated by commas\n", value);
+            return CLI_EXIT_USAGE;
+        }
+        if (o->region[0] >= o->region[2] || o->region[1] >= o->region[3]) {
+            fprintf(stderr, "glint: --region: %s is empty, expected X0 < X1 and Y0 < Y1\n", value);
+            return CLI_EXIT_USAGE;
+        }
         break;
     case OPT_QUIET: o->quiet = true; break;
     case OPT_HELP: print_usage(stdout); return CLI_EXIT_OK;
@@ -258,4 +293,17 @@ cli_action cli_parse(int argc, char **argv, cli_options *o) {
         return CLI_EXIT_USAGE;
     }
     return CLI_RUN;
+}
+
+int cli_merge(int argc, char **argv) {
+    if (argc < 4) {
+        fprintf(stderr, "glint: merge: expected OUT and at least one PART: glint merge OUT PART...\n");
+        usage_hint();
+        return CLI_EXIT_USAGE;
+    }
+    glint_error err;
+    glint_status st = glint_merge(argv[2], (const char *const *)(argv + 3), (size_t)(argc - 3), &err);
+    if (st == GLINT_OK) return 0;
+    fprintf(stderr, "glint: %s\n", err.message);
+    return st == GLINT_ERR_INPUT ? 2 : 1;
 }

@@ -14,11 +14,15 @@ typedef struct cli_options {
     glint_overrides overrides;
     int threads;            ///< 0 = all online CPUs
     long time_limit;        ///< seconds after which no new sample pass starts; 0: none
+    int region[4];          ///< --region X0,Y0,X1,Y1; all zero: the whole image
     bool quiet, ascii_ppm, half;
 } cli_options;
 
 /// What main does after parsing: render, or exit at once with this code.
 typedef enum cli_action { CLI_RUN = -1, CLI_EXIT_OK = 0, CLI_EXIT_USAGE = 2 } cli_action;
+
+/// Runs `glint merge OUT PART...` (argv[1] is "merge"): returns the exit status, messages on stderr.
+int cli_merge(int argc, char **argv);
 
 /// Parses argv into *o; prints --help/--version to stdout and errors (prefixed "glint: ") to stderr.
 cli_action cli_parse(int argc, char **argv, cli_options *o);

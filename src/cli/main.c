@@ -140,6 +140,7 @@ static bool output_is_scene(const char *output, const char *scene_path) {
 }
 
 int main(int argc, char **argv) {
+    if (argc > 1 && strcmp(argv[1], "merge") == 0) return cli_merge(argc, argv);
     cli_options opt;
     cli_action action = cli_parse(argc, argv, &opt);
     if (action != CLI_RUN) return (int)action;
@@ -188,6 +189,7 @@ int main(int argc, char **argv) {
     cli_progress bar = {.start = cli_now(), .drawn = false};
     bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
     glint_render_options ropt = {.threads = opt.threads, .time_limit = (double)opt.time_limit};
+    memcpy(ropt.region, opt.region, sizeof ropt.region);
     glint_image *img = NULL;
     glint_render_stats stats;
     memset(&stats, 0, sizeof stats);

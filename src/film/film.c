@@ -10,12 +10,19 @@ glint_image *film_image_new(int width, int height, output_transform encoding) {
     img->width = width;
     img->height = height;
     img->transform = encoding;
+    img->x0 = img->y0 = 0;
+    img->full_width = width;
+    img->full_height = height;
     img->rgb = calloc((size_t)width * (size_t)height * 3u, sizeof(float));
     if (!img->rgb) {
         free(img);
         return NULL;
     }
     return img;
+}
+
+bool film_image_is_region(const glint_image *img) {
+    return img->x0 != 0 || img->y0 != 0 || img->width != img->full_width || img->height != img->full_height;
 }
 
 void film_image_free(glint_image *img) {
@@ -35,11 +42,30 @@ uint8_t film_encode(float v, output_transform encoding) {
     return (uint8_t)lrintf(v * 255.0f);
 }
 
-bool film_init(film *f, int width, int height, int spp, int passes, output_transform encoding) {
+float film_decode(uint8_t byte, output_transform encoding) {
+    double v = byte / 255.0, x = v;
+    if (encoding == TRANSFORM_GAMMA2) x = v * v;
+    else if (encoding == TRANSFORM_SRGB) x = v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
+    // The inverse lands next to the value that encodes back; a few float steps settle it exactly.
+    float f = (float)x;
+    for (int i = 0; i < 64 && film_encode(f, encoding) < byte; i++) f = nextafterf(f, 2.0f);
+    for (int i = 0; i < 64 && film_encode(f, encoding) > byte; i++) f = nextafterf(f, -1.0f);
+    return f;
+}
+
+bool film_init(film *f, const int region[4], int full_width, int full_height, int spp, int passes,
+               output_transform encoding) {
+    int width = region[2] - region[0], height = region[3] - region[1];
     f->spp = spp;
     f->sums = NULL;
+    f->x0 = region[0];
+    f->y0 = region[1];
     f->image = film_image_new(width, height, encoding);
     if (!f->image) return false;
+    f->image->x0 = region[0];
+    f->image->y0 = region[1];
+    f->image->full_width = full_width;
+    f->image->full_height = full_height;
     if (passes > 1) {
         f->sums = malloc((size_t)width * (size_t)height * 3u * sizeof *f->sums);
         if (!f->sums) {
@@ -74,7 +100,7 @@ void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int 
     t->x = x0;
     t->y = y0;
     t->k = k0;
-    t->pixel = (size_t)y0 * (size_t)f->image->width + (size_t)x0;
+    t->pixel = film_pixel_index(f, x0, y0);
     t->stats = stats;
     t->progress = progress;
     t->sum[0] = t->sum[1] = t->sum[2] = 0.0;

@@ -4,6 +4,7 @@
 #include "io/image_write.h"
 #include "film/film.h"
 #include "io/exr_write.h"
+#include "io/image_png.h"
 
 #include <png.h>
 #include <stb_image_write.h>
@@ -114,16 +115,15 @@ typedef struct png_writer {
     png_infop info;
     uint8_t *row;
     int write_errno;      ///< errno of a failed fwrite, 0 if libpng failed for another reason
-    char message[256];    ///< libpng's message
+    char message[IMAGE_PNG_MESSAGE]; ///< libpng's message (the error pointer)
 } png_writer;
 
-static void png_on_error(png_structp png, png_const_charp msg) {
-    png_writer *w = png_get_error_ptr(png);
-    snprintf(w->message, sizeof w->message, "%s", msg);
+void image_png_error(png_structp png, png_const_charp msg) {
+    snprintf(png_get_error_ptr(png), IMAGE_PNG_MESSAGE, "%s", msg);
     png_longjmp(png, 1);
 }
 
-static void png_on_warning(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
+void image_png_warning(png_structp png, png_const_charp msg) { (void)png; (void)msg; }
 
 static void png_on_write(png_structp png, png_bytep data, size_t length) {
     png_writer *w = png_get_io_ptr(png);
@@ -149,6 +149,14 @@ static bool png_encode(png_writer *w, const glint_image *img) {
         png_set_gAMA(w->png, w->info, img->transform == TRANSFORM_GAMMA2 ? 0.5 : 1.0);
         png_set_cHRM(w->png, w->info, 0.3127, 0.3290, 0.64, 0.33, 0.30, 0.60, 0.15, 0.06);
     }
+    // A region records where it lies, so that glint_merge can place it; a whole image's bytes stay as they were.
+    char key[] = IMAGE_REGION_KEY, where[6 * 12];
+    png_text text = {.compression = PNG_TEXT_COMPRESSION_NONE, .key = key, .text = where};
+    if (film_image_is_region(img)) {
+        snprintf(where, sizeof where, "%d,%d,%d,%d,%d,%d", img->x0, img->y0, img->x0 + img->width,
+                 img->y0 + img->height, img->full_width, img->full_height);
+        png_set_text(w->png, w->info, &text, 1);
+    }
     png_write_info(w->png, w->info);
     for (int y = 0; y < img->height; y++) {
         encode_row(img, y, w->row);
@@ -162,7 +170,7 @@ static bool png_encode(png_writer *w, const glint_image *img) {
 static int write_png(FILE *f, const glint_image *img, char *why, size_t why_size) {
     png_writer w = {.f = f};
     w.row = malloc((size_t)img->width * 3u);
-    w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &w, png_on_error, png_on_warning);
+    w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, w.message, image_png_error, image_png_warning);
     w.info = w.png ? png_create_info_struct(w.png) : NULL;
     int rc = 0;
     if (!w.row || !w.info) rc = ENOMEM;

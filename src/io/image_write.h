@@ -5,6 +5,9 @@
 
 #include "glint.h"
 
+/// The PNG tEXt keyword under which a region's image records "X0,Y0,X1,Y1,W,H" (W x H: the full image).
+#define IMAGE_REGION_KEY "glint:region"
+
 /// Writes img to path in the format (GLINT_FORMAT_AUTO: from the extension); "-" writes PPM to standard output.
 glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err);
 /// Checks before a render that an image can be written at path: GLINT_ERR_INPUT for an unknown extension,

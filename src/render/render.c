@@ -40,9 +40,11 @@ typedef struct render_job {
     const glint_scene *scene;
     const integrator *integrator;
     film film;
+    int region[4];                 ///< the pixels rendered, X0, Y0, X1, Y1 in full-image coordinates
+    int tile_x0, tile_y0;          ///< the full image's 16x16 grid cell of the region's first tile
     int tiles_x, tile_count, pass_count;
     int pass_start[MAX_PASSES + 1];
-    uint64_t total_samples;        ///< width * height * spp
+    uint64_t total_samples;        ///< the region's pixels * spp
     atomic_int next_item;
     atomic_int *tile_passes;       ///< passes completed by each tile; pass p of a tile waits for p
     atomic_int waiters;            ///< workers blocked in wait_for_tile
@@ -88,14 +90,20 @@ static int plan_passes(int spp, int start[MAX_PASSES + 1]) {
     return n;
 }
 
+static int max_int(int a, int b) { return a > b ? a : b; }
+static int min_int(int a, int b) { return a < b ? a : b; }
+
 // Renders one pass of one tile; false when stopped part-way (pixels not reached keep the previous pass's mean).
+// Tiles are the cells of the full image's 16x16 grid, clipped to the region: a region's pixels are rendered in
+// the same tiles, batches and order as in a full render.
 static bool render_tile(render_job *job, int tile, int pass, thread_stats *ts, _Atomic uint64_t *progress) {
-    const render_settings *rs = &job->scene->settings;
+    const int *r = job->region;
     tile_pass tp;
-    tp.x0 = (tile % job->tiles_x) * TILE_SIZE;
-    tp.y0 = (tile / job->tiles_x) * TILE_SIZE;
-    tp.x1 = tp.x0 + TILE_SIZE < rs->width ? tp.x0 + TILE_SIZE : rs->width;
-    tp.y1 = tp.y0 + TILE_SIZE < rs->height ? tp.y0 + TILE_SIZE : rs->height;
+    int cx = (job->tile_x0 + tile % job->tiles_x) * TILE_SIZE, cy = (job->tile_y0 + tile / job->tiles_x) * TILE_SIZE;
+    tp.x0 = max_int(cx, r[0]);
+    tp.y0 = max_int(cy, r[1]);
+    tp.x1 = min_int(cx + TILE_SIZE, r[2]);
+    tp.y1 = min_int(cy + TILE_SIZE, r[3]);
     tp.k0 = job->pass_start[pass];
     tp.k1 = job->pass_start[pass + 1];
     tp.stop = &stop_requested;
@@ -224,21 +232,26 @@ static int online_cpus(void) {
     return n > 0 ? (int)n : 1;
 }
 
-// Sets up the job's passes, tiles and film; false when out of memory.
-static bool job_init(render_job *job, const glint_scene *s, const integrator *it) {
+// Sets up the job's passes, tiles and film over the (checked) region; false when out of memory.
+static bool job_init(render_job *job, const glint_scene *s, const integrator *it, const int region[4]) {
     const render_settings *rs = &s->settings;
     memset(job, 0, sizeof *job);
     job->scene = s;
     job->integrator = it;
-    job->tiles_x = (rs->width + TILE_SIZE - 1) / TILE_SIZE;
-    job->tile_count = job->tiles_x * ((rs->height + TILE_SIZE - 1) / TILE_SIZE);
+    memcpy(job->region, region, sizeof job->region);
+    job->tile_x0 = region[0] / TILE_SIZE;
+    job->tile_y0 = region[1] / TILE_SIZE;
+    job->tiles_x = (region[2] - 1) / TILE_SIZE - job->tile_x0 + 1;
+    job->tile_count = job->tiles_x * ((region[3] - 1) / TILE_SIZE - job->tile_y0 + 1);
     job->pass_count = plan_passes(rs->spp, job->pass_start);
-    job->total_samples = (uint64_t)rs->width * (uint64_t)rs->height * (uint64_t)rs->spp;
+    job->total_samples =
+        (uint64_t)(region[2] - region[0]) * (uint64_t)(region[3] - region[1]) * (uint64_t)rs->spp;
     atomic_init(&job->next_item, 0);
     atomic_init(&job->waiters, 0);
     atomic_init(&job->stopping, 0);
     for (int p = 0; p < MAX_PASSES; p++) atomic_init(&job->pass_decision[p], 0);
-    if (!film_init(&job->film, rs->width, rs->height, rs->spp, job->pass_count, rs->transform)) return false;
+    if (!film_init(&job->film, region, rs->width, rs->height, rs->spp, job->pass_count, rs->transform))
+        return false;
     job->tile_passes = malloc((size_t)job->tile_count * sizeof *job->tile_passes);
     if (!job->tile_passes) {
         film_release(&job->film);
@@ -257,38 +270,67 @@ static void job_free(render_job *job) {
     film_release(&job->film);
 }
 
+// The region to render, from the options (all zero or no options: the whole image); GLINT_ERR_INPUT unless it
+// is a non-empty rectangle inside the image.
+static glint_status resolve_region(const render_settings *rs, const render_options *opt, int region[4],
+                                   glint_error *err) {
+    const int *r = opt ? opt->region : NULL;
+    if (!r || (r[0] == 0 && r[1] == 0 && r[2] == 0 && r[3] == 0)) {
+        region[0] = region[1] = 0;
+        region[2] = rs->width;
+        region[3] = rs->height;
+        return GLINT_OK;
+    }
+    if (r[0] >= r[2] || r[1] >= r[3]) {
+        snprintf(err->message, sizeof err->message, "--region: %d,%d,%d,%d is empty, expected X0 < X1 and Y0 < Y1",
+                 r[0], r[1], r[2], r[3]);
+        return GLINT_ERR_INPUT;
+    }
+    if (r[0] < 0 || r[1] < 0 || r[2] > rs->width || r[3] > rs->height) {
+        snprintf(err->message, sizeof err->message,
+                 "--region: %d,%d,%d,%d is not inside the %dx%d image, expected 0 <= X0 < X1 <= %d and "
+                 "0 <= Y0 < Y1 <= %d", r[0], r[1], r[2], r[3], rs->width, rs->height, rs->width, rs->height);
+        return GLINT_ERR_INPUT;
+    }
+    memcpy(region, r, 4 * sizeof *region);
+    return GLINT_OK;
+}
+
 glint_status render_scene(const glint_scene *s, const render_options *opt, glint_progress_fn progress, void *user,
                           glint_image **out, glint_render_stats *stats, glint_error *err) {
     *out = NULL;
     double t0 = clock_seconds();
+    int region[4];
+    glint_status st = resolve_region(&s->settings, opt, region, err);
+    if (st != GLINT_OK) return st;
     render_frame frame;
-    glint_status st = frame_build(&frame, s, opt ? &opt->integrator : NULL, &stop_requested, err);
+    st = frame_build(&frame, s, opt ? &opt->integrator : NULL, &stop_requested, err);
     if (st == GLINT_ERR_INTERRUPTED) { // stopped while the BVH was built: no sample, a black image
         atomic_store(&stop_requested, 0);
         if (stats) memset(stats, 0, sizeof *stats);
-        *out = film_image_new(s->settings.width, s->settings.height, s->settings.transform);
-        if (!*out) {
-            snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image", s->settings.width,
-                     s->settings.height);
+        film f;
+        if (!film_init(&f, region, s->settings.width, s->settings.height, 1, 1, s->settings.transform)) {
+            snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image", region[2] - region[0],
+                     region[3] - region[1]);
             return GLINT_ERR_RENDER;
         }
+        *out = film_take_image(&f);
         return st;
     }
     if (st != GLINT_OK) return st;
     double t_built = clock_seconds();
-    const render_settings *rs = &s->settings;
     int threads = opt && opt->threads > 0 ? opt->threads : online_cpus();
     if (threads > MAX_THREADS) threads = MAX_THREADS;
 
     render_job job;
-    bool job_ready = job_init(&job, s, frame.integrator);
+    bool job_ready = job_init(&job, s, frame.integrator, region);
     if (job_ready && opt && opt->time_limit > 0.0) job.deadline = t_built + opt->time_limit;
     worker *workers = job_ready ? aligned_alloc(64, sizeof(worker) * (size_t)threads) : NULL;
     if (!workers) {
         if (job_ready) job_free(&job);
         frame_release(&frame);
-        snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image on %d threads", rs->width,
-                 rs->height, threads);
+        snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image on %d threads",
+                 region[2] - region[0], region[3] - region[1], threads);
         return GLINT_ERR_RENDER;
     }
     memset(workers, 0, sizeof(worker) * (size_t)threads);
@@ -342,7 +384,7 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
             passes_run = p;
             break;
         }
-    uint64_t pixels = (uint64_t)s->settings.width * (uint64_t)s->settings.height;
+    uint64_t pixels = job.total_samples / (uint64_t)s->settings.spp; // of the region rendered
     bool timed_out = passes_run < job.pass_count && total.samples == pixels * (uint64_t)job.pass_start[passes_run];
     if (stats) stats->spp = s->settings.spp;
     if (stats) stats->spp_done = total.samples == job.total_samples ? s->settings.spp
