@@ -256,7 +256,8 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread
         surface sf = surface_at(s, &cur, &h);
         const material *m = &s->materials[sf.material];
         if (m->kind == MAT_DIFFUSE_LIGHT) {
-            vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, surface_texture_point(s, &sf, m->emission_texture));
+            vec3 tp = surface_texture_point(s, &sf, m->emission_texture);
+            vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, tp);
             if (light_sampled) {
                 float pdf_light = light_sampler_pdf(pl, s, &sf, cur.o, cur.d, h.t);
                 if (pdf_light > 0.0f) le = v3_scale(le, mis_weight(bsdf_pdf, pdf_light));

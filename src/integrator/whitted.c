@@ -404,9 +404,10 @@ static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thre
         if (!color_intersect(it, &r, &h)) return v3_add(sum, v3_mul(w, scene_background(s, d)));
         surface sf = surface_at(s, &r.r, &h);
         const material *m = &s->materials[sf.material];
-        if (m->kind == MAT_DIFFUSE_LIGHT)
-            return v3_add(sum,
-                          v3_mul(w, mat_emitted(m, s->textures, sf.front, sf.u, sf.v, surface_texture_point(s, &sf, m->emission_texture))));
+        if (m->kind == MAT_DIFFUSE_LIGHT) {
+            vec3 tp = surface_texture_point(s, &sf, m->emission_texture);
+            return v3_add(sum, v3_mul(w, mat_emitted(m, s->textures, sf.front, sf.u, sf.v, tp)));
+        }
         vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
         color_origin co = color_origin_of(s, &sf);
         switch (m->kind) {

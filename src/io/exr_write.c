@@ -67,7 +67,8 @@ int exr_write(FILE *f, const glint_image *img, bool half, char *why, size_t why_
         for (int16_t c = 0; c < enc.channel_count; c++) {
             exr_coding_channel_info_t *ch = &enc.channels[c];
             int k = ch->channel_name[0] == 'R' ? 0 : ch->channel_name[0] == 'G' ? 1 : 2;
-            ch->encode_from_ptr = (const uint8_t *)(img->rgb + (size_t)info.start_y * (size_t)img->width * 3u + (size_t)k);
+            size_t first = (size_t)info.start_y * (size_t)img->width * 3u + (size_t)k;
+            ch->encode_from_ptr = (const uint8_t *)(img->rgb + first);
             ch->user_pixel_stride = (int32_t)(3 * sizeof(float));
             ch->user_line_stride = (int32_t)(3 * sizeof(float) * (size_t)img->width);
             ch->user_data_type = EXR_PIXEL_FLOAT;

@@ -38,7 +38,8 @@ glint_scene *scene_new(const char *path) {
 }
 
 // Makes room for one more element in an array of the scene (core/array.h: one growth policy everywhere).
-#define SCENE_RESERVE(s, field, count) array_reserve((void **)&(s)->field, &(s)->capacity.field, (count) + 1, sizeof *(s)->field)
+#define SCENE_RESERVE(s, field, count) \
+    array_reserve((void **)&(s)->field, &(s)->capacity.field, (count) + 1, sizeof *(s)->field)
 
 long scene_add_material(glint_scene *s, const material *m, const char *name) {
     if (!SCENE_RESERVE(s, materials, s->material_count) || !SCENE_RESERVE(s, material_names, s->material_count))
