@@ -6,9 +6,12 @@
 #   --quick      fewer samples and runs (the Howard scenes at 10 spp instead of 100, 3 runs)
 #   --runs N     runs per measurement; the table shows medians (default 5, quick 3)
 #   --only LIST  comma-separated sections: rtiow, howard, paper, scaling, mesh (default: all)
-#   --no-embree  skip the Embree-based yardstick even when ../shared/tools/embree-probe exists
+#   --no-embree  skip the Embree-based yardstick even when its script exists
 #   --glint PATH measure this binary instead of building one
 # Environment: CMAKE_BUILD_PARALLEL_LEVEL for the build; GLINT_BENCH_BUILD for the build directory.
+# The yardstick is the embree-probe's run_book1.sh (a separate tool, not part of this repository):
+# GLINT_EMBREE_PROBE names it; by default it is looked for beside the repository, in the developers'
+# ../shared/tools/embree-probe/. Without it the suite runs and says the yardstick was skipped.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -20,7 +23,7 @@ while [ $# -gt 0 ]; do
     --only) ONLY=${2:?--only needs a list}; shift ;;
     --no-embree) EMBREE=0 ;;
     --glint) GLINT=${2:?--glint needs a path}; shift ;;
-    -h | --help) sed -n '2,12p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+    -h | --help) sed -n '2,14p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
     *) echo "bench/run.sh: unknown option '$1' (try --help)" >&2; exit 2 ;;
     esac
     shift
@@ -43,7 +46,7 @@ if [ -z "$GLINT" ]; then
 fi
 [ -x "$GLINT" ] || { echo "bench/run.sh: no glint binary at $GLINT" >&2; exit 1; }
 
-PROBE=$ROOT/../shared/tools/embree-probe/run_book1.sh
+PROBE=${GLINT_EMBREE_PROBE:-$ROOT/../shared/tools/embree-probe/run_book1.sh}
 [ $EMBREE = 1 ] && [ -f "$PROBE" ] || PROBE=
 
 # --- helpers -----------------------------------------------------------------------------------------
@@ -102,7 +105,7 @@ emit ""
 if want rtiow; then
     emit "## rtiow-final, 400x225, 10 spp, depth 50 (487 spheres)"
     emit ""
-    [ -n "$PROBE" ] || emit "(Embree yardstick skipped: ../shared/tools/embree-probe not found or --no-embree.)"
+    [ -n "$PROBE" ] || emit "(Embree yardstick skipped: no run_book1.sh at GLINT_EMBREE_PROBE or ../shared/tools/embree-probe, or --no-embree.)"
     emit "| renderer | threads | wall s | Mrays/s | glint / Embree | peak RSS MB |"
     emit "|---|---:|---:|---:|---:|---:|"
     for t in 1 $([ "$NPROC" -gt 1 ] && echo "$NPROC"); do

@@ -9,14 +9,8 @@ fi
 DATA=$SRC/tests/data
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/glint-cli-XXXXXX")
 trap 'rm -rf "$TMP"' EXIT
-passed=0
-failed=0
-
-pass() { passed=$((passed + 1)); }
-fail() {
-    failed=$((failed + 1))
-    echo "FAIL: $*" >&2
-}
+# shellcheck source=../counts.bash
+source "$SRC/tests/counts.bash"
 
 # check DESCRIPTION COMMAND...: passes when the command succeeds.
 check() {
@@ -62,8 +56,3 @@ differ() { ! cmp -s "$1" "$2"; }
 
 # no_temp_files DIR: nothing glint's temporary files look like (".NAME.tmp-XXXXXX") is left in DIR.
 no_temp_files() { ! ls -A "$1" | grep -q '\.tmp-'; }
-
-summary() {
-    echo "$passed passed, $failed failed"
-    [[ $failed -eq 0 ]]
-}

@@ -17,14 +17,8 @@ SANITIZE=$5
 TMP=$(mktemp -d "${TMPDIR:-/tmp}/glint-install-XXXXXX")
 trap 'rm -rf "$TMP"' EXIT
 PREFIX=$TMP/prefix
-passed=0
-failed=0
-
-pass() { passed=$((passed + 1)); }
-fail() {
-    failed=$((failed + 1))
-    echo "FAIL: $*" >&2
-}
+# shellcheck source=../counts.bash
+source "$SRC/tests/counts.bash"
 
 "$CMAKE" --install "$BUILD" --prefix "$PREFIX" >"$TMP/install.log"
 
@@ -175,5 +169,4 @@ else
     done
 fi
 
-echo "$passed passed, $failed failed"
-[[ $failed -eq 0 ]]
+summary
