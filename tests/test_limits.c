@@ -34,7 +34,7 @@ static glint_status load_obj(const char *path, glint_error *err) {
 
 static glint_status load_image(const char *path, glint_error *err) {
     image_rgb img;
-    glint_status st = image_read(path, &img, err);
+    glint_status st = image_read(path, IMAGE_DECODE_SRGB, &img, err);
     if (st == GLINT_OK) image_rgb_free(&img);
     return st;
 }

@@ -260,7 +260,7 @@ static const bad_scene cases[] = {
     {__LINE__, TEXT("{\"textures\": {\"c\": {\"type\": \"checker\", \"odd\": [0, -1, 0]}}}"),
      "bad.json:1:51: \"odd\"[1] must be a finite number >= 0, got -1"},
     {__LINE__, TEXT("{\"textures\": {\"n\": {\"type\": \"noise\", \"depth\": 7}}}"),
-     "bad.json:1:38: unknown key \"depth\" in texture \"n\"; expected one of: type, scale, color, seed"},
+     "bad.json:1:38: unknown key \"depth\" in texture \"n\"; expected one of: type, scale, color, seed, perlin"},
     {__LINE__, TEXT("{\"textures\": {\"m\": {\"type\": \"marble\", \"depth\": 0}}}"),
      "bad.json:1:48: \"depth\" must be an integer in [1, 32], got 0"},
     {__LINE__, TEXT("{\"textures\": {\"s\": {\"type\": \"solid\"}}}"),
@@ -285,7 +285,13 @@ static const bad_scene cases[] = {
     {__LINE__,
      TEXT("{\"materials\": {\"m\": {\"type\": \"dielectric\", \"tint\": {\"type\": \"noise\", \"scael\": 4}}}}"),
      "bad.json:1:70: unknown key \"scael\" in the texture \"tint\" of material \"m\"; expected one of: type, scale, "
-     "color, seed"},
+     "color, seed, perlin"},
+    {__LINE__, TEXT("{\"textures\": {\"i\": {\"type\": \"image\", \"file\": \"x.png\", \"encoding\": \"gamma\"}}}"),
+     "bad.json:1:67: \"encoding\" must be \"srgb\" or \"linear\", got \"gamma\""},
+    {__LINE__, TEXT("{\"textures\": {\"n\": {\"type\": \"noise\", \"perlin\": {\"gradients\": [[1, 0, 0]]}}}}"),
+     "bad.json:1:62: \"gradients\" must be an array of 256 vectors [x, y, z], got [[1, 0, 0]]"},
+    {__LINE__, TEXT("{\"textures\": {\"n\": {\"type\": \"noise\", \"perlin\": {\"perm_x\": []}}}}"),
+     "bad.json:1:48: missing required key \"gradients\" in perlin"},
     {__LINE__, TEXT("{\"materials\": {\"l\": {\"type\": \"diffuse_light\", \"emission\": {\"color\": 4}}}}"),
      "bad.json:1:59: missing required key \"type\" in the texture \"emission\" of material \"l\"; expected one of "
      "\"solid\", \"checker\", \"noise\", \"turbulence\", \"marble\" or \"image\""},

@@ -117,7 +117,7 @@ static image_rgb ramp(int w, int h) {
 }
 
 static void test_bilinear(void) {
-    texture t = texture_image(ramp(4, 2));
+    texture t = texture_image(ramp(4, 2), FILTER_BILINEAR);
     // Texel centres give exactly the texel; v = 1 is the top row (row 0).
     for (int y = 0; y < 2; y++)
         for (int x = 0; x < 4; x++) {
@@ -142,11 +142,11 @@ static void test_bilinear(void) {
     CHECK(isfinite(c.x) && isfinite(c.y) && isfinite(c.z));
     texture_free(&t);
     // A texture without pixels shows the book's cyan.
-    texture empty = texture_image((image_rgb){0, 0, NULL});
+    texture empty = texture_image((image_rgb){0, 0, NULL}, FILTER_BILINEAR);
     c = texture_value(&empty, 0.5f, 0.5f, v3s(0));
     CHECK(c.x == 0.0f && c.y == 1.0f && c.z == 1.0f);
     // Odd sizes: centres are exact to rounding.
-    texture o = texture_image(ramp(3, 5));
+    texture o = texture_image(ramp(3, 5), FILTER_BILINEAR);
     c = texture_value(&o, 2.5f / 3, 1.0f - 3.5f / 5, v3s(0));
     CHECK_NEAR(c.x, 2.0 / 16, 1e-6);
     CHECK_NEAR(c.y, 3.0 / 16, 1e-6);
@@ -169,7 +169,7 @@ static void test_png(void) {
     CHECK(write_png(path, rgb, 3, 2, PNG_FORMAT_RGB));
     image_rgb img;
     glint_error err;
-    CHECK(image_read(path, &img, &err) == GLINT_OK);
+    CHECK(image_read(path, IMAGE_DECODE_SRGB, &img, &err) == GLINT_OK);
     CHECK(img.width == 3 && img.height == 2);
     for (int i = 0; i < 18; i++) CHECK(img.pixels[i] == image_srgb_to_linear(rgb[i]));
     image_rgb_free(&img);
@@ -178,7 +178,7 @@ static void test_png(void) {
     const unsigned char ga[4] = {200, 255, 50, 0};
     path = tmp_path("ga.png");
     CHECK(write_png(path, ga, 2, 1, PNG_FORMAT_GA));
-    CHECK(image_read(path, &img, &err) == GLINT_OK);
+    CHECK(image_read(path, IMAGE_DECODE_SRGB, &img, &err) == GLINT_OK);
     CHECK(img.width == 2 && img.height == 1);
     CHECK(img.pixels[0] == image_srgb_to_linear(200) && img.pixels[2] == image_srgb_to_linear(200));
     CHECK(img.pixels[3] == image_srgb_to_linear(50));
@@ -187,14 +187,14 @@ static void test_png(void) {
     const png_uint_16 lin[3] = {32768, 16384, 65535};
     path = tmp_path("linear16.png");
     CHECK(write_png(path, lin, 1, 1, PNG_FORMAT_LINEAR_RGB));
-    CHECK(image_read(path, &img, &err) == GLINT_OK);
+    CHECK(image_read(path, IMAGE_DECODE_SRGB, &img, &err) == GLINT_OK);
     CHECK_NEAR(img.pixels[0], 0.5, 0.01);
     CHECK_NEAR(img.pixels[1], 0.25, 0.01);
     CHECK_NEAR(img.pixels[2], 1.0, 0.0);
     image_rgb_free(&img);
     // Decoded by io/, sampled by the texture, which takes the pixels.
-    CHECK(image_read(tmp_path("rgb.png"), &img, &err) == GLINT_OK);
-    texture t = texture_image(img);
+    CHECK(image_read(tmp_path("rgb.png"), IMAGE_DECODE_SRGB, &img, &err) == GLINT_OK);
+    texture t = texture_image(img, FILTER_BILINEAR);
     // Width 3: texel centres are exact only to rounding (and a fused multiply-add rounds differently).
     vec3 c = texture_value(&t, 0.5f / 3, 0.75f, v3s(0)); // top-left texel: red
     CHECK_NEAR(c.x, 1.0, 1e-6);
@@ -261,7 +261,7 @@ static void test_jpeg(void) {
         CHECK(is_progressive(path) == (bool)progressive);
         image_rgb img;
         glint_error err;
-        CHECK(image_read(path, &img, &err) == GLINT_OK);
+        CHECK(image_read(path, IMAGE_DECODE_SRGB, &img, &err) == GLINT_OK);
         CHECK(img.width == W && img.height == H);
         int worst = 0;
         for (int i = 0; i < W * H * 3; i++) worst = abs(to_srgb8(img.pixels[i]) - rgb[i]) > worst ? abs(to_srgb8(img.pixels[i]) - rgb[i]) : worst;
@@ -285,7 +285,7 @@ static void test_real_files(void) {
         CHECK(is_progressive(path) == files[i].progressive);
         image_rgb img;
         glint_error err;
-        glint_status st = image_read(path, &img, &err);
+        glint_status st = image_read(path, IMAGE_DECODE_SRGB, &img, &err);
         CHECK(st == GLINT_OK);
         if (st != GLINT_OK) {
             fprintf(stderr, "%s\n", err.message);
@@ -331,7 +331,7 @@ static uint32_t crc32_png(const unsigned char *p, size_t n) {
 static void check_error(const char *path, const char *expected_suffix) {
     image_rgb img = {7, 7, NULL};
     glint_error err;
-    glint_status st = image_read(path, &img, &err);
+    glint_status st = image_read(path, IMAGE_DECODE_SRGB, &img, &err);
     CHECK(st == GLINT_ERR_INPUT);
     CHECK(img.pixels == NULL && img.width == 0);
     char expect[512];
@@ -393,10 +393,48 @@ static void test_errors(void) {
     remove(tmp_path("huge.png"));
     glint_error err;
     image_rgb img;
-    CHECK(image_read(tmp_path("missing.png"), &img, &err) == GLINT_ERR_INPUT);
+    CHECK(image_read(tmp_path("missing.png"), IMAGE_DECODE_SRGB, &img, &err) == GLINT_ERR_INPUT);
     // From memory: the name appears in messages.
-    CHECK(image_read_memory("mem.png", (const unsigned char *)"xx", 2, &img, &err) == GLINT_ERR_INPUT);
+    CHECK(image_read_memory("mem.png", (const unsigned char *)"xx", 2, IMAGE_DECODE_SRGB, &img, &err) == GLINT_ERR_INPUT);
     CHECK(strcmp(err.message, "mem.png: not a PNG or JPEG image, expected a file starting with a PNG or JPEG signature") == 0);
+}
+
+// Book 2's program: nearest texel, raw bytes / 255, given Perlin tables, turbulence of the scaled point.
+static void test_book2_variants(void) {
+    texture t = texture_image(ramp(4, 2), FILTER_NEAREST);
+    for (int y = 0; y < 2; y++)
+        for (int x = 0; x < 4; x++) { // anywhere inside a texel gives exactly that texel
+            vec3 c = texture_value(&t, ((float)x + 0.9f) / 4, 1.0f - ((float)y + 0.1f) / 2, v3s(0));
+            CHECK(c.x == (float)x / 16 && c.y == (float)y / 16);
+        }
+    vec3 edge = texture_value(&t, nextafterf(1.0f, 0.0f), 0.0f, v3s(0)); // stays in the last column, bottom row
+    CHECK(edge.x == 3.0f / 16 && edge.y == 1.0f / 16);
+    texture_free(&t);
+    // Linear decoding: the byte over 255, no sRGB curve.
+    const unsigned char rgb[3] = {128, 10, 255};
+    const char *path = tmp_path("raw.png");
+    CHECK(write_png(path, rgb, 1, 1, PNG_FORMAT_RGB));
+    image_rgb img;
+    glint_error err;
+    CHECK(image_read(path, IMAGE_DECODE_LINEAR, &img, &err) == GLINT_OK);
+    CHECK(img.pixels[0] == (float)(128 / 255.0) && img.pixels[1] == (float)(10 / 255.0) && img.pixels[2] == 1.0f);
+    image_rgb_free(&img);
+    // Given tables are used as they are: one gradient everywhere makes noise a known function.
+    perlin tables;
+    for (int i = 0; i < 256; i++) {
+        tables.gradient[i] = v3(1, 0, 0);
+        tables.perm_x[i] = tables.perm_y[i] = tables.perm_z[i] = (uint8_t)(255 - i);
+    }
+    texture n;
+    CHECK(texture_noise_tables(NOISE_MARBLE_SCALED, 0.5f, 3, v3(1, 1, 1), &tables, &n));
+    CHECK(n.perlin->perm_x[0] == 255 && n.perlin->gradient[7].x == 1.0f);
+    vec3 p = v3(0.3f, 1.7f, -2.2f), s = v3_scale(p, 0.5f);
+    // With every gradient (1, 0, 0) the noise is the smoothed-weight sum of (u - di) over the corners.
+    float u = s.x - floorf(s.x), uu = u * u * (3 - 2 * u);
+    CHECK_NEAR(perlin_noise(n.perlin, s), (1 - uu) * u + uu * (u - 1), 1e-6);
+    double expect = 0.5 * (1 + sin(s.z + 10.0 * perlin_turbulence(n.perlin, s, 3)));
+    CHECK_NEAR(texture_value(&n, 0, 0, p).x, expect, 1e-5);
+    texture_free(&n);
 }
 
 int main(void) {
@@ -409,6 +447,7 @@ int main(void) {
     test_jpeg();
     test_real_files();
     test_errors();
+    test_book2_variants();
     tmpdir_remove();
     return check_summary();
 }

@@ -30,6 +30,12 @@ float image_srgb_to_linear(unsigned char c) {
     return (float)(x <= 0.04045 ? x / 12.92 : pow((x + 0.055) / 1.055, 2.4));
 }
 
+// The float of each byte value under `decode`.
+static void decode_table(image_decode decode, float table[256]) {
+    for (int i = 0; i < 256; i++)
+        table[i] = decode == IMAGE_DECODE_LINEAR ? (float)(i / 255.0) : image_srgb_to_linear((unsigned char)i);
+}
+
 // Whether a w x h image is within IMAGE_READ_MAX_PIXELS; sets the message when it is not.
 static bool size_ok(const char *name, size_t w, size_t h, glint_error *err) {
     if (w > 0 && h > 0 && w <= IMAGE_READ_MAX_PIXELS && h <= IMAGE_READ_MAX_PIXELS / w) return true;
@@ -58,8 +64,8 @@ static glint_status out_of_memory(const char *name, glint_error *err) {
 // libpng's simplified API reports its allocation failures only in words: "Out of memory", "...: out of memory".
 static bool png_out_of_memory(const png_image *img) { return strstr(img->message, "ut of memory") != NULL; }
 
-static glint_status decode_png(const char *name, const unsigned char *data, size_t size, image_rgb *out,
-                               glint_error *err) {
+static glint_status decode_png(const char *name, const unsigned char *data, size_t size, image_decode decode,
+                              image_rgb *out, glint_error *err) {
     png_image img;
     memset(&img, 0, sizeof img);
     img.version = PNG_IMAGE_VERSION;
@@ -90,7 +96,7 @@ static glint_status decode_png(const char *name, const unsigned char *data, size
         return st;
     }
     float table[256];
-    for (int i = 0; i < 256; i++) table[i] = image_srgb_to_linear((unsigned char)i);
+    decode_table(decode, table);
     for (size_t i = 0; i < n; i++)
         for (int c = 0; c < 3; c++) pixels[i * 3 + c] = table[buf[i * 4 + c]];
     free(buf);
@@ -120,8 +126,8 @@ static void jpeg_fail(j_common_ptr cinfo) {
 // Corrupt-data warnings would go to stderr; a texture decodes as well as it can, silently.
 static void jpeg_quiet(j_common_ptr cinfo) { (void)cinfo; }
 
-static glint_status decode_jpeg(const char *name, const unsigned char *data, size_t size, image_rgb *out,
-                                glint_error *err) {
+static glint_status decode_jpeg(const char *name, const unsigned char *data, size_t size, image_decode decode,
+                               image_rgb *out, glint_error *err) {
     jpeg_state *st = calloc(1, sizeof *st);
     if (!st) return out_of_memory(name, err);
     st->cinfo.err = jpeg_std_error(&st->mgr);
@@ -161,7 +167,7 @@ static glint_status decode_jpeg(const char *name, const unsigned char *data, siz
         return status;
     }
     float table[256];
-    for (int i = 0; i < 256; i++) table[i] = image_srgb_to_linear((unsigned char)i);
+    decode_table(decode, table);
     // Progressive files need nothing special here: libjpeg buffers all scans and hands out final rows.
     while (st->cinfo.output_scanline < h) {
         size_t y = st->cinfo.output_scanline;
@@ -180,18 +186,19 @@ static glint_status decode_jpeg(const char *name, const unsigned char *data, siz
     return GLINT_OK;
 }
 
-glint_status image_read_memory(const char *name, const unsigned char *data, size_t size, image_rgb *out,
-                               glint_error *err) {
+glint_status image_read_memory(const char *name, const unsigned char *data, size_t size, image_decode decode,
+                               image_rgb *out, glint_error *err) {
     out->width = out->height = 0;
     out->pixels = NULL;
     static const unsigned char png_magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    if (size >= 8 && memcmp(data, png_magic, 8) == 0) return decode_png(name, data, size, out, err);
-    if (size >= 3 && data[0] == 0xff && data[1] == 0xd8 && data[2] == 0xff) return decode_jpeg(name, data, size, out, err);
+    if (size >= 8 && memcmp(data, png_magic, 8) == 0) return decode_png(name, data, size, decode, out, err);
+    if (size >= 3 && data[0] == 0xff && data[1] == 0xd8 && data[2] == 0xff)
+        return decode_jpeg(name, data, size, decode, out, err);
     set_error(err, "%s: not a PNG or JPEG image, expected a file starting with a PNG or JPEG signature", name);
     return GLINT_ERR_INPUT;
 }
 
-glint_status image_read(const char *path, image_rgb *out, glint_error *err) {
+glint_status image_read(const char *path, image_decode decode, image_rgb *out, glint_error *err) {
     out->width = out->height = 0;
     out->pixels = NULL;
     FILE *f = fopen(path, "rb");
@@ -237,7 +244,7 @@ glint_status image_read(const char *path, image_rgb *out, glint_error *err) {
         free(buf);
         return GLINT_ERR_INPUT;
     }
-    glint_status status = image_read_memory(path, buf, len, out, err);
+    glint_status status = image_read_memory(path, buf, len, decode, out, err);
     free(buf);
     return status;
 }

@@ -14,13 +14,17 @@
 /// Largest image file read, in bytes (256 MiB): more than any PNG or JPEG within the pixel limit needs.
 #define IMAGE_READ_MAX_FILE_BYTES ((size_t)256 << 20)
 
-/// Reads a PNG or JPEG file (recognised by its first bytes, not its name), decodes sRGB to linear.
+/// How 8-bit values become linear floats: through the sRGB curve (what image files mean), or byte / 255 (what
+/// some programs do, e.g. book 2's earth texture).
+typedef enum image_decode { IMAGE_DECODE_SRGB, IMAGE_DECODE_LINEAR } image_decode;
+
+/// Reads a PNG or JPEG file (recognised by its first bytes, not its name) into floats as `decode` says.
 /// On failure returns GLINT_ERR_INPUT with "path: what is wrong" in *err and leaves *out empty;
 /// GLINT_ERR_RENDER with "path: out of memory ..." when memory runs out.
-glint_status image_read(const char *path, image_rgb *out, glint_error *err);
+glint_status image_read(const char *path, image_decode decode, image_rgb *out, glint_error *err);
 /// The same from memory; `name` is used in messages.
-glint_status image_read_memory(const char *name, const unsigned char *data, size_t size, image_rgb *out,
-                               glint_error *err);
+glint_status image_read_memory(const char *name, const unsigned char *data, size_t size, image_decode decode,
+                               image_rgb *out, glint_error *err);
 /// The linear value of an 8-bit sRGB-encoded component (the exact sRGB curve).
 float image_srgb_to_linear(unsigned char c);
 

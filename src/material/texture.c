@@ -90,10 +90,17 @@ bool texture_noise(noise_kind kind, float scale, int depth, vec3 color, uint64_t
     return true;
 }
 
-texture texture_image(image_rgb img) {
+bool texture_noise_tables(noise_kind kind, float scale, int depth, vec3 color, const perlin *tables, texture *out) {
+    if (!texture_noise(kind, scale, depth, color, 0, out)) return false;
+    *out->perlin = *tables;
+    return true;
+}
+
+texture texture_image(image_rgb img, texture_filter filter) {
     texture t = texture_solid(v3s(0.0f));
     t.kind = TEX_IMAGE;
     t.image = img;
+    t.filter = filter;
     return t;
 }
 
@@ -119,12 +126,16 @@ static int wrap(int i, int n) {
     return i < 0 ? i + n : i;
 }
 
-static vec3 image_value(const image_rgb *img, float u, float v) {
+static vec3 image_value(const image_rgb *img, texture_filter filter, float u, float v) {
     if (!img->pixels || img->width <= 0 || img->height <= 0) return v3(0.0f, 1.0f, 1.0f); // the book's cyan
     if (!isfinite(u)) u = 0.0f;
     if (!isfinite(v)) v = 0.0f;
     u -= floorf(u);
     v = 1.0f - (v - floorf(v)); // image rows run top to bottom, v bottom to top
+    if (filter == FILTER_NEAREST) { // u = 1 - epsilon may round to width: stay inside the image
+        int x = (int)(u * (float)img->width), y = (int)(v * (float)img->height);
+        return texel(img, x < img->width ? x : img->width - 1, y < img->height ? y : img->height - 1);
+    }
     // Texel centres sit at (i + 0.5) / width: there the filter returns exactly that texel.
     float x = u * (float)img->width - 0.5f, y = v * (float)img->height - 0.5f;
     float x0f = floorf(x), y0f = floorf(y);
@@ -148,10 +159,15 @@ vec3 texture_value(const texture *t, float u, float v, vec3 p) {
         float n;
         if (t->noise == NOISE_PLAIN) n = 0.5f * (1.0f + perlin_noise(t->perlin, v3_scale(p, t->scale)));
         else if (t->noise == NOISE_TURBULENCE) n = perlin_turbulence(t->perlin, v3_scale(p, t->scale), t->depth);
-        else n = 0.5f * (1.0f + sinf(t->scale * p.z + 10.0f * perlin_turbulence(t->perlin, p, t->depth)));
+        else if (t->noise == NOISE_MARBLE)
+            n = 0.5f * (1.0f + sinf(t->scale * p.z + 10.0f * perlin_turbulence(t->perlin, p, t->depth)));
+        else {
+            vec3 s = v3_scale(p, t->scale);
+            n = 0.5f * (1.0f + sinf(s.z + 10.0f * perlin_turbulence(t->perlin, s, t->depth)));
+        }
         return v3_scale(t->color, isfinite(n) ? n : 0.0f);
     }
-    case TEX_IMAGE: return image_value(&t->image, u, v);
+    case TEX_IMAGE: return image_value(&t->image, t->filter, u, v);
     }
     return v3s(0.0f);
 }

@@ -19,8 +19,13 @@ typedef enum texture_kind {
 typedef enum noise_kind {
     NOISE_PLAIN,      ///< 0.5 (1 + noise(scale p))
     NOISE_TURBULENCE, ///< turb(scale p, depth)
-    NOISE_MARBLE      ///< 0.5 (1 + sin(scale p.z + 10 turb(p, depth))), the book's marble
+    NOISE_MARBLE,     ///< 0.5 (1 + sin(scale p.z + 10 turb(p, depth))), book 1's and book 2's text's marble
+    NOISE_MARBLE_SCALED ///< 0.5 (1 + sin(s.z + 10 turb(s, depth))), s = scale p: book 2's program (2024)
 } noise_kind;
+
+/// How an image texture is looked up: bilinear between the four nearest texel centres, or the texel that
+/// holds (u, v) (book 2's program).
+typedef enum texture_filter { FILTER_BILINEAR, FILTER_NEAREST } texture_filter;
 
 /// Perlin's lattice tables: random unit gradients and three permutations, built once from a seed.
 typedef struct perlin {
@@ -38,6 +43,7 @@ typedef struct texture {
     int depth;        ///< noise: octaves of turbulence
     perlin *perlin;   ///< noise: owned tables
     image_rgb image;  ///< image: owned linear RGB pixels
+    texture_filter filter; ///< image: how texels are looked up
 } texture;
 
 /// A solid colour.
@@ -46,13 +52,16 @@ texture texture_solid(vec3 color);
 texture texture_checker(float scale, vec3 even, vec3 odd);
 /// A Perlin noise texture; the tables are a pure function of `seed`. False when out of memory.
 bool texture_noise(noise_kind kind, float scale, int depth, vec3 color, uint64_t seed, texture *out);
+/// A Perlin noise texture with the given tables (copied), e.g. those a published program drew. False when out
+/// of memory.
+bool texture_noise_tables(noise_kind kind, float scale, int depth, vec3 color, const perlin *tables, texture *out);
 /// An image texture that takes ownership of img's pixels.
-texture texture_image(image_rgb img);
+texture texture_image(image_rgb img, texture_filter filter);
 /// Releases what the texture owns and makes it a black solid texture.
 void texture_free(texture *t);
 
-/// The texture's linear RGB value at surface coordinates (u, v) and point p. Image textures filter
-/// bilinearly between the four nearest texel centres, wrapping around at the edges.
+/// The texture's linear RGB value at surface coordinates (u, v) and point p. Image textures repeat outside
+/// [0, 1]^2 and are looked up as their filter says.
 vec3 texture_value(const texture *t, float u, float v, vec3 p);
 
 /// Fills the tables from `seed` (deterministic, no shared state).

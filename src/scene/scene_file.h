@@ -7,6 +7,7 @@
 #define GLINT_SCENE_FILE_H
 
 #include "core/strmap.h"
+#include "io/image_read.h"
 #include "io/json_read.h"
 #include "scene/scene.h"
 
@@ -58,6 +59,8 @@ typedef struct sf_mesh_entry {
 /// An image file already decoded into a texture.
 typedef struct sf_image_entry {
     sf_file_id id;
+    image_decode decode;   ///< the same file decoded otherwise is another texture
+    texture_filter filter;
     uint32_t texture;
 } sf_image_entry;
 
@@ -110,10 +113,10 @@ bool sf_check_extent(sf_loader *ld, size_t offset, const char *what, bounds3 b);
 
 // scene_file_materials.c: textures, images, materials
 
-/// The scene texture of image file `path` (id), decoded on first use; `where` is blamed for failures, and
-/// `prefix` (may be "") opens their message.
+/// The scene texture of image file `path` (id) decoded and filtered as asked, decoded on first use; `where` is
+/// blamed for failures, and `prefix` (may be "") opens their message.
 bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *written, const char *path,
-                   sf_file_id id, uint32_t *index);
+                   sf_file_id id, image_decode decode, texture_filter filter, uint32_t *index);
 /// Reads a texture object and adds it to the scene (named, or anonymous when name is NULL).
 bool sf_read_texture(sf_loader *ld, jr_val v, const char *what, const char *name, uint32_t *index);
 /// Reads a material object and adds it to the scene (named, or anonymous when name is NULL).

@@ -24,9 +24,10 @@ static const char *strip_path(const char *message, const char *path) {
 /// The scene texture of image file `path` (id), decoded on first use; `where` is blamed for failures, and
 /// `prefix` (may be "") opens their message.
 bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *written, const char *path,
-                       sf_file_id id, uint32_t *index) {
+                   sf_file_id id, image_decode decode, texture_filter filter, uint32_t *index) {
     for (size_t i = 0; i < ld->image_count; i++)
-        if (ld->images[i].id.dev == id.dev && ld->images[i].id.ino == id.ino) {
+        if (ld->images[i].id.dev == id.dev && ld->images[i].id.ino == id.ino && ld->images[i].decode == decode &&
+            ld->images[i].filter == filter) {
             *index = ld->images[i].texture;
             return true;
         }
@@ -36,7 +37,7 @@ bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *
     // The file is decoded here (io/), and the texture module only takes the pixels.
     image_rgb img;
     glint_error err;
-    glint_status st = image_read(path, &img, &err);
+    glint_status st = image_read(path, decode, &img, &err);
     if (st != GLINT_OK) {
         char note[420], shown[304];
         jr_fail_at(&ld->r, where, "%simage file \"%s\"%s: %s", prefix, filepath_tail(written, 300, shown, sizeof shown),
@@ -44,11 +45,11 @@ bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *
         ld->r.status = st; // running out of memory stays a resource failure
         return false;
     }
-    texture t = texture_image(img);
+    texture t = texture_image(img, filter);
     long i = scene_add_texture(ld->scene, &t, NULL);
     if (i < 0 || !array_reserve((void **)&ld->images, &ld->image_cap, ld->image_count + 1, sizeof *ld->images))
         return sf_fail_oom(ld);
-    ld->images[ld->image_count++] = (sf_image_entry){id, (uint32_t)i};
+    ld->images[ld->image_count++] = (sf_image_entry){id, decode, filter, (uint32_t)i};
     *index = (uint32_t)i;
     return true;
 }
@@ -58,9 +59,12 @@ bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *
 
 static const char *const solid_keys[] = {"type", "color", NULL};
 static const char *const checker_keys[] = {"type", "scale", "even", "odd", NULL};
-static const char *const noise_keys[] = {"type", "scale", "color", "seed", NULL};
-static const char *const turbulence_keys[] = {"type", "scale", "depth", "color", "seed", NULL};
-static const char *const image_keys[] = {"type", "file", NULL};
+static const char *const noise_keys[] = {"type", "scale", "color", "seed", "perlin", NULL};
+static const char *const turbulence_keys[] = {"type", "scale", "depth", "color", "seed", "perlin", NULL};
+static const char *const marble_keys[] = {"type",   "scale",  "depth", "color",
+                                          "seed",   "perlin", "scaled_turbulence", NULL};
+static const char *const image_keys[] = {"type", "file", "encoding", "filter", NULL};
+static const char *const perlin_keys[] = {"gradients", "perm_x", "perm_y", "perm_z", NULL};
 
 /// Adds the texture a texture object describes (or finds the one already loaded from the same image);
 /// `name` is NULL for inline textures.
@@ -103,17 +107,69 @@ static bool read_checker(sf_loader *ld, const jr_obj *o, int variant, const char
     return add_texture(ld, o, &t, name, index);
 }
 
+static const jr_numspec NUM_GRADIENT = {-1e6, 1e6, JR_FLOAT, "a number in [-1e6, 1e6]"};
+
+// "perlin": {"gradients": 256 [x, y, z], "perm_x"/"perm_y"/"perm_z": 256 integers in [0, 255]}: the tables a
+// program drew, so that its noise can be reproduced exactly.
+static bool read_perlin_tables(sf_loader *ld, jr_val v, perlin *out) {
+    jr_obj o;
+    if (!jr_open(&ld->r, v, "perlin", perlin_keys, &o)) return false;
+    const char *const *names = perlin_keys;
+    uint8_t *perms[3] = {out->perm_x, out->perm_y, out->perm_z};
+    for (int table = 0; table < 4; table++) {
+        const jr_member *m;
+        if (!jr_lookup(&ld->r, &o, names[table], true, &m)) return false;
+        char got[96];
+        if (!cJSON_IsArray(m->val.item) || cJSON_GetArraySize(m->val.item) != 256)
+            return jr_fail_at(&ld->r, jr_offset(&ld->r, m->val.tok), "\"%s\" must be an array of 256 %s, got %s",
+                              names[table], table == 0 ? "vectors [x, y, z]" : "integers in [0, 255]",
+                              jr_describe(&ld->r, m->val, got, sizeof got));
+        jr_iter it = jr_iter_begin(&ld->r, m->val);
+        jr_val e;
+        int r;
+        for (int i = 0; (r = jr_iter_next(&ld->r, &it, NULL, &e)) > 0; i++) {
+            double n;
+            if (table == 0) {
+                if (!jr_check_vec3(&ld->r, e, names[table], &NUM_GRADIENT, &out->gradient[i])) return false;
+            } else {
+                if (!jr_check_number(&ld->r, e, names[table], i, &JR_NONNEG, &n)) return false;
+                if (n != floor(n) || n > 255)
+                    return jr_fail_at(&ld->r, jr_offset(&ld->r, e.tok), "%s[%d] must be an integer in [0, 255], got %s",
+                                      names[table], i, jr_describe(&ld->r, e, got, sizeof got));
+                perms[table - 1][i] = (uint8_t)n;
+            }
+        }
+        if (r < 0) return false;
+    }
+    return true;
+}
+
 static bool read_noise(sf_loader *ld, const jr_obj *o, int variant, const char *name, uint32_t *index) {
     float scale = 1.0f;
     vec3 color = v3s(1.0f);
     long long depth = 7, seed = 0;
+    bool scaled_turbulence = false;
     if (!jr_read_float(&ld->r, o, "scale", false, &JR_POSITIVE, &scale) ||
         !jr_read_int(&ld->r, o, "depth", false, 1, SF_MAX_NOISE_DEPTH, &depth) ||
         !jr_read_color(&ld->r, o, "color", false, &JR_NONNEG, &color) ||
-        !jr_read_int(&ld->r, o, "seed", false, 0, 9007199254740992LL, &seed))
+        !jr_read_int(&ld->r, o, "seed", false, 0, 9007199254740992LL, &seed) ||
+        !jr_read_bool(&ld->r, o, "scaled_turbulence", &scaled_turbulence))
         return false;
+    noise_kind kind = variant == NOISE_MARBLE && scaled_turbulence ? NOISE_MARBLE_SCALED : (noise_kind)variant;
+    const jr_member *tables = jr_get(o, "perlin");
     texture t;
-    if (!texture_noise((noise_kind)variant, scale, (int)depth, color, (uint64_t)seed, &t)) return sf_fail_oom(ld);
+    if (tables) {
+        perlin *p = malloc(sizeof *p);
+        if (!p) return sf_fail_oom(ld);
+        bool ok = read_perlin_tables(ld, tables->val, p);
+        if (ok && !texture_noise_tables(kind, scale, (int)depth, color, p, &t)) {
+            free(p);
+            return sf_fail_oom(ld);
+        }
+        free(p);
+        if (!ok) return false;
+    } else if (!texture_noise(kind, scale, (int)depth, color, (uint64_t)seed, &t))
+        return sf_fail_oom(ld);
     return add_texture(ld, o, &t, name, index);
 }
 
@@ -122,9 +178,16 @@ static bool read_image(sf_loader *ld, const jr_obj *o, int variant, const char *
     char *path;
     sf_file_id id;
     jr_val where;
+    static const char *const encodings[] = {"srgb", "linear"}, *const filters[] = {"bilinear", "nearest"};
+    int encoding = 0, filter = 0;
+    if (!jr_read_enum(&ld->r, o, "encoding", encodings, 2, &encoding) ||
+        !jr_read_enum(&ld->r, o, "filter", filters, 2, &filter))
+        return false;
     if (!sf_read_file_path(ld, o, "file", "image", &path, &id, &where)) return false;
     size_t before = ld->scene->texture_count;
-    bool ok = sf_load_image(ld, jr_offset(&ld->r, where.tok), "", where.item->valuestring, path, id, index);
+    bool ok = sf_load_image(ld, jr_offset(&ld->r, where.tok), "", where.item->valuestring, path, id,
+                            encoding ? IMAGE_DECODE_LINEAR : IMAGE_DECODE_SRGB,
+                            filter ? FILTER_NEAREST : FILTER_BILINEAR, index);
     free(path);
     // A newly decoded image takes the name it was first defined under (an image given twice loads once).
     if (ok && name && ld->scene->texture_count > before && !ld->scene->texture_names[*index]) {
@@ -147,7 +210,7 @@ static const struct texture_type {
     {"checker", checker_keys, read_checker, 0},
     {"noise", noise_keys, read_noise, NOISE_PLAIN},
     {"turbulence", turbulence_keys, read_noise, NOISE_TURBULENCE},
-    {"marble", turbulence_keys, read_noise, NOISE_MARBLE},
+    {"marble", marble_keys, read_noise, NOISE_MARBLE},
     {"image", image_keys, read_image, 0},
 };
 #define TEXTURE_TYPES (sizeof texture_types / sizeof texture_types[0])

@@ -66,7 +66,8 @@ static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model
                 return jr_fail_at(&ld->r, where, "%simage file \"%s\": cannot open: %s", prefix,
                                   filepath_tail(om->diffuse_map, 300, image_path, sizeof image_path), filepath_problem_text(e));
             uint32_t t;
-            if (!sf_load_image(ld, where, prefix, om->diffuse_map, om->diffuse_map, (sf_file_id){st.st_dev, st.st_ino}, &t))
+            if (!sf_load_image(ld, where, prefix, om->diffuse_map, om->diffuse_map, (sf_file_id){st.st_dev, st.st_ino},
+                               IMAGE_DECODE_SRGB, FILTER_BILINEAR, &t))
                 return false;
             m.albedo_texture = (int32_t)t;
         }

@@ -13,7 +13,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size);
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     image_rgb img;
     glint_error err;
-    if (image_read_memory("fuzz.img", data, size, &img, &err) == GLINT_OK) {
+    if (image_read_memory("fuzz.img", data, size, IMAGE_DECODE_SRGB, &img, &err) == GLINT_OK) {
         if (img.width <= 0 || img.height <= 0 || !img.pixels) __builtin_trap();
         size_t n = (size_t)img.width * (size_t)img.height * 3;
         // Every decoded value is a linear intensity in [0, 1].
