@@ -196,8 +196,8 @@ static void test_scene_file(void) {
         {"{\"render\": {\"background\": {\"type\": \"envmap\", \"file\": \"missing.hdr\"}}}",
          "1:54: environment map file \"missing.hdr\""},
         {"{\"render\": {\"background\": {\"type\": \"envmap\", \"file\": \"fake.hdr\"}}}",
-         "1:54: environment map \"fake.hdr\": not a Radiance .hdr image (expected a file starting with "
-         "\"#?RADIANCE\" or \"#?RGBE\")"},
+         "1:54: environment map \"fake.hdr\": not an OpenEXR or Radiance .hdr image (expected a file starting with "
+         "the bytes 76 2f 31 01, \"#?RADIANCE\" or \"#?RGBE\")"},
         {"{\"render\": {\"background\": {\"type\": \"envmap\", \"file\": \"sky.hdr\", \"scale\": -1}}}",
          "\"scale\""},
         {"{\"render\": {\"background\": {\"type\": \"envmap\"}}}", "missing required key \"file\""},

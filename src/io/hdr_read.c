@@ -9,6 +9,10 @@
 
 #include <stb_image.h>
 
+bool hdr_read_is_radiance(const unsigned char *head, size_t size) {
+    return (size >= 10 && memcmp(head, "#?RADIANCE", 10) == 0) || (size >= 6 && memcmp(head, "#?RGBE", 6) == 0);
+}
+
 glint_status hdr_read(const char *path, image_rgb *out, glint_error *err) {
     out->width = out->height = 0;
     out->pixels = NULL;
@@ -19,8 +23,7 @@ glint_status hdr_read(const char *path, image_rgb *out, glint_error *err) {
     }
     char magic[10] = {0};
     size_t got = fread(magic, 1, sizeof magic, f);
-    bool radiance = (got >= 10 && memcmp(magic, "#?RADIANCE", 10) == 0) || (got >= 6 && memcmp(magic, "#?RGBE", 6) == 0);
-    if (!radiance) {
+    if (!hdr_read_is_radiance((const unsigned char *)magic, got)) {
         fclose(f);
         snprintf(err->message, sizeof err->message,
                  "%s: not a Radiance .hdr image (expected a file starting with \"#?RADIANCE\" or \"#?RGBE\")", path);

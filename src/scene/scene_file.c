@@ -6,6 +6,7 @@
 #include "core/array.h"
 #include "core/file_read.h"
 #include "core/filepath.h"
+#include "io/exr_read.h"
 #include "io/hdr_read.h"
 #include "io/json_scan.h"
 
@@ -333,7 +334,28 @@ static const char *const envmap_keys[] = {"type", "file", "scale", "rotate", NUL
 static const jr_numspec NUM_ENVMAP_SCALE = {0.0, 1e30, JR_FLOAT, "a number in [0, 1e30]"};
 static const jr_numspec NUM_DEGREES = {-1e6, 1e6, JR_FLOAT, "a number of degrees in [-1e6, 1e6]"};
 
-// An environment map: an equirectangular Radiance .hdr image (light/envmap.h says how it is oriented).
+// An HDR image, OpenEXR or Radiance, told apart by the first bytes (not the name): failures name the path.
+static glint_status read_hdr_image(const char *path, image_rgb *img, glint_error *err) {
+    unsigned char head[10] = {0};
+    size_t got = 0;
+    FILE *f = fopen(path, "rb");
+    if (f) {
+        got = fread(head, 1, sizeof head, f);
+        fclose(f);
+    }
+    if (exr_read_is_exr(head, got)) return exr_read(path, img, err);
+    if (f && !hdr_read_is_radiance(head, got)) {
+        img->width = img->height = 0;
+        img->pixels = NULL;
+        snprintf(err->message, sizeof err->message,
+                 "%s: not an OpenEXR or Radiance .hdr image (expected a file starting with the bytes 76 2f 31 01, "
+                 "\"#?RADIANCE\" or \"#?RGBE\")", path);
+        return GLINT_ERR_INPUT;
+    }
+    return hdr_read(path, img, err); // also says why a file cannot be opened
+}
+
+// An environment map: an equirectangular OpenEXR or Radiance .hdr image (light/envmap.h: its orientation).
 static bool read_envmap(sf_loader *ld, const jr_obj *o) {
     char *path;
     sf_file_id id;
@@ -347,8 +369,8 @@ static bool read_envmap(sf_loader *ld, const jr_obj *o) {
     }
     image_rgb img;
     glint_error err;
-    glint_status st = hdr_read(path, &img, &err);
-    // hdr_read's message names the resolved path; the scene's message names the file as written instead.
+    glint_status st = read_hdr_image(path, &img, &err);
+    // The reader's message names the resolved path; the scene's message names the file as written instead.
     size_t n = strlen(path);
     const char *why = strncmp(err.message, path, n) == 0 && err.message[n] == ':' ? err.message + n + 2 : err.message;
     free(path);
