@@ -134,12 +134,15 @@ bool sf_read_motion(sf_loader *ld, const jr_obj *o, const transform *xf, bounds3
     if (!given) return true;
     size_t where = jr_member_offset(&ld->r, o, "transform2");
     motion mo;
-    if (!motion_make(&xf->m, &end.m, &mo))
+    if (!motion_make(&xf->m, &end.m, &mo)) {
+        // Both are affine and invertible (read_transform_key checked): they differ in handedness.
+        double d0 = mat4_linear_det(&xf->m), d1 = mat4_linear_det(&end.m);
         return jr_fail_at(&ld->r, where,
-                          "\"transform2\" mirrors (its determinant is %g) where \"transform\" does not (%g), or the "
-                          "reverse; expected two transforms of the same handedness, so that the motion between them "
-                          "never flattens the object",
-                          mat4_linear_det(&end.m), mat4_linear_det(&xf->m));
+                          "\"transform2\" %s (determinant %g) where \"transform\" %s (determinant %g); expected two "
+                          "transforms that both mirror or neither, so that the motion between them never flattens "
+                          "the object",
+                          d1 < 0.0 ? "mirrors" : "does not mirror", d1, d0 < 0.0 ? "does" : "does not", d0);
+    }
     // The motion is defined for times in [0, 1], where every shutter lies.
     char what[96];
     snprintf(what, sizeof what, "the moving %s", shape);
