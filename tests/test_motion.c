@@ -1,7 +1,7 @@
 // test_motion.c — motion blur: transforms interpolated between two poses (slerp), boxes that hold a moving
 // primitive at every time of the shutter, every acceleration structure agreeing with brute force at random
 // times, blurred images equal to the mean of stills at evenly spread times (a moving sphere; an ellipsoid
-// turning by slerp), and the same bytes for 1 and 2 threads.
+// turning by slerp), the same bytes for 1 and 2 threads, and the Whitted integrators at the shutter's opening.
 #include "check.h"
 #include "glint.h"
 #include "accel/accel.h"
@@ -358,6 +358,71 @@ static void test_threads(void) {
     }
 }
 
+// The Whitted integrators see the scene as it is when the shutter opens: a sphere moving from x = 0 (time 0)
+// to x = 2 (time 1) under the shutter [0.5, 1] renders as a still sphere at x = 1 (centre(0.5) = 1 exactly),
+// up to the rounding of the two paths' hit points; and it is not the sphere at x = 0.
+static void test_whitted_at_shutter_open(void) {
+    const char *fmt[3] = {
+        "{\"render\": {\"width\": 32, \"height\": 24, \"background\": 0.2}, \"camera\": {\"type\": \"lookat\", "
+        "\"lookfrom\": [1, 0, 6], \"vfov\": 40, \"shutter\": [0.5, 1]}, \"lights\": [{\"type\": \"point\", "
+        "\"intensity\": 1, \"position\": [3, 4, 5]}], \"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], "
+        "\"center2\": [2, 0, 0], \"radius\": 1, \"material\": {\"type\": \"phong\", \"specular\": 20}}]}",
+        "{\"render\": {\"width\": 32, \"height\": 24, \"background\": 0.2}, \"camera\": {\"type\": \"lookat\", "
+        "\"lookfrom\": [1, 0, 6], \"vfov\": 40}, \"lights\": [{\"type\": \"point\", \"intensity\": 1, "
+        "\"position\": [3, 4, 5]}], \"objects\": [{\"type\": \"sphere\", \"center\": [1, 0, 0], \"radius\": 1, "
+        "\"material\": {\"type\": \"phong\", \"specular\": 20}}]}",
+        "{\"render\": {\"width\": 32, \"height\": 24, \"background\": 0.2}, \"camera\": {\"type\": \"lookat\", "
+        "\"lookfrom\": [1, 0, 6], \"vfov\": 40}, \"lights\": [{\"type\": \"point\", \"intensity\": 1, "
+        "\"position\": [3, 4, 5]}], \"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, "
+        "\"material\": {\"type\": \"phong\", \"specular\": 20}}]}"};
+    const float *px[3];
+    glint_image *img[3];
+    int w = 0, h = 0;
+    for (int k = 0; k < 3; k++) {
+        glint_scene *s = parse(fmt[k]);
+        if (!s) return;
+        img[k] = render(s, 1);
+        glint_image_info(img[k], &w, &h, &px[k]);
+        glint_scene_free(s);
+    }
+    double same = 0.0, other = 0.0;
+    for (int i = 0; i < w * h * 3; i++) {
+        same = fmax(same, fabs((double)px[0][i] - px[1][i]));
+        other = fmax(other, fabs((double)px[0][i] - px[2][i]));
+    }
+    CHECK(same < 1e-3);
+    CHECK(other > 0.1);
+    for (int k = 0; k < 3; k++) glint_image_free(img[k]);
+}
+
+// The book's bouncing spheres as the scene file gives them: 100 still spheres (ground, metal, glass, the big
+// three), 384 small diffuse ones moving up by 0..0.5 while the shutter [0, 1] is open, the checker ground.
+static void test_bouncing_spheres_scene(void) {
+    glint_scene *s = NULL;
+    glint_error err;
+    CHECK(glint_scene_load(GLINT_SOURCE_DIR "/scenes/rtiow2-bouncing-spheres.json", &s, &err) == GLINT_OK);
+    if (!s) return;
+    CHECK(s->sphere_count == 100 && s->moving_sphere_count == 384 && s->instance_count == 0);
+    CHECK(s->camera.shutter_open == 0.0f && s->camera.shutter_close == 1.0f);
+    CHECK(s->camera.defocus_angle_degrees == 0.02f && s->camera.focus_distance == 10.0f);
+    CHECK(s->settings.background == BACKGROUND_CONSTANT && s->settings.background_color.x == 0.7f &&
+          s->settings.background_color.y == 0.8f && s->settings.background_color.z == 1.0f);
+    const material *ground = &s->materials[s->spheres[0].material];
+    CHECK(s->spheres[0].radius == 1000.0f && ground->albedo_texture >= 0 &&
+          s->textures[ground->albedo_texture].kind == TEX_CHECKER);
+    int up = 0;
+    for (size_t i = 0; i < s->moving_sphere_count; i++) {
+        const moving_sphere *m = &s->moving_spheres[i];
+        up += m->motion.x == 0.0f && m->motion.z == 0.0f && m->motion.y > 0.0f && m->motion.y <= 0.5f &&
+              m->center.y == 0.2f && m->radius == 0.2f && s->materials[m->material].kind == MAT_LAMBERTIAN;
+    }
+    CHECK(up == 384);
+    // The layout's first moving sphere (grid cell (-11, -10)), digit for digit.
+    CHECK(s->moving_spheres[0].center.x == (float)-10.501427040016278 &&
+          s->moving_spheres[0].motion.y == (float)0.5178558638319373 - 0.2f);
+    glint_scene_free(s);
+}
+
 int main(void) {
     test_interpolation();
     test_bounds();
@@ -365,5 +430,7 @@ int main(void) {
     blur_against_stills(moving_sphere_text, "moving sphere (center2)");
     blur_against_stills(turning_text, "turning ellipsoid (transform2, slerp)");
     test_threads();
+    test_whitted_at_shutter_open();
+    test_bouncing_spheres_scene();
     return check_summary();
 }
