@@ -159,6 +159,17 @@ static char *moving_scene(float open, float close) {
             n += (size_t)snprintf(t + n, cap - n, "%s{\"type\": \"sphere\", \"center\": [%g, %g, %g], \"radius\": %g, "
                                   "\"material\": \"m\"}", sep, c.x, c.y, c.z, r);
     }
+    for (int i = 0; i < 40; i++) { // moving copies of a small OBJ cube: meshes under transform and transform2
+        vec3 c = v3(urand(-8, 8), urand(-8, 8), urand(-8, 8)), d = v3(urand(-2, 2), urand(-2, 2), urand(-2, 2));
+        n += (size_t)snprintf(t + n, cap - n,
+                              ", {\"type\": \"mesh\", \"file\": \"%s\", \"material\": \"m\", "
+                              "\"transform\": [{\"scale\": %g}, {\"rotate\": {\"axis\": [1, %g, 0], \"degrees\": %g}}, "
+                              "{\"translate\": [%g, %g, %g]}], \"transform2\": [{\"scale\": [%g, 0.3, 0.4]}, "
+                              "{\"rotate\": {\"axis\": [0, 1, %g], \"degrees\": %g}}, {\"translate\": [%g, %g, %g]}]}",
+                              GLINT_SOURCE_DIR "/tests/data/obj/tinyobjloader/cube.obj", urand(0.2f, 0.5f), urand(-1, 1),
+                              urand(-180, 180), c.x, c.y, c.z, urand(0.2f, 0.6f), urand(-1, 1), urand(-180, 180),
+                              c.x + d.x, c.y + d.y, c.z + d.z);
+    }
     snprintf(t + n, cap - n, "]}");
     return t;
 }
@@ -172,7 +183,11 @@ static void test_accel_agreement(void) {
         glint_scene *s = parse(text);
         free(text);
         if (!s) return;
-        CHECK(s->moving_sphere_count == 100 && s->motion_count == 100);
+        CHECK(s->moving_sphere_count == 100 && s->motion_count == 140 && s->mesh_count == 1);
+        size_t moving[140], nm = 0; // the moving instances: 100 ellipsoids, 40 cubes
+        for (size_t j = 0; j < s->instance_count; j++)
+            if (s->instances[j].motion && nm < 140) moving[nm++] = j;
+        CHECK(nm == 140);
         accel *a[3];
         glint_error err;
         const accel_kind kinds[3] = {ACCEL_NONE, ACCEL_BVH, ACCEL_BVH2};
@@ -184,17 +199,17 @@ static void test_accel_agreement(void) {
         int differ = 0, hits = 0, moving_hits = 0;
         for (int i = 0; i < 20000; i++) {
             float time = shutters[sh][0] + (shutters[sh][1] - shutters[sh][0]) * urand(0, 1);
-            uint32_t k = (uint32_t)i % 100;
             vec3 target;
             if (i % 2 == 0) {
-                target = moving_sphere_center(&s->moving_spheres[k], time);
-            } else { // the centre of a moving ellipsoid at that time
-                const instance *in = NULL;
-                for (size_t j = 0, seen = 0; j < s->instance_count; j++)
-                    if (s->instances[j].motion && seen++ == k) in = &s->instances[j];
+                target = moving_sphere_center(&s->moving_spheres[(size_t)i / 2 % 100], time);
+            } else { // the centre of a moving ellipsoid or cube at that time
+                const instance *in = &s->instances[moving[(size_t)i / 2 % nm]];
                 transform xf;
                 motion_at(&s->motions[in->motion - 1], time, &xf);
-                target = mat4_apply_point(&xf.m, s->instance_spheres[in->index].center);
+                bounds3 ob = s->meshes[0].geometry.bounds;
+                vec3 oc = in->kind == INSTANCE_SPHERE ? s->instance_spheres[in->index].center
+                                                      : v3_scale(v3_add(ob.lo, ob.hi), 0.5f);
+                target = mat4_apply_point(&xf.m, oc);
             }
             target = v3_add(target, v3(urand(-0.3f, 0.3f), urand(-0.3f, 0.3f), urand(-0.3f, 0.3f)));
             vec3 o = v3(urand(-12, 12), urand(-12, 12), urand(-12, 12));
@@ -216,6 +231,7 @@ static void test_accel_agreement(void) {
         }
         if (differ) fprintf(stderr, "accel agreement (shutter %d): %d differences\n", sh, differ);
         CHECK(differ == 0);
+        printf("accel agreement (shutter %d): %d of 20000 rays hit, %d on moving objects\n", sh, hits, moving_hits);
         CHECK(hits > 15000 && moving_hits > 12000);
         for (int k = 0; k < 3; k++) accel_free(a[k]);
         glint_scene_free(s);
