@@ -173,7 +173,7 @@ static void check_coincident(void) {
     CHECK(bad == 0);
     // Straight at the centre from outside: the outermost shell (radius 2.5) is first, and of its many
     // copies the lowest index (4) wins the tie; from the centre, the innermost (radius 0.5, index 5).
-    ray r = {v3(1, 2, -2), v3(0, 0, 1), 0.0f, INFINITY};
+    ray r = {v3(1, 2, -2), v3(0, 0, 1), 0.0f, INFINITY, 0.0f};
     for (int k = 0; k < 3; k++) {
         hit h;
         CHECK(accel_intersect(ac[k], &r, &h) && h.prim == 4 && h.t == 2.5f);
@@ -197,7 +197,7 @@ static void check_empty(void) {
         s->settings.accel = kinds[k];
         accel *a = frame_accel_build(s, NULL, &err);
         CHECK(a != NULL);
-        ray r = {v3(0, 0, 0), v3(0, 0, 1), 0.0f, INFINITY};
+        ray r = {v3(0, 0, 0), v3(0, 0, 1), 0.0f, INFINITY, 0.0f};
         hit h;
         CHECK(!accel_intersect(a, &r, &h));
         CHECK(!accel_occluded(a, &r));
@@ -219,13 +219,13 @@ static void check_known(void) {
     accel *a = frame_accel_build(s, NULL, &err);
     CHECK(a != NULL);
     if (!a) return;
-    ray r = {v3(0, 1, -5), v3(0, 0, 1), 0.001f, INFINITY};
+    ray r = {v3(0, 1, -5), v3(0, 0, 1), 0.001f, INFINITY, 0.0f};
     hit h;
     CHECK(accel_intersect(a, &r, &h) && h.prim == 1 && h.t == 4.0f);
     r.o = v3(0, 1, 0); // inside the shell: the negative-radius sphere first
     CHECK(accel_intersect(a, &r, &h) && h.prim == 2);
     CHECK_NEAR(h.t, 0.9, 1e-6);
-    r = (ray){v3(13, 2, 3), v3_unit(v3(-13, -2.5f, -3)), 0.001f, INFINITY}; // down onto the ground
+    r = (ray){v3(13, 2, 3), v3_unit(v3(-13, -2.5f, -3)), 0.001f, INFINITY, 0.0f}; // down onto the ground
     CHECK(accel_intersect(a, &r, &h) && h.prim == 0);
     CHECK_NEAR(h.t, 10.8781562524, 2e-6); // the root computed in double precision
     r.tmax = h.t; // the interval is open: a hit exactly at tmax does not count
@@ -301,7 +301,7 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
         CHECK(scene_add_mesh(s, &m) == (long)i);
     }
     for (size_t i = 0; i < instances; i++) {
-        instance in = {INSTANCE_MESH, 0, random_transform(&g), -1};
+        instance in = {INSTANCE_MESH, 0, random_transform(&g), -1, 0};
         if (meshes == 0 || rng_float(&g) < 0.3f) {
             sphere sp = {v3(urand(&g, -1, 1), urand(&g, -1, 1), urand(&g, -1, 1)), urand(&g, 0.3f, 1.5f), 0};
             in.kind = INSTANCE_SPHERE;
@@ -340,12 +340,12 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
             const quad *q = &s->quads[rng_u32(&g) % s->quad_count];
             float a = rng_float(&g) < 0.5f ? urand(&g, -0.01f, 1.01f) : (float)(rng_u32(&g) % 2);
             vec3 target = v3_add(q->q, v3_add(v3_scale(q->u, a), v3_scale(q->v, rng_float(&g))));
-            r = (ray){v3(urand(&g, -15, 15), urand(&g, -15, 15), urand(&g, -15, 15)), v3(0, 0, 1), 0.0f, INFINITY};
+            r = (ray){v3(urand(&g, -15, 15), urand(&g, -15, 15), urand(&g, -15, 15)), v3(0, 0, 1), 0.0f, INFINITY, 0.0f};
             r.d = v3_unit(v3_sub(target, r.o));
         } else if (pick < 0.6f && s->instance_count > 0) { // at what an instance places
             const instance *ins = &s->instances[rng_u32(&g) % s->instance_count];
             vec3 target = mat4_apply_point(&ins->xf.m, v3(urand(&g, -1, 1), urand(&g, -1, 1), 0.0f));
-            r = (ray){v3(urand(&g, -15, 15), urand(&g, -15, 15), urand(&g, -15, 15)), v3(0, 0, 1), 0.0f, INFINITY};
+            r = (ray){v3(urand(&g, -15, 15), urand(&g, -15, 15), urand(&g, -15, 15)), v3(0, 0, 1), 0.0f, INFINITY, 0.0f};
             r.d = v3_unit(v3_sub(target, r.o));
         } else {
             r = random_ray(&g, s);

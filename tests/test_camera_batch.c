@@ -1,6 +1,7 @@
 // test_camera_batch.c — the render loop's camera rays made eight at a time are, lane for lane and bit for bit,
 // the rays and generators that rng_for_key and camera_sample_ray make one at a time: with and without
-// defocus blur, for the look-at and the viewport camera, for any pixel and sample index.
+// defocus blur, with and without an open shutter (the ray's time), for the look-at and the viewport camera, for
+// any pixel and sample index.
 #include "check.h"
 #include "camera/camera_batch.h"
 #include "scene/scene.h"
@@ -48,7 +49,8 @@ static void check_batches(const glint_scene *s, const char *what) {
             rng r = rng_for_key(stream, b.key[i], b.sample[i]);
             ray want = camera_sample_ray(&s->camera, b.x[i], b.y[i], &r);
             bool same = memcmp(&want.o, &b.o[i], sizeof want.o) == 0 && memcmp(&want.d, &b.d[i], sizeof want.d) == 0 &&
-                        r.state == b.r[i].state && r.inc == b.r[i].inc;
+                        memcmp(&want.time, &b.time[i], sizeof want.time) == 0 && r.state == b.r[i].state &&
+                        r.inc == b.r[i].inc;
             mismatches += !same;
         }
     }
@@ -65,6 +67,18 @@ int main(void) {
     glint_scene_free(s);
     s = make_scene(CAMERA_VIEWPORT, 0.0f);
     check_batches(s, "viewport");
+    glint_scene_free(s);
+    // An open shutter draws each ray's time after the camera's other draws; a closed one draws nothing.
+    s = make_scene(CAMERA_LOOKAT, 0.6f);
+    s->camera.shutter_open = 0.25f;
+    s->camera.shutter_close = 0.75f;
+    check_batches(s, "look-at with defocus blur and an open shutter");
+    s->camera.shutter_close = 0.25f;
+    check_batches(s, "look-at with defocus blur and a closed shutter at 0.25");
+    glint_scene_free(s);
+    s = make_scene(CAMERA_VIEWPORT, 0.0f);
+    s->camera.shutter_close = 1.0f;
+    check_batches(s, "viewport with an open shutter");
     glint_scene_free(s);
     return check_summary();
 }

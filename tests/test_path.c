@@ -648,6 +648,7 @@ static void add_mesh_instance(glint_scene *s, const vec3 *pos, int np, const int
     in.kind = INSTANCE_MESH;
     in.index = (uint32_t)mi;
     in.material = -1;
+    in.motion = 0; // it does not move
     CHECK(transform_make(&m, &in.xf));
     CHECK(scene_add_instance(s, in));
 }

@@ -81,14 +81,15 @@ static const bad_scene cases[] = {
      "bad.json:1:13: unknown key \"samples\" in render; expected one of: width, height, spp, max_depth, seed, "
      "integrator, background, output, accel"},
     {__LINE__, TEXT("{\"camera\": {\"type\": \"viewport\", \"vfov\": 40}}"),
-     "bad.json:1:33: unknown key \"vfov\" in camera (viewport); expected one of: type, position, viewport, distance"},
+     "bad.json:1:33: unknown key \"vfov\" in camera (viewport); expected one of: type, position, viewport, distance, "
+     "shutter"},
     {__LINE__, TEXT("{\"materials\": {\n  \"red\": {\"type\": \"phong\", \"colour\": [1, 0, 0]}\n}}"),
      "bad.json:2:28: unknown key \"colour\" in material \"red\"; expected one of: type, color, specular, reflective, "
      "specular_color"},
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1, "
                     "\"material\": \"m\"}]}"),
-     "bad.json:1:33: unknown key \"centre\" in object 0 (sphere); expected one of: type, center, radius, material, "
-     "transform"},
+     "bad.json:1:33: unknown key \"centre\" in object 0 (sphere); expected one of: type, center, center2, radius, "
+     "material, transform, transform2"},
     {__LINE__, TEXT("{\"lights\": [{\"type\": \"ambient\", \"intensity\": 0.2, \"position\": [0, 0, 0]}]}"),
      "bad.json:1:51: unknown key \"position\" in light 0 (ambient); expected one of: type, intensity"},
     {__LINE__, TEXT("{\"render\": {\"width\": 64, \"width\": 32}}"),
@@ -392,7 +393,33 @@ static const bad_scene cases[] = {
                     "\"material\": \"m\"}]}"),
      "bad.json:1:55: \"max\" must be greater than \"min\" in every coordinate, but \"max\"[2] = 0 <= \"min\"[2] = 0"},
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"size\": 1}]}"),
-     "bad.json:1:66: unknown key \"size\" in object 0 (box); expected one of: type, min, max, material, transform"},
+     "bad.json:1:66: unknown key \"size\" in object 0 (box); expected one of: type, min, max, material, transform, "
+     "transform2"},
+    // --- motion blur: the shutter, center2, transform2 ---
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"shutter\": [0.5, 0.25]}}"),
+     "bad.json:1:42: \"shutter\" closes before it opens ([0.5, 0.25]); expected [open, close] with open <= close"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"shutter\": [0, 2]}}"),
+     "bad.json:1:46: \"shutter\"[1] must be a time in [0, 1], got 2"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"viewport\", \"shutter\": [-0.5, 1]}}"),
+     "bad.json:1:45: \"shutter\"[0] must be a time in [0, 1], got -0.5"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"shutter\": [0]}}"),
+     "bad.json:1:42: \"shutter\" must be an array of 2 times [open, close], got [0]"},
+    {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"shutter\": 0.5}}"),
+     "bad.json:1:42: \"shutter\" must be an array of 2 times [open, close], got 0.5"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"center2\": [1, 2], \"radius\": 1, \"material\": \"m\"}], \"materials\": {\"m\": {\"type\": \"lambertian\"}}}"),
+     "bad.json:1:65: \"center2\" must be an array of 3 numbers (x, y, z), got [1, 2]"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"center2\": [1, 2, 3], \"radius\": 1, \"material\": \"m\", \"transform\": [{\"translate\": [1, 0, 0]}]}], \"materials\": {\"m\": {\"type\": \"lambertian\"}}}"),
+     "bad.json:1:65: \"center2\" cannot be combined with \"transform\" or \"transform2\": give both centres in world space, or move the sphere by \"transform2\" alone"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"center2\": [2e9, 0, 0], \"radius\": 1, \"material\": \"m\"}], \"materials\": {\"m\": {\"type\": \"lambertian\"}}}"),
+     "bad.json:1:65: the moving sphere reaches 2e+09 on the x axis; glint renders within [-1e9, 1e9] on every axis (beyond, squared distances overflow single precision and samples would be NaN)"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1], \"material\": \"m\", \"transform2\": [{\"translate\": [1, 0, 0]}]}], \"materials\": {\"m\": {\"type\": \"lambertian\"}}}"),
+     "bad.json:1:97: a box cannot move: \"transform2\" is read for spheres and meshes only (a moving box can be a mesh)"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", \"transform2\": [{\"scale\": [-1, 1, 1]}]}], \"materials\": {\"m\": {\"type\": \"lambertian\"}}}"),
+     "bad.json:1:98: \"transform2\" mirrors (determinant -1) where \"transform\" does not (determinant 1); expected two transforms that both mirror or neither, so that the motion between them never flattens the object"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\", \"transform2\": {\"translate\": [1, 0, 0]}}], \"materials\": {\"m\": {\"type\": \"lambertian\"}}}"),
+     "bad.json:1:98: \"transform2\" must be an array of operations ({\"translate\": ...}, {\"rotate\": ...}, {\"scale\": ...} or {\"matrix\": ...}), got an object"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"quad\", \"q\": [0, 0, 0], \"u\": [1, 0, 0], \"v\": [0, 1, 0], \"material\": \"m\", \"transform2\": []}], \"materials\": {\"m\": {\"type\": \"lambertian\"}}}"),
+     "bad.json:1:110: a quad cannot move: \"transform2\" is read for spheres and meshes only (a moving box can be a mesh)"},
     // --- meshes (files that exist or not are in test_files) ---
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"mesh\", \"file\": 3}]}"),
      "bad.json:1:39: \"file\" must be a non-empty string (a path relative to the scene file), got 3"},
@@ -400,7 +427,7 @@ static const bad_scene cases[] = {
      "bad.json:1:14: missing required key \"file\" in object 0 (mesh)"},
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"mesh\", \"file\": \"a.obj\", \"smooth\": true}]}"),
      "bad.json:1:48: unknown key \"smooth\" in object 0 (mesh); expected one of: type, file, material, transform, "
-     "face_normals"},
+     "transform2, face_normals"},
     // --- lights ---
     {__LINE__, TEXT("{\"lights\": [{\"type\": \"spot\", \"intensity\": 1}]}"),
      "bad.json:1:22: \"type\" must be \"ambient\", \"point\" or \"directional\", got \"spot\""},

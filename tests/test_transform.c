@@ -144,7 +144,7 @@ static void test_ray(void) {
         mat4 m = random_affine(&r);
         transform t;
         CHECK(transform_make(&m, &t));
-        ray w = {v3(1, 2, 3), v3_unit(v3(-1, 0.5f, 0.25f)), 0.001f, 100.0f};
+        ray w = {v3(1, 2, 3), v3_unit(v3(-1, 0.5f, 0.25f)), 0.001f, 100.0f, 0.0f};
         ray o = mat4_apply_ray(&t.inv, &w);
         CHECK(o.tmin == w.tmin && o.tmax == w.tmax);
         vec3 world_hit = ray_at(&w, 7.5f), object_hit = ray_at(&o, 7.5f);

@@ -10,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static ray mkray(vec3 o, vec3 d) { return (ray){o, d, 0.0f, INFINITY}; }
+static ray mkray(vec3 o, vec3 d) { return (ray){o, d, 0.0f, INFINITY, 0.0f}; }
 
 static bool hit_tri(vec3 o, vec3 d, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax, tri_hit *h) {
     ray r = mkray(o, d);

@@ -53,6 +53,11 @@ accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
                            .instance_count = in->instance_count,
                            .blas = a->blas,
                            .instance_spheres = in->instance_spheres,
+                           .moving_spheres = in->moving_spheres,
+                           .moving_sphere_count = in->moving_sphere_count,
+                           .motions = in->motions,
+                           .time0 = in->time0,
+                           .time1 = in->time1,
                            .stop = in->stop};
         ok = ok && bvh_build(&a->world, &world, wide);
         if (!ok) {

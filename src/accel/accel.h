@@ -7,6 +7,7 @@
 #include "core/vec.h"
 #include "geometry/instance.h"
 #include "geometry/mesh.h"
+#include "geometry/motion.h"
 #include "geometry/quad.h"
 #include "geometry/sphere.h"
 
@@ -29,11 +30,15 @@ typedef struct accel_input {
     const sphere *instance_spheres; ///< the object-space spheres INSTANCE_SPHERE instances place
     const instance *instances;
     size_t instance_count;
+    const moving_sphere *moving_spheres; ///< spheres that move while the shutter is open
+    size_t moving_sphere_count;
+    const motion *motions;  ///< motions[k - 1]: how an instance with motion k moves
+    float time0, time1;     ///< the shutter: moving primitives are bounded over every time in [time0, time1]
     const atomic_int *stop; ///< nonzero once a stop is requested: the build gives up (NULL: never)
 } accel_input;
 
 /// Kinds of primitive a hit can be on.
-typedef enum hit_kind { HIT_SPHERE = 0, HIT_QUAD = 1, HIT_TRIANGLE = 2 } hit_kind;
+typedef enum hit_kind { HIT_SPHERE = 0, HIT_QUAD = 1, HIT_TRIANGLE = 2, HIT_MOVING_SPHERE = 3 } hit_kind;
 
 /// No instance: the primitive is in world space.
 #define HIT_NO_INSTANCE 0xffffffffu
@@ -41,7 +46,8 @@ typedef enum hit_kind { HIT_SPHERE = 0, HIT_QUAD = 1, HIT_TRIANGLE = 2 } hit_kin
 /// The result of a closest-hit query: distance along the ray and which primitive.
 typedef struct hit {
     float t;
-    uint32_t prim;     ///< index into the input's array of `kind` (spheres, quads; triangles of the instance's mesh)
+    uint32_t prim;     ///< index into the input's array of `kind` (spheres, quads, moving spheres; triangles of the
+                       ///< instance's mesh)
     uint32_t kind;     ///< hit_kind
     uint32_t instance; ///< instance the primitive belongs to, or HIT_NO_INSTANCE
     float b1, b2;      ///< triangle barycentrics of vertices 1 and 2; quad (alpha, beta)
@@ -64,7 +70,7 @@ void accel_free(accel *a);
 /// Tree statistics and build time, for the statistics line.
 void accel_get_stats(const accel *a, accel_stats *out);
 
-/// Nearest hit with r->tmin < t < r->tmax; false when the ray escapes.
+/// Nearest hit with r->tmin < t < r->tmax, moving primitives where they are at r->time; false when the ray escapes.
 bool accel_intersect(const accel *a, const ray *r, hit *h);
 /// Whether anything lies on the ray with r->tmin < t < r->tmax (for shadow rays).
 bool accel_occluded(const accel *a, const ray *r);

@@ -22,9 +22,19 @@ static bool brute_force_run(const accel_input *in, const ray *r, hit *best, bool
         found = true;
         offer(best, (hit){qh.t, (uint32_t)i, HIT_QUAD, HIT_NO_INSTANCE, qh.alpha, qh.beta});
     }
+    for (size_t i = 0; i < in->moving_sphere_count; i++) {
+        vec3 c = moving_sphere_center(&in->moving_spheres[i], r->time);
+        float t;
+        if (!sphere_intersect(c, in->moving_spheres[i].radius, r, r->tmin, r->tmax, &t)) continue;
+        if (any) return true;
+        found = true;
+        offer(best, (hit){t, (uint32_t)i, HIT_MOVING_SPHERE, HIT_NO_INSTANCE, 0.0f, 0.0f});
+    }
     for (size_t i = 0; i < in->instance_count; i++) {
         const instance *inst = &in->instances[i];
-        ray o = mat4_apply_ray(&inst->xf.inv, r);
+        transform moved; // a moving instance's transform at the ray's time
+        if (inst->motion) motion_at(&in->motions[inst->motion - 1], r->time, &moved);
+        ray o = mat4_apply_ray(inst->motion ? &moved.inv : &inst->xf.inv, r);
         if (inst->kind == INSTANCE_SPHERE) {
             const sphere *sp = &in->instance_spheres[inst->index];
             float t;

@@ -33,8 +33,17 @@
 #define BVH_MAX_DEPTH 64
 
 /// Kinds of primitive a BVH can hold; a leaf packet holds primitives of one kind. The world BVH holds
-/// spheres, quads and instances; the BVH of a mesh (shared by its instances) holds its triangles.
-typedef enum prim_kind { PRIM_SPHERE = 0, PRIM_QUAD = 1, PRIM_TRIANGLE = 2, PRIM_INSTANCE = 3 } prim_kind;
+/// spheres, quads, instances, moving spheres and moving instances (the last two in index packets, tested one by
+/// one at the ray's time, so that the other kinds' tests are unchanged); the BVH of a mesh (shared by its
+/// instances) holds its triangles.
+typedef enum prim_kind {
+    PRIM_SPHERE = 0,
+    PRIM_QUAD = 1,
+    PRIM_TRIANGLE = 2,
+    PRIM_INSTANCE = 3,
+    PRIM_MOVING_SPHERE = 4,
+    PRIM_MOVING_INSTANCE = 5
+} prim_kind;
 
 /// A primitive of the scene: its kind and its index in the scene's array of that kind.
 typedef struct prim_ref {
@@ -81,7 +90,8 @@ typedef struct bvh_triangle_packet {
     uint32_t prim[BVH_PACKET];
 } bvh_triangle_packet;
 
-/// A packet of up to BVH_PACKET primitives of another kind (quads, instances), tested one by one: their indices.
+/// A packet of up to BVH_PACKET primitives of another kind (quads, instances, moving primitives), tested one by
+/// one: their indices.
 typedef struct bvh_index_packet {
     bvh_packet_header h;
     uint32_t prim[BVH_PACKET];
@@ -104,6 +114,10 @@ typedef struct bvh_input {
     size_t instance_count;
     const struct bvh *blas;        ///< blas[i]: the BVH of mesh i, for INSTANCE_MESH instances
     const sphere *instance_spheres; ///< object-space spheres of INSTANCE_SPHERE instances
+    const moving_sphere *moving_spheres;
+    size_t moving_sphere_count;
+    const motion *motions;          ///< motions[k - 1]: how an instance with motion k moves
+    float time0, time1;             ///< the shutter, over which moving primitives are bounded
     const atomic_int *stop;         ///< nonzero once a stop is requested: the build gives up (NULL: never)
 } bvh_input;
 
@@ -133,6 +147,9 @@ typedef struct bvh {
     uint32_t front; ///< leaf of the huge spheres, tested after the tree by every query (BVH_EMPTY: none)
     bounds3 bounds; ///< of everything in the BVH (empty when it holds nothing)
     accel_stats stats;
+    // moving primitives (after the rest, so that the fields every traversal reads keep their places)
+    const moving_sphere *moving_spheres;
+    const motion *motions;
 } bvh;
 
 /// Whether candidate hit a wins over b: nearer, or as near and first in (kind, instance, prim) order, so

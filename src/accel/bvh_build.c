@@ -420,10 +420,26 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims) {
         n++;
     }
     for (size_t i = 0; i < in->instance_count; i++) {
-        bounds3 ob = instance_object_bounds(in, &in->instances[i]);
+        const instance *inst = &in->instances[i];
+        bounds3 ob = instance_object_bounds(in, inst);
         if (bounds3_is_empty(ob)) continue; // an instance of an empty mesh: nothing to hit
-        prims[n].box = box_padded(mat4_apply_bounds(&in->instances[i].xf.m, ob));
-        prims[n].ref = (prim_ref){PRIM_INSTANCE, (uint32_t)i};
+        if (inst->motion) { // bounded over the whole shutter, and tested at each ray's time
+            prims[n].box = box_padded(motion_bounds(&in->motions[inst->motion - 1], ob, in->time0, in->time1));
+            prims[n].ref = (prim_ref){PRIM_MOVING_INSTANCE, (uint32_t)i};
+        } else {
+            prims[n].box = box_padded(mat4_apply_bounds(&inst->xf.m, ob));
+            prims[n].ref = (prim_ref){PRIM_INSTANCE, (uint32_t)i};
+        }
+        n++;
+    }
+    for (size_t i = 0; i < in->moving_sphere_count; i++) {
+        // A centre moving on a line sweeps the segment between its ends: the two end boxes hold the sweep.
+        const moving_sphere *ms = &in->moving_spheres[i];
+        sphere a = moving_sphere_at(ms, in->time0), b = moving_sphere_at(ms, in->time1);
+        prims[n].box = sphere_box(&a);
+        box3 bb = sphere_box(&b);
+        box_grow(&prims[n].box, &bb);
+        prims[n].ref = (prim_ref){PRIM_MOVING_SPHERE, (uint32_t)i};
         n++;
     }
     for (size_t i = 0; i < n; i++)
@@ -470,11 +486,14 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     b->instances = in->instances;
     b->blas = in->blas;
     b->instance_spheres = in->instance_spheres;
-    b->spheres_only = in->quad_count == 0 && !in->mesh && in->instance_count == 0;
+    b->moving_spheres = in->moving_spheres;
+    b->motions = in->motions;
+    b->spheres_only = in->quad_count == 0 && !in->mesh && in->instance_count == 0 && in->moving_sphere_count == 0;
     b->root = BVH_EMPTY;
     b->front = BVH_EMPTY;
     b->bounds = bounds3_empty();
-    size_t cap = in->sphere_count + in->quad_count + (in->mesh ? in->mesh->triangle_count : 0) + in->instance_count;
+    size_t cap = in->sphere_count + in->quad_count + (in->mesh ? in->mesh->triangle_count : 0) + in->instance_count +
+                 in->moving_sphere_count;
     if (cap == 0) return true;
     if (cap >= BVH_LEAF / 2) return false;
 

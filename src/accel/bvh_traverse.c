@@ -12,11 +12,12 @@
 
 static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode);
 
-// An instance: the ray taken to object space (direction not normalised, so t keeps its meaning), then the
-// mesh's BVH or the object-space sphere. True when it hit (any-hit queries stop there).
-static bool instance_hit(const bvh *b, uint32_t index, const ray *r, hit *best, bool any, trav_mode mode) {
+// An instance: the ray taken to object space by world_to_object (direction not normalised, so t keeps its
+// meaning), then the mesh's BVH or the object-space sphere. True when it hit (any-hit queries stop there).
+static bool instance_hit(const bvh *b, uint32_t index, const mat4 *world_to_object, const ray *r, hit *best, bool any,
+                         trav_mode mode) {
     const instance *in = &b->instances[index];
-    ray o = mat4_apply_ray(&in->xf.inv, r);
+    ray o = mat4_apply_ray(world_to_object, r);
     if (in->kind == INSTANCE_SPHERE) {
         const sphere *sp = &b->instance_spheres[in->index];
         float t;
@@ -25,6 +26,25 @@ static bool instance_hit(const bvh *b, uint32_t index, const ray *r, hit *best, 
         return true;
     }
     return blas_traverse(&b->blas[in->index], &o, best, index, any, mode);
+}
+
+// A moving instance: its transform at the ray's time, then as any instance. Out of line: only scenes with
+// motion reach it.
+static __attribute__((noinline)) bool moving_instance_hit(const bvh *b, uint32_t index, const ray *r, hit *best,
+                                                          bool any, trav_mode mode) {
+    transform xf;
+    motion_at(&b->motions[b->instances[index].motion - 1], r->time, &xf);
+    return instance_hit(b, index, &xf.inv, r, best, any, mode);
+}
+
+// A moving sphere: the sphere where it is at the ray's time.
+static __attribute__((noinline)) bool moving_sphere_hit(const bvh *b, uint32_t index, const ray *r, hit *best,
+                                                        uint32_t inst_id) {
+    vec3 c = moving_sphere_center(&b->moving_spheres[index], r->time);
+    float t;
+    if (!sphere_intersect(c, b->moving_spheres[index].radius, r, r->tmin, r->tmax, &t)) return false;
+    offer(best, (hit){t, index, HIT_MOVING_SPHERE, inst_id, 0.0f, 0.0f});
+    return true;
 }
 
 // One primitive that is not tested in SIMD: a quad, a triangle of b's mesh, an instance (or a sphere in
@@ -51,7 +71,9 @@ static inline bool prim_hit(const bvh *b, uint32_t kind, uint32_t index, const r
         offer(best, (hit){th.t, index, HIT_TRIANGLE, inst_id, th.b1, th.b2});
         return true;
     }
-    case PRIM_INSTANCE: return instance_hit(b, index, r, best, any, mode);
+    case PRIM_INSTANCE: return instance_hit(b, index, &b->instances[index].xf.inv, r, best, any, mode);
+    case PRIM_MOVING_SPHERE: return moving_sphere_hit(b, index, r, best, inst_id);
+    case PRIM_MOVING_INSTANCE: return moving_instance_hit(b, index, r, best, any, mode);
     }
     return false;
 }

@@ -19,6 +19,8 @@ typedef struct camera {
     // look-at (the book)
     vec3 lookfrom, lookat, vup;
     float vfov_degrees, defocus_angle_degrees, focus_distance;
+    // the shutter (either camera): camera rays get times uniform in [open, close); open == close draws none
+    float shutter_open, shutter_close;
     // derived by camera_prepare for the image size
     int image_width, image_height;
     vec3 pixel00, pixel_du, pixel_dv; ///< world position of film point (0,0) and per-pixel steps
@@ -31,13 +33,15 @@ camera camera_default(void);
 void camera_prepare(camera *c, int width, int height);
 
 /// Primary ray through film point (fx, fy) (pixel (x, y) covers [x, x+1) x [y, y+1), y down), with
-/// lens samples drawn from r when the camera has defocus blur; its direction, from the lens to the focus
-/// plane, is not normalised. Inline, as the render loop makes one per sample.
+/// lens samples drawn from r when the camera has defocus blur, at the shutter's opening time; its
+/// direction, from the lens to the focus plane, is not normalised. Inline, as the render loop makes one per
+/// sample.
 static inline ray camera_ray_unnormalised(const camera *c, float fx, float fy, rng *r) {
     vec3 target = v3_add(c->pixel00, v3_add(v3_scale(c->pixel_du, fx), v3_scale(c->pixel_dv, fy)));
     ray out;
     out.tmin = 0.0f;
     out.tmax = INFINITY;
+    out.time = c->shutter_open;
     if (c->kind == CAMERA_VIEWPORT) {
         // Primary rays start on the viewport plane (t >= 1 in the paper's parametrisation).
         out.o = target;
@@ -62,12 +66,19 @@ static inline ray camera_ray(const camera *c, float fx, float fy, rng *r) {
     return out;
 }
 
+/// Whether camera rays get a time drawn in the shutter (an open shutter: open < close).
+static inline bool camera_has_shutter(const camera *c) { return c->shutter_open < c->shutter_close; }
+
 /// The camera ray of a sample of pixel (x, y) as the path tracer makes it: a film point uniformly jittered in
-/// the pixel (two draws from r), then camera_ray_unnormalised through it (camera_batch.h makes eight at once).
+/// the pixel (two draws from r), camera_ray_unnormalised through it, then, with an open shutter, a time
+/// uniform in it (one draw, after the others, so that a closed shutter leaves every other draw where it was;
+/// camera_batch.h makes eight at once).
 static inline ray camera_sample_ray(const camera *c, int x, int y, rng *r) {
     float fx = (float)x + rng_float(r);
     float fy = (float)y + rng_float(r);
-    return camera_ray_unnormalised(c, fx, fy, r);
+    ray out = camera_ray_unnormalised(c, fx, fy, r);
+    if (camera_has_shutter(c)) out.time = rng_range(r, c->shutter_open, c->shutter_close);
+    return out;
 }
 
 /// The paper's viewport point for film point (fx, fy), in double: V = (gx * Vw / W, gy * Vh / H, d)

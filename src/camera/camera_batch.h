@@ -20,6 +20,7 @@ typedef struct camera_batch {
     uint64_t key[CAMERA_BATCH], sample[CAMERA_BATCH];
     rng r[CAMERA_BATCH];
     vec3 o[CAMERA_BATCH], d[CAMERA_BATCH];
+    float time[CAMERA_BATCH];
 } camera_batch;
 
 // rng_u32 in every lane (state st, shared stream inc).
@@ -69,8 +70,8 @@ static inline void batch_sincos_turn(const float u[CAMERA_BATCH], float c[CAMERA
     memcpy(s, rs, sizeof rs);
 }
 
-/// Fills b->r, b->o and b->d from the inputs: lane i is rng_for_key(stream, key[i], sample[i]) followed by
-/// camera_sample_ray(c, x[i], y[i], &r).
+/// Fills b->r, b->o, b->d and b->time from the inputs: lane i is rng_for_key(stream, key[i], sample[i]) followed
+/// by camera_sample_ray(c, x[i], y[i], &r).
 static inline void camera_batch_make(const camera *c, uint64_t stream, camera_batch *b) {
     uint64_t st[CAMERA_BATCH];
     for (int i = 0; i < CAMERA_BATCH; i++) {
@@ -116,6 +117,13 @@ static inline void camera_batch_make(const camera *c, uint64_t stream, camera_ba
             b->o[i] = v3(ox[i], oy[i], oz[i]);
             b->d[i] = v3(tx[i] - ox[i], ty[i] - oy[i], tz[i] - oz[i]);
         }
+    }
+    if (camera_has_shutter(c)) { // rng_range(r, open, close), after the other draws
+        float u[CAMERA_BATCH];
+        batch_float(st, stream, u);
+        for (int i = 0; i < CAMERA_BATCH; i++) b->time[i] = c->shutter_open + (c->shutter_close - c->shutter_open) * u[i];
+    } else {
+        for (int i = 0; i < CAMERA_BATCH; i++) b->time[i] = c->shutter_open;
     }
     for (int i = 0; i < CAMERA_BATCH; i++) b->r[i] = (rng){st[i], stream};
 }

@@ -9,10 +9,12 @@ typedef struct vec3 {
     float x, y, z;
 } vec3;
 
-/// A ray: origin, direction (unit length in the path tracer), and the open interval (tmin, tmax).
+/// A ray: origin, direction (unit length in the path tracer), the open interval (tmin, tmax), and the time in
+/// the shutter at which it travels (what moving objects are tested at; 0 unless the camera has a shutter).
 typedef struct ray {
     vec3 o, d;
     float tmin, tmax;
+    float time;
 } ray;
 
 static inline vec3 v3(float x, float y, float z) { return (vec3){x, y, z}; }

@@ -95,7 +95,7 @@ bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
     }
     for (size_t i = 0; i < s->instance_count; i++) {
         const instance *in = &s->instances[i];
-        if (in->kind != INSTANCE_MESH) continue;
+        if (in->kind != INSTANCE_MESH || in->motion) continue; // moving meshes: found by BSDF rays only
         size_t nt = s->meshes[in->index].geometry.triangle_count, here = 0;
         for (size_t t = 0; t < nt; t++) {
             tri_light tl;
@@ -145,7 +145,7 @@ bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
     for (size_t i = 0; tri_count && i < s->instance_count; i++) {
         const instance *in = &s->instances[i];
         pl->tri_base[i] = SIZE_MAX;
-        if (in->kind != INSTANCE_MESH) continue;
+        if (in->kind != INSTANCE_MESH || in->motion) continue; // moving meshes: found by BSDF rays only
         size_t nt = s->meshes[in->index].geometry.triangle_count;
         for (size_t t = 0; t < nt; t++) {
             tri_light tl;

@@ -190,13 +190,13 @@ static vec3 direct_light(const integrator *it, const spawn_point *sp, vec3 n, ve
     return v3_scale(v3_mul(sum, weight), inv_pi);
 }
 
-// The radiance a path starting with the primary ray (origin o, direction d, all t > 0) carries. The ray comes
+// The radiance a path starting with the primary ray (origin o, direction d, all t > 0, at `time`) carries. The ray comes
 // by its parts, in registers: a whole ray passed by value is copied with wide loads that cannot be forwarded
 // from the stores that just made it. d need not have unit length.
-static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread_stats *ts) {
+static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts) {
     const integrator *it = &pi->base;
     const glint_scene *s = it->scene;
-    ray cur = {o, d, 0.0f, INFINITY};
+    ray cur = {o, d, 0.0f, INFINITY, time};
     vec3 radiance = v3s(0.0f), throughput = v3s(1.0f);
     bool has_lights = s->light_count > 0;
     const light_sampler *pl = pi->sampled;
@@ -242,7 +242,7 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread
                 }
                 throughput = v3_mul(throughput, ev.weight);
                 if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) break;
-                spawn_point spt = spawn_point_sphere(p, n, sp->radius);
+                spawn_point spt = spawn_point_sphere(p, n, sp->radius, cur.time);
                 cur = spawn_ray(&spt, ev.dir, 0.0f, INFINITY);
                 continue;
             }
@@ -306,7 +306,7 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, rng *r, thread
 static vec3 path_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
     (void)sample;
     ray primary = camera_sample_ray(&it->camera, x, y, r);
-    return path_trace((const path_integrator *)(const void *)it, primary.o, primary.d, r, ts);
+    return path_trace((const path_integrator *)(const void *)it, primary.o, primary.d, primary.time, r, ts);
 }
 
 // One tile pass: the samples' camera rays (and generators) are made CAMERA_BATCH at a time, in vector
@@ -347,7 +347,7 @@ static bool path_render_tile(const integrator *it, const tile_pass *tp, film_til
                 return false;
             }
             rng r = cb.r[i];
-            if (!film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], &r, ts))) {
+            if (!film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts))) {
                 *ft = t;
                 return true;
             }

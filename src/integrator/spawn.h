@@ -20,6 +20,7 @@ typedef struct spawn_point {
     vec3 p;
     vec3 n;
     float offset;
+    float time; ///< of the ray that arrived: the rays spawned here keep it
 } spawn_point;
 
 /// max(|x|, |y|, |z|), with plain comparisons (fmaxf is a libm call at -O3 without -ffinite-math-only).
@@ -42,30 +43,32 @@ static inline float spawn_primitive_magnitude(const glint_scene *s, const surfac
         return m;
     }
     const instance *in = &s->instances[sf->instance];
+    transform moved; // a moving instance at the hit's time
+    if (in->motion) motion_at(&s->motions[in->motion - 1], sf->time, &moved);
+    const mat4 *m = in->motion ? &moved.m : &in->xf.m;
     float obj, k;
     if (in->kind == INSTANCE_SPHERE) {
         const sphere *sp = &s->instance_spheres[in->index];
         obj = spawn_max_abs(sp->center) + fabsf(sp->radius);
     } else {
-        const mesh *m = &s->meshes[in->index].geometry;
         vec3 p0, p1, p2;
-        mesh_triangle_positions(m, sf->prim, &p0, &p1, &p2);
+        mesh_triangle_positions(&s->meshes[in->index].geometry, sf->prim, &p0, &p1, &p2);
         obj = spawn_max_abs(p0);
         obj = (k = spawn_max_abs(p1)) > obj ? k : obj;
         obj = (k = spawn_max_abs(p2)) > obj ? k : obj;
     }
     float norm = 0.0f;
     for (int i = 0; i < 3; i++) {
-        const float *row = in->xf.m.m[i];
+        const float *row = m->m[i];
         norm = (k = fabsf(row[0]) + fabsf(row[1]) + fabsf(row[2])) > norm ? k : norm;
     }
     return obj * norm;
 }
 
-/// The spawn point at p, re-projected onto a world sphere of radius r (sphere_hit_frame), with unit normal n:
-/// offset by SPAWN_OFFSET_REL (max|p_i| + |r|).
-static inline spawn_point spawn_point_sphere(vec3 p, vec3 n, float r) {
-    spawn_point out = {p, n, SPAWN_OFFSET_REL * (spawn_max_abs(p) + fabsf(r)) + 1e-30f};
+/// The spawn point at p, re-projected onto a world sphere of radius r (sphere_hit_frame), with unit normal n,
+/// for rays at `time`: offset by SPAWN_OFFSET_REL (max|p_i| + |r|).
+static inline spawn_point spawn_point_sphere(vec3 p, vec3 n, float r, float time) {
+    spawn_point out = {p, n, SPAWN_OFFSET_REL * (spawn_max_abs(p) + fabsf(r)) + 1e-30f, time};
     return out;
 }
 
@@ -80,15 +83,17 @@ static inline vec3 spawn_inside_edges(vec3 p, float x, vec3 e, float inv_len, fl
     return p;
 }
 
-/// Where rays leave surface sf. A world-space sphere's point, re-projected onto it by surface_at, is offset
-/// as spawn_point_sphere says. Any other surface (quad, triangle, instanced sphere) keeps its point
+/// Where rays leave surface sf, at its time. A world-space or moving sphere's point, re-projected onto it by
+/// surface_at, is offset as spawn_point_sphere says. Any other surface (quad, triangle, instanced sphere) keeps its point
 /// and is offset by its error bound sf->error (the rounding of p, from surface_at) plus SPAWN_OFFSET_REL
 /// times the larger of max|p_i| and the primitive's own magnitude (spawn_primitive_magnitude); a world
 /// quad's point is also kept that offset inside its edges (spawn_inside_edges).
 static inline spawn_point spawn_point_of(const glint_scene *s, const surface *sf) {
     if (sf->kind == HIT_SPHERE && sf->instance == HIT_NO_INSTANCE)
-        return spawn_point_sphere(sf->p, sf->ng, s->spheres[sf->prim].radius);
+        return spawn_point_sphere(sf->p, sf->ng, s->spheres[sf->prim].radius, sf->time);
+    if (sf->kind == HIT_MOVING_SPHERE) return spawn_point_sphere(sf->p, sf->ng, s->moving_spheres[sf->prim].radius, sf->time);
     spawn_point out;
+    out.time = sf->time;
     out.n = sf->ng;
     out.p = sf->p;
     float mag = spawn_max_abs(sf->p), prim = spawn_primitive_magnitude(s, sf);
@@ -106,13 +111,14 @@ static inline vec3 spawn_origin(const spawn_point *sp, vec3 dir) {
     return v3_fma(sp->p, sp->n, v3_dot(dir, sp->n) >= 0.0f ? sp->offset : -sp->offset);
 }
 
-/// A ray leaving sp along dir, hitting only at tmin < t < tmax.
+/// A ray leaving sp along dir, hitting only at tmin < t < tmax, at sp's time.
 static inline ray spawn_ray(const spawn_point *sp, vec3 dir, float tmin, float tmax) {
     ray out;
     out.o = spawn_origin(sp, dir);
     out.d = dir;
     out.tmin = tmin;
     out.tmax = tmax;
+    out.time = sp->time;
     return out;
 }
 

@@ -27,6 +27,20 @@ surface surface_at_general(const glint_scene *s, const ray *r, const hit *h) {
     out.instance = h->instance;
     out.u = h->b1;
     out.v = h->b2;
+    out.time = r->time;
+    if (h->kind == HIT_MOVING_SPHERE) { // the sphere where it was at the ray's time, then as a world sphere
+        sphere sp = moving_sphere_at(&s->moving_spheres[h->prim], r->time);
+        vec3 outward;
+        sphere_hit_frame(&sp, r, h->t, &out.p, &outward);
+        orient(&out, r, outward, outward);
+        out.material = sp.material;
+        out.u = out.v = 0.0f;
+        const material *m = &s->materials[sp.material];
+        if (m->albedo_texture >= 0 || m->emission_texture >= 0)
+            sphere_uv(sp.radius < 0.0f ? v3_neg(outward) : outward, &out.u, &out.v);
+        out.error = 0.0f;
+        return out;
+    }
     if (h->instance == HIT_NO_INSTANCE) { // world-space quad (world spheres take the inline path)
         const quad *q = &s->quads[h->prim];
         orient(&out, r, q->normal, q->normal);
@@ -34,13 +48,16 @@ surface surface_at_general(const glint_scene *s, const ray *r, const hit *h) {
         return out;
     }
     const instance *in = &s->instances[h->instance];
+    transform moved; // a moving instance's transform at the ray's time (the one the hit was found with)
+    if (in->motion) motion_at(&s->motions[in->motion - 1], r->time, &moved);
+    const transform *xf = in->motion ? &moved : &in->xf;
     // Object-space quantities go to world space: normals by the inverse transpose.
     if (in->kind == INSTANCE_SPHERE) {
         const sphere *sp = &s->instance_spheres[in->index];
-        ray ro = mat4_apply_ray(&in->xf.inv, r);
+        ray ro = mat4_apply_ray(&xf->inv, r);
         vec3 po = ray_at(&ro, h->t);
         vec3 no = sphere_normal(sp, po);
-        vec3 nw = v3_unit(mat4_apply_normal(&in->xf.inv, no));
+        vec3 nw = v3_unit(mat4_apply_normal(&xf->inv, no));
         orient(&out, r, nw, nw);
         out.material = in->material >= 0 ? (uint32_t)in->material : sp->material;
         sphere_uv(sp->radius < 0.0f ? v3_neg(no) : no, &out.u, &out.v);
@@ -49,8 +66,8 @@ surface surface_at_general(const glint_scene *s, const ray *r, const hit *h) {
     const scene_mesh *sm = &s->meshes[in->index];
     tri_hit th = {h->t, 1.0f - h->b1 - h->b2, h->b1, h->b2};
     mesh_shading sh = mesh_shade(&sm->geometry, h->prim, &th);
-    vec3 ng = v3_unit(mat4_apply_normal(&in->xf.inv, sh.ng));
-    vec3 ns = v3_unit(mat4_apply_normal(&in->xf.inv, sh.ns));
+    vec3 ng = v3_unit(mat4_apply_normal(&xf->inv, sh.ng));
+    vec3 ns = v3_unit(mat4_apply_normal(&xf->inv, sh.ns));
     orient(&out, r, ng, ns);
     out.u = sh.u;
     out.v = sh.v;

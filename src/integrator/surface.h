@@ -22,9 +22,10 @@ typedef struct surface {
     float error;   ///< bound on the distance of p from the true surface, for offsetting spawned rays
     hit_kind kind; ///< what was hit, for primitive-specific refinement (sphere re-projection)
     uint32_t prim, instance;
+    float time;    ///< the ray's time: rays leaving the surface keep it
 } surface;
 
-/// Shading data of a hit on anything but a world-space sphere (quads, triangles, instances).
+/// Shading data of a hit on anything but a world-space sphere (quads, triangles, instances, moving spheres).
 surface surface_at_general(const glint_scene *s, const ray *r, const hit *h);
 
 /// Where ray r meets sphere sp at distance t: the point re-projected onto the sphere, c + q |r| / |q| with
@@ -59,6 +60,7 @@ static inline surface surface_at(const glint_scene *s, const ray *r, const hit *
     out.kind = HIT_SPHERE;
     out.prim = h->prim;
     out.instance = HIT_NO_INSTANCE;
+    out.time = r->time;
     return out;
 }
 

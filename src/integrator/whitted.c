@@ -334,6 +334,7 @@ static color_origin color_origin_of(const glint_scene *s, const surface *sf) {
         out.sp.p = sf->p;
         out.sp.n = sf->ng;
         out.sp.offset = 0.0f;
+        out.sp.time = sf->time;
     } else {
         out.from = NO_SPHERE;
         out.sp = spawn_point_of(s, sf);
@@ -349,6 +350,7 @@ static spawned spawn(const color_origin *co, vec3 d) {
     out.r.d = d;
     out.r.tmin = 0.0f;
     out.r.tmax = INFINITY;
+    out.r.time = co->sp.time;
     out.from = co->from;
     return out;
 }
@@ -479,6 +481,7 @@ static ray color_primary_ray(const integrator *it, int x, int y, rng *r) {
     out.d = v3_unit(v3((float)v[0], (float)v[1], (float)v[2]));
     out.tmin = 0.0f; // the ray starts on the viewport plane: t >= 1 in the paper's parametrisation
     out.tmax = INFINITY;
+    out.time = c->shutter_open; // the Whitted integrators see the scene as it is when the shutter opens
     return out;
 }
 

@@ -22,6 +22,11 @@ accel *frame_accel_build(const glint_scene *s, const atomic_int *stop, glint_err
                       .instance_spheres = s->instance_spheres,
                       .instances = s->instances,
                       .instance_count = s->instance_count,
+                      .moving_spheres = s->moving_spheres,
+                      .moving_sphere_count = s->moving_sphere_count,
+                      .motions = s->motions,
+                      .time0 = s->camera.shutter_open,
+                      .time1 = s->camera.shutter_close,
                       .stop = stop};
     accel *a = accel_build(&in, s->settings.accel, err);
     free(meshes); // accel_build keeps a copy of the list

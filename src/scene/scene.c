@@ -121,6 +121,18 @@ bool scene_add_instance(glint_scene *s, instance in) {
     return true;
 }
 
+bool scene_add_moving_sphere(glint_scene *s, moving_sphere sp) {
+    if (!SCENE_RESERVE(s, moving_spheres, s->moving_sphere_count)) return false;
+    s->moving_spheres[s->moving_sphere_count++] = sp;
+    return true;
+}
+
+uint32_t scene_add_motion(glint_scene *s, const motion *m) {
+    if (s->motion_count >= UINT32_MAX - 1 || !SCENE_RESERVE(s, motions, s->motion_count)) return 0;
+    s->motions[s->motion_count++] = *m;
+    return (uint32_t)s->motion_count;
+}
+
 bool scene_add_input(glint_scene *s, uint64_t dev, uint64_t ino) {
     for (size_t i = 0; i < s->input_count; i++)
         if (s->inputs[i].dev == dev && s->inputs[i].ino == ino) return true;
@@ -230,6 +242,8 @@ void scene_free(glint_scene *s) {
     free(s->meshes);
     free(s->instance_spheres);
     free(s->instances);
+    free(s->moving_spheres);
+    free(s->motions);
     envmap_free(&s->environment);
     free(s->inputs);
     for (size_t i = 0; i < s->warning_count; i++) free(s->warnings[i]);

@@ -13,6 +13,7 @@
 #include "light/light.h"
 #include "geometry/instance.h"
 #include "geometry/mesh.h"
+#include "geometry/motion.h"
 #include "geometry/sphere.h"
 #include "geometry/transform.h"
 #include "geometry/quad.h"
@@ -89,6 +90,10 @@ struct glint_scene {
     size_t instance_sphere_count;
     instance *instances;
     size_t instance_count;
+    moving_sphere *moving_spheres; ///< spheres with a "center2"
+    size_t moving_sphere_count;
+    motion *motions;         ///< motions[k - 1]: how an instance with motion k moves
+    size_t motion_count;
 
     envmap environment;      ///< the background of BACKGROUND_ENVMAP (an empty image otherwise)
 
@@ -101,7 +106,7 @@ struct glint_scene {
     /// Room allocated in each array above (core/array.h), in elements; the counts say how many are used.
     struct {
         size_t materials, material_names, spheres, lights, quads, textures, texture_names, meshes, instance_spheres,
-            instances, warnings, inputs;
+            instances, warnings, inputs, moving_spheres, motions;
     } capacity;
 };
 
@@ -125,6 +130,11 @@ long scene_add_mesh(glint_scene *s, scene_mesh *m);
 long scene_add_instance_sphere(glint_scene *s, sphere sp);
 /// Appends an instance; false when out of memory.
 bool scene_add_instance(glint_scene *s, instance in);
+/// Appends a moving sphere; false when out of memory.
+bool scene_add_moving_sphere(glint_scene *s, moving_sphere sp);
+/// Appends a motion and returns the value of instance.motion that refers to it (its index + 1), or 0 when out
+/// of memory.
+uint32_t scene_add_motion(glint_scene *s, const motion *m);
 /// Records that the scene was read from file (dev, ino), once; false when out of memory.
 bool scene_add_input(glint_scene *s, uint64_t dev, uint64_t ino);
 /// Whether path names one of the files the scene was read from (following symbolic links).

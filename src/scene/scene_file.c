@@ -213,9 +213,25 @@ static bool read_array(sf_loader *ld, jr_val v, const char *key, element_reader 
 static const jr_numspec NUM_VFOV = {0.0, 180.0, JR_FLOAT | JR_LO_OPEN | JR_HI_OPEN, "a number in (0, 180)"};
 static const jr_numspec NUM_DEFOCUS = {0.0, 180.0, JR_FLOAT | JR_HI_OPEN, "a number in [0, 180)"};
 
-static const char *const viewport_keys[] = {"type", "position", "viewport", "distance", NULL};
-static const char *const lookat_keys[] = {"type",          "lookfrom",       "lookat", "vup", "vfov",
-                                          "defocus_angle", "focus_distance", NULL};
+static const char *const viewport_keys[] = {"type", "position", "viewport", "distance", "shutter", NULL};
+static const char *const lookat_keys[] = {"type",          "lookfrom",       "lookat",  "vup", "vfov",
+                                          "defocus_angle", "focus_distance", "shutter", NULL};
+static const jr_numspec NUM_TIME = {0.0, 1.0, JR_FLOAT, "a time in [0, 1]"};
+
+// "shutter": [open, close], times in [0, 1] (the span over which objects' motions are defined), open <= close.
+static bool read_shutter(sf_loader *ld, const jr_obj *o, camera *c) {
+    const jr_member *m = jr_get(o, "shutter");
+    if (!m) return true;
+    double t[2];
+    if (!jr_check_numbers(&ld->r, m->val, "shutter", 2, "2 times [open, close]", &NUM_TIME, t)) return false;
+    if (!(t[0] <= t[1]))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, m->val.tok),
+                          "\"shutter\" closes before it opens ([%g, %g]); expected [open, close] with open <= close",
+                          t[0], t[1]);
+    c->shutter_open = (float)t[0];
+    c->shutter_close = (float)t[1];
+    return true;
+}
 
 static const struct camera_type {
     const char *name;
@@ -306,9 +322,9 @@ static bool read_camera(sf_loader *ld, jr_val v) {
     if (c->kind == CAMERA_VIEWPORT) {
         c->position[0] = c->position[1] = c->position[2] = 0.0;
         c->viewport_width = c->viewport_height = c->distance = 1.0;
-        return read_viewport(ld, &o, c) && check_camera_extent(ld, &o, c);
+        return read_viewport(ld, &o, c) && check_camera_extent(ld, &o, c) && read_shutter(ld, &o, c);
     }
-    return read_lookat(ld, &o, c) && check_camera_extent(ld, &o, c);
+    return read_lookat(ld, &o, c) && check_camera_extent(ld, &o, c) && read_shutter(ld, &o, c);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -128,6 +128,11 @@ bool sf_read_material_ref(sf_loader *ld, const jr_obj *o, const char *owner, uin
 
 /// Reads the optional "transform" of o into *xf (object to world); *given is false without one.
 bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *given);
+/// Reads the optional "transform2" of o, the pose at time 1 of an object whose "transform" (xf) is its pose at
+/// time 0, checks the motion between them (object_bounds swept over [0, 1] within the extent; `shape` names the
+/// object in messages) and adds it to the scene: *motion_ref is the instance.motion value, 0 without one.
+bool sf_read_motion(sf_loader *ld, const jr_obj *o, const transform *xf, bounds3 object_bounds, const char *shape,
+                    uint32_t *motion_ref);
 /// Reads element i of "objects" into the scene.
 bool sf_read_object(sf_loader *ld, jr_val v, size_t i);
 /// Reads element i of "lights" into the scene.

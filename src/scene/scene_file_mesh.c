@@ -179,6 +179,8 @@ bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
         !sf_check_extent(ld, jr_member_offset(&ld->r, o, moved ? "transform" : "file"),
                          moved ? "the transformed mesh" : "the mesh", mat4_apply_bounds(&xf.m, ob)))
         return false;
-    instance in = {INSTANCE_MESH, entry->mesh, xf, override ? (int32_t)mat : -1};
+    uint32_t motion_ref;
+    if (!sf_read_motion(ld, o, &xf, ob, "mesh", &motion_ref)) return false;
+    instance in = {INSTANCE_MESH, entry->mesh, xf, override ? (int32_t)mat : -1, motion_ref};
     return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
 }

@@ -65,9 +65,9 @@ static bool read_matrix(sf_loader *ld, jr_val v, mat4 *out) {
     return true;
 }
 
-/// Reads the optional "transform" of o into *xf (object to world); *given is false without one.
-bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *given) {
-    const jr_member *m = jr_get(o, "transform");
+// Reads the optional transform `key` of o into *xf (object to world); *given is false without one.
+static bool read_transform_key(sf_loader *ld, const jr_obj *o, const char *key, transform *xf, bool *given) {
+    const jr_member *m = jr_get(o, key);
     *xf = transform_identity();
     *given = m != NULL;
     if (!m) return true;
@@ -75,16 +75,16 @@ bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *give
     char got[96];
     if (!cJSON_IsArray(v.item))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                          "\"transform\" must be an array of operations ({\"translate\": ...}, {\"rotate\": ...}, "
+                          "\"%s\" must be an array of operations ({\"translate\": ...}, {\"rotate\": ...}, "
                           "{\"scale\": ...} or {\"matrix\": ...}), got %s",
-                          jr_describe(&ld->r, v, got, sizeof got));
+                          key, jr_describe(&ld->r, v, got, sizeof got));
     mat4 acc = mat4_identity();
     jr_iter it = jr_iter_begin(&ld->r, v);
     jr_val e;
     int r;
     for (size_t i = 0; (r = jr_iter_next(&ld->r, &it, NULL, &e)) > 0; i++) {
         char what[48];
-        snprintf(what, sizeof what, "transform[%zu]", i);
+        snprintf(what, sizeof what, "%s[%zu]", key, i);
         jr_obj op;
         if (!jr_open(&ld->r, e, what, transform_op_keys, &op)) return false;
         if (op.count != 1)
@@ -115,19 +115,76 @@ bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *give
     if (r < 0) return false;
     if (!transform_make(&acc, xf))
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                          "\"transform\" is singular or too close to it to invert in single precision (determinant "
+                          "\"%s\" is singular or too close to it to invert in single precision (determinant "
                           "%g)",
-                          mat4_linear_det(&acc));
+                          key, mat4_linear_det(&acc));
     return true;
+}
+
+bool sf_read_transform(sf_loader *ld, const jr_obj *o, transform *xf, bool *given) {
+    return read_transform_key(ld, o, "transform", xf, given);
+}
+
+bool sf_read_motion(sf_loader *ld, const jr_obj *o, const transform *xf, bounds3 object_bounds, const char *shape,
+                    uint32_t *motion_ref) {
+    transform end;
+    bool given;
+    *motion_ref = 0;
+    if (!read_transform_key(ld, o, "transform2", &end, &given)) return false;
+    if (!given) return true;
+    size_t where = jr_member_offset(&ld->r, o, "transform2");
+    motion mo;
+    if (!motion_make(&xf->m, &end.m, &mo)) {
+        // Both are affine and invertible (read_transform_key checked): they differ in handedness.
+        double d0 = mat4_linear_det(&xf->m), d1 = mat4_linear_det(&end.m);
+        return jr_fail_at(&ld->r, where,
+                          "\"transform2\" %s (determinant %g) where \"transform\" %s (determinant %g); expected two "
+                          "transforms that both mirror or neither, so that the motion between them never flattens "
+                          "the object",
+                          d1 < 0.0 ? "mirrors" : "does not mirror", d1, d0 < 0.0 ? "does" : "does not", d0);
+    }
+    // The motion is defined for times in [0, 1], where every shutter lies.
+    char what[96];
+    snprintf(what, sizeof what, "the moving %s", shape);
+    if (!bounds3_is_empty(object_bounds) &&
+        !sf_check_extent(ld, where, what, motion_bounds(&mo, object_bounds, 0.0f, 1.0f)))
+        return false;
+    *motion_ref = scene_add_motion(ld->scene, &mo);
+    return *motion_ref != 0 || sf_fail_oom(ld);
 }
 
 // ---------------------------------------------------------------------------------------------
 // Objects: add a row to object_types (name, keys, reader) for a new shape.
 
-static const char *const sphere_keys[] = {"type", "center", "radius", "material", "transform", NULL};
-static const char *const quad_keys[] = {"type", "q", "u", "v", "material", "transform", NULL};
-static const char *const box_keys[] = {"type", "min", "max", "material", "transform", NULL};
-static const char *const mesh_keys[] = {"type", "file", "material", "transform", "face_normals", NULL};
+static const char *const sphere_keys[] = {"type", "center", "center2", "radius", "material", "transform", "transform2", NULL};
+static const char *const quad_keys[] = {"type", "q", "u", "v", "material", "transform", "transform2", NULL};
+static const char *const box_keys[] = {"type", "min", "max", "material", "transform", "transform2", NULL};
+static const char *const mesh_keys[] = {"type", "file", "material", "transform", "transform2", "face_normals", NULL};
+
+// Quads and boxes are baked into world-space quads: they cannot move (yet). Said where "transform2" is.
+static bool refuse_motion(sf_loader *ld, const jr_obj *o, const char *shape) {
+    if (!jr_get(o, "transform2")) return true;
+    return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "transform2"),
+                      "a %s cannot move: \"transform2\" is read for spheres and meshes only (a moving box can be a "
+                      "mesh)",
+                      shape);
+}
+
+// A sphere with "center2" moves along the line from "center" (time 0) to "center2" (time 1), in world space.
+static bool read_moving_sphere(sf_loader *ld, const jr_obj *o, const sphere *s, vec3 center2) {
+    size_t where = jr_member_offset(&ld->r, o, "center2");
+    if (jr_get(o, "transform") || jr_get(o, "transform2"))
+        return jr_fail_at(&ld->r, where,
+                          "\"center2\" cannot be combined with \"transform\" or \"transform2\": give both centres in "
+                          "world space, or move the sphere by \"transform2\" alone");
+    moving_sphere ms = {s->center, v3_sub(center2, s->center), s->radius, s->material};
+    float r = fabsf(s->radius);
+    bounds3 b = {v3_sub(v3_min(s->center, center2), v3s(r)), v3_add(v3_max(s->center, center2), v3s(r))};
+    if (!v3_is_finite(ms.motion))
+        return jr_fail_at(&ld->r, where, "\"center2\" is too far from \"center\": their difference overflows single precision");
+    if (!sf_check_extent(ld, where, "the moving sphere", b)) return false;
+    return scene_add_moving_sphere(ld->scene, ms) || sf_fail_oom(ld);
+}
 
 // A sphere under a similarity is another sphere; under any other transform, or when its material is
 // textured (the texture must turn with it), it becomes an instance.
@@ -139,6 +196,24 @@ static bool read_sphere(sf_loader *ld, const jr_obj *o, const char *what) {
         !jr_read_float(&ld->r, o, "radius", true, &JR_NONZERO_FINITE, &s.radius) ||
         !sf_read_material_ref(ld, o, what, &s.material) || !sf_read_transform(ld, o, &xf, &moved))
         return false;
+    if (jr_get(o, "center2")) {
+        vec3 center2;
+        if (!jr_read_vec3(&ld->r, o, "center2", true, &JR_FINITE, &center2)) return false;
+        // The same centre at both times: a sphere that does not move (book 2 writes its static spheres so).
+        if (center2.x != s.center.x || center2.y != s.center.y || center2.z != s.center.z || jr_get(o, "transform") ||
+            jr_get(o, "transform2"))
+            return read_moving_sphere(ld, o, &s, center2);
+    }
+    float rad = fabsf(s.radius);
+    bounds3 object_box = {v3_sub(s.center, v3s(rad)), v3_add(s.center, v3s(rad))};
+    uint32_t motion_ref;
+    if (!sf_read_motion(ld, o, &xf, object_box, "sphere", &motion_ref)) return false;
+    if (motion_ref) { // always an instance: its transform changes with time
+        long i = scene_add_instance_sphere(ld->scene, s);
+        if (i < 0) return sf_fail_oom(ld);
+        instance in = {INSTANCE_SPHERE, (uint32_t)i, xf, (int32_t)s.material, motion_ref};
+        return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
+    }
     size_t where = jr_member_offset(&ld->r, o, moved ? "transform" : "center");
     if (!moved) {
         float r = fabsf(s.radius);
@@ -166,7 +241,7 @@ static bool read_sphere(sf_loader *ld, const jr_obj *o, const char *what) {
     if (!sf_check_extent(ld, where, "the transformed sphere", mat4_apply_bounds(&xf.m, ob))) return false;
     long i = scene_add_instance_sphere(ld->scene, s);
     if (i < 0) return sf_fail_oom(ld);
-    instance in = {INSTANCE_SPHERE, (uint32_t)i, xf, (int32_t)s.material};
+    instance in = {INSTANCE_SPHERE, (uint32_t)i, xf, (int32_t)s.material, 0};
     return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
 }
 
@@ -192,7 +267,7 @@ static bool read_quad(sf_loader *ld, const jr_obj *o, const char *what) {
     bool moved;
     if (!jr_read_vec3(&ld->r, o, "q", true, &JR_FINITE, &q) || !jr_read_vec3(&ld->r, o, "u", true, &JR_FINITE, &u) ||
         !jr_read_vec3(&ld->r, o, "v", true, &JR_FINITE, &v) || !sf_read_material_ref(ld, o, what, &mat) ||
-        !sf_read_transform(ld, o, &xf, &moved))
+        !sf_read_transform(ld, o, &xf, &moved) || !refuse_motion(ld, o, "quad"))
         return false;
     quad qd;
     if (!quad_make(q, u, v, mat, &qd)) {
@@ -226,7 +301,8 @@ static bool read_box(sf_loader *ld, const jr_obj *o, const char *what) {
                               "\"min\"[%d] = %g",
                               k, (double)b, k, (double)a);
     }
-    if (!sf_read_material_ref(ld, o, what, &mat) || !sf_read_transform(ld, o, &xf, &moved)) return false;
+    if (!sf_read_material_ref(ld, o, what, &mat) || !sf_read_transform(ld, o, &xf, &moved) || !refuse_motion(ld, o, "box"))
+        return false;
     quad faces[6];
     if (!quad_box(lo, hi, mat, faces))
         return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "max"), "the box is too large: its faces' areas overflow single "

@@ -14,6 +14,8 @@ static bool emits(const glint_scene *s, int64_t m) {
 static bool any_emitter(const glint_scene *s) {
     for (size_t i = 0; i < s->sphere_count; i++)
         if (emits(s, s->spheres[i].material)) return true;
+    for (size_t i = 0; i < s->moving_sphere_count; i++)
+        if (emits(s, s->moving_spheres[i].material)) return true;
     for (size_t i = 0; i < s->quad_count; i++)
         if (emits(s, s->quads[i].material)) return true;
     for (size_t i = 0; i < s->instance_count; i++) {
@@ -83,6 +85,7 @@ static void warn_paper_mode(sf_loader *ld) {
     warn_paper(ld, ld->object_counts[SF_OBJECT_QUAD], sees, "quad object", "ignored (neither seen nor casting shadows)");
     warn_paper(ld, ld->object_counts[SF_OBJECT_BOX], sees, "box object", "ignored (neither seen nor casting shadows)");
     warn_paper(ld, ld->object_counts[SF_OBJECT_MESH], sees, "mesh object", "ignored (neither seen nor casting shadows)");
+    warn_paper(ld, s->moving_sphere_count, sees, "moving sphere", "ignored (neither seen nor casting shadows)");
     size_t placed = 0;
     for (size_t i = 0; i < s->instance_count; i++) placed += s->instances[i].kind == INSTANCE_SPHERE;
     warn_paper(ld, placed, sees, "instanced sphere",

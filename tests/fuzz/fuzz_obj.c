@@ -36,7 +36,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
             vec3 p0, p1, p2;
             mesh_triangle_positions(me, i, &p0, &p1, &p2);
             vec3 c = v3_scale(v3_add(p0, v3_add(p1, p2)), 1.0f / 3);
-            ray r = {v3_add(c, v3(0.5f, 0.25f, 1)), v3(-0.5f, -0.25f, -1), 0, INFINITY};
+            ray r = {v3_add(c, v3(0.5f, 0.25f, 1)), v3(-0.5f, -0.25f, -1), 0, INFINITY, 0.0f};
             tri_ray tr = tri_ray_make(&r);
             tri_hit hit;
             (void)mesh_intersect_triangle(me, i, &tr, r.tmin, r.tmax, &hit);
