@@ -1,5 +1,5 @@
-// scene_file_objects.c — the scene file's "objects" (spheres, quads, boxes; meshes in scene_file_mesh.c),
-// their "transform" operations, and its "lights".
+// scene_file_objects.c — the scene file's "objects" (spheres, quads, boxes; meshes in scene_file_mesh.c, media
+// in scene_file_media.c), their "transform" operations, and its "lights".
 #include "scene/scene_file.h"
 
 #include <float.h>
@@ -128,6 +128,8 @@ static const char *const sphere_keys[] = {"type", "center", "radius", "material"
 static const char *const quad_keys[] = {"type", "q", "u", "v", "material", "transform", NULL};
 static const char *const box_keys[] = {"type", "min", "max", "material", "transform", NULL};
 static const char *const mesh_keys[] = {"type", "file", "material", "transform", "face_normals", NULL};
+static const char *const constant_medium_keys[] = {"type", "boundary", "density", "albedo", "g", NULL};
+static const char *const homogeneous_medium_keys[] = {"type", "boundary", "sigma_a", "sigma_s", "g", NULL};
 
 // A sphere under a similarity is another sphere; under any other transform, or when its material is
 // textured (the texture must turn with it), it becomes an instance.
@@ -245,6 +247,8 @@ static const struct object_type {
     {"quad", quad_keys, read_quad},
     {"box", box_keys, read_box},
     {"mesh", mesh_keys, sf_read_mesh},
+    {"constant_medium", constant_medium_keys, sf_read_constant_medium},
+    {"homogeneous_medium", homogeneous_medium_keys, sf_read_homogeneous_medium},
 };
 #define OBJECT_TYPES (sizeof object_types / sizeof object_types[0])
 
