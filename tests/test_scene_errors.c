@@ -210,12 +210,13 @@ static const bad_scene cases[] = {
      "bad.json:1:59: \"emission\" must be a finite number >= 0 or an array of 3 such numbers [r, g, b], got 1e999"},
     // --- objects ---
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"cube\", \"size\": 1}]}"),
-     "bad.json:1:23: \"type\" must be \"sphere\", \"quad\", \"box\" or \"mesh\", got \"cube\""},
+     "bad.json:1:23: \"type\" must be \"sphere\", \"quad\", \"box\", \"mesh\", \"constant_medium\" or "
+     "\"homogeneous_medium\", got \"cube\""},
     {__LINE__, TEXT("{\"objects\": [\n  {\"type\": \"sphere\", \"radius\": 1, \"material\": \"m\"}\n]}"),
      "bad.json:2:3: missing required key \"center\" in object 0 (sphere)"},
     {__LINE__, TEXT("{\"objects\": [{\"center\": [0, 0, 0]}]}"),
-     "bad.json:1:14: missing required key \"type\" in object 0; expected one of \"sphere\", \"quad\", \"box\" or "
-     "\"mesh\""},
+     "bad.json:1:14: missing required key \"type\" in object 0; expected one of \"sphere\", \"quad\", \"box\", "
+     "\"mesh\", \"constant_medium\" or \"homogeneous_medium\""},
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0, "
                     "\"material\": {\"type\": \"phong\"}}]}"),
      "bad.json:1:64: \"radius\" must be a finite non-zero number, got 0"},
@@ -428,6 +429,53 @@ static const bad_scene cases[] = {
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"mesh\", \"file\": \"a.obj\", \"smooth\": true}]}"),
      "bad.json:1:48: unknown key \"smooth\" in object 0 (mesh); expected one of: type, file, material, transform, "
      "transform2, face_normals"},
+    // --- participating media ---
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"constant_medium\", \"density\": 0.1}]}"),
+     "bad.json:1:14: missing required key \"boundary\" in object 0 (constant_medium)"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"constant_medium\", \"density\": 0,\n"
+                    " \"boundary\": {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1}}]}"),
+     "bad.json:1:53: \"density\" must be a number in (0, 1e30], got 0"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"constant_medium\", \"density\": 1e31,\n"
+                    " \"boundary\": {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1}}]}"),
+     "bad.json:1:53: \"density\" must be a number in (0, 1e30], got 1e31"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"constant_medium\", \"density\": 1, \"albedo\": 1.5,\n"
+                    " \"boundary\": {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1}}]}"),
+     "bad.json:1:66: \"albedo\" must be a number in [0, 1] or an array of 3 such numbers [r, g, b], got 1.5"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"constant_medium\", \"density\": 1, \"albedo\": \"smoke\",\n"
+                    " \"boundary\": {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1}}]}"),
+     "bad.json:1:66: texture \"smoke\" is not defined (no named textures are defined)"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"constant_medium\", \"density\": 1, \"g\": 1,\n"
+                    " \"boundary\": {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1}}]}"),
+     "bad.json:1:61: \"g\" must be a number in (-1, 1), got 1"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"constant_medium\", \"density\": 1,\n"
+                    " \"boundary\": {\"type\": \"mesh\", \"file\": \"a.obj\"}}]}"),
+     "bad.json:2:23: \"type\" must be \"sphere\" or \"box\", got \"mesh\""},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"constant_medium\", \"density\": 1,\n"
+                    " \"boundary\": {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": -1}}]}"),
+     "bad.json:2:64: \"radius\" must be a finite number > 0, got -1"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"constant_medium\", \"density\": 1,\n"
+                    " \"boundary\": {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1, \"material\": \"m\"}}]}"),
+     "bad.json:2:67: unknown key \"material\" in the boundary (sphere) of object 0 (constant_medium); expected one "
+     "of: type, center, radius, transform"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"homogeneous_medium\",\n"
+                    " \"boundary\": {\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 0, 1]}}]}"),
+     "bad.json:2:55: \"max\" must be greater than \"min\" in every coordinate, but \"max\"[1] = 0 <= \"min\"[1] = 0"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"homogeneous_medium\", \"sigma_a\": 0, \"sigma_s\": [0, 0, 0],\n"
+                    " \"boundary\": {\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1]}}]}"),
+     "bad.json:1:14: object 0 (homogeneous_medium) has no effect: \"sigma_a\" + \"sigma_s\" must be > 0 in some "
+     "channel"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"homogeneous_medium\", \"sigma_s\": [1, -1, 1],\n"
+                    " \"boundary\": {\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1]}}]}"),
+     "bad.json:1:60: \"sigma_s\"[1] must be a number in [0, 1e30], got -1"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"homogeneous_medium\", \"sigma_s\": 1, \"density\": 1,\n"
+                    " \"boundary\": {\"type\": \"box\", \"min\": [0, 0, 0], \"max\": [1, 1, 1]}}]}"),
+     "bad.json:1:59: unknown key \"density\" in object 0 (homogeneous_medium); expected one of: type, boundary, "
+     "sigma_a, sigma_s, g"},
+    {__LINE__, TEXT("{\"objects\": [{\"type\": \"homogeneous_medium\", \"sigma_s\": 1,\n"
+                    " \"boundary\": {\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 1,\n"
+                    "  \"transform\": [{\"scale\": 2e9}]}}]}"),
+     "bad.json:3:16: the transformed boundary reaches 2e+09 on the x axis; glint renders within [-1e9, 1e9] on "
+     "every axis (beyond, squared distances overflow single precision and samples would be NaN)"},
     // --- lights ---
     {__LINE__, TEXT("{\"lights\": [{\"type\": \"spot\", \"intensity\": 1}]}"),
      "bad.json:1:22: \"type\" must be \"ambient\", \"point\" or \"directional\", got \"spot\""},

@@ -2,7 +2,8 @@
 // rays, each surface scatters it by its material (material/scatter.h), and escaping rays see the
 // background. At diffuse surfaces, point and directional lights are added by next-event estimation, and so
 // are emissive quads, mesh triangles and spheres, combined with the BSDF samples that hit them by multiple
-// importance sampling.
+// importance sampling. Participating media (medium/medium.h) scatter paths inside them, and the same lights
+// are sampled there with the phase function, their shadow rays carrying the media's transmittance.
 #include "integrator/integrator.h"
 #include "integrator/light_sampler.h"
 #include "integrator/spawn.h"
@@ -34,18 +35,48 @@ static float mis_weight(float a, float b) {
     return 1.0f / (1.0f + q * q);
 }
 
+/// What next-event estimation needs of the point it lights: a diffuse surface (sf: its normals; in_side = d.ng
+/// for the arriving ray d) or a point in a medium (sf NULL: the arriving ray's unit direction d and the phase
+/// function's g).
+typedef struct nee_vertex {
+    const surface *sf;
+    float in_side;
+    vec3 d;
+    float g;
+} nee_vertex;
+
+// The density of scattering towards unit wi, cos/pi at the diffuse surface or the phase function in a medium,
+// which is also the density of the direction the path samples there (for MIS); 0 where the vertex does not
+// scatter towards wi: below the shading normal, or across the geometric surface from the arriving ray (the
+// BSDF sampling does not continue there either).
+static inline float nee_density(const nee_vertex *vx, vec3 wi) {
+    if (!vx->sf) return phase_hg(vx->g, v3_dot(vx->d, wi));
+    float cos_s = v3_dot(vx->sf->n, wi);
+    if (!(cos_s > 0.0f) || v3_dot(wi, vx->sf->ng) * vx->in_side > 0.0f) return 0.0f;
+    return cos_s * inv_pi;
+}
+
+// Whether shadow ray r gets past every surface (glass included); *tr is then the transmittance of the media it
+// crosses (1 in a scene without media).
+static inline bool shadow_unblocked(const integrator *it, const ray *r, vec3 *tr) {
+    if (accel_occluded(it->accel, r)) return false;
+    const glint_scene *s = it->scene;
+    *tr = s->medium_count ? medium_transmittance(s->media, s->medium_count, r->o, r->d, r->tmin, r->tmax) : v3s(1.0f);
+    return true;
+}
+
 // Next-event estimation towards emissive sphere `index`: a direction in the cone the sphere subtends (a, b
 // uniform), its emission where that direction meets the sphere, a shadow ray, and the power-heuristic weight
 // against BSDF sampling; the same contract as sample_light.
-static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, uint32_t index, const surface *sf,
-                                const spawn_point *sp, float in_side, float a, float b, thread_stats *ts) {
+static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, uint32_t index, const nee_vertex *vx,
+                                const spawn_point *sp, float a, float b, thread_stats *ts) {
     const glint_scene *s = it->scene;
     const sphere *sph = &s->spheres[index];
     vec3 wi;
     float dist, cone_pdf;
     if (!light_sphere_sample(sph, sp->p, a, b, &wi, &dist, &cone_pdf)) return v3s(0.0f);
-    float cos_s = v3_dot(sf->n, wi);
-    if (!(cos_s > 0.0f) || v3_dot(wi, sf->ng) * in_side > 0.0f) return v3s(0.0f);
+    float f = nee_density(vx, wi);
+    if (!(f > 0.0f)) return v3s(0.0f);
     float pdf_light = pl->sphere_select_pdf[index] * cone_pdf;
     if (!(pdf_light > 0.0f) || !isfinite(pdf_light)) return v3s(0.0f);
     // The side and texture coordinates a ray along wi sees there, as surface_at gives them.
@@ -61,18 +92,18 @@ static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, u
     // Stop short of the light by a relative margin (pbrt's shadow epsilon) so that it does not occlude itself.
     ray shadow = spawn_ray(sp, wi, 0.0f, dist * (1.0f - 1e-4f));
     ts->shadow_rays++;
-    if (accel_occluded(it->accel, &shadow)) return v3s(0.0f);
-    float w = mis_weight(pdf_light, cos_s * inv_pi);
-    return v3_scale(le, cos_s * inv_pi * w / pdf_light);
+    vec3 tr;
+    if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
+    float w = mis_weight(pdf_light, f);
+    return v3_scale(v3_mul(le, tr), f * w / pdf_light);
 }
 
-// Next-event estimation towards the emissive quads and triangles at a diffuse surface point: a light chosen
-// by power, a uniform point on it and a shadow ray, weighted against BSDF sampling by the power heuristic.
-// Returns Le cos / (pi pdf) times the weight; the caller multiplies by the albedo and the path's throughput.
-// in_side is d.ng for the arriving ray d: light below the geometric surface does not count (the BSDF
-// sampling does not continue there either).
-static vec3 sample_light(const integrator *it, const light_sampler *pl, const surface *sf, const spawn_point *sp,
-                         float in_side, rng *r, thread_stats *ts) {
+// Next-event estimation towards the emissive quads and triangles at a diffuse surface point or a point in a
+// medium: a light chosen by power, a uniform point on it and a shadow ray, weighted against BSDF (phase)
+// sampling by the power heuristic. Returns Le f / pdf times the weight and the transmittance, f the vertex's
+// nee_density (cos/pi at a surface); the caller multiplies by the albedo and the path's throughput.
+static vec3 sample_light(const integrator *it, const light_sampler *pl, const nee_vertex *vx, const spawn_point *sp,
+                         rng *r, thread_stats *ts) {
     const glint_scene *s = it->scene;
     float xi = rng_float(r), a = rng_float(r), b = rng_float(r);
     size_t lo = 0, hi = pl->count - 1; // the first light whose cdf exceeds xi
@@ -83,7 +114,7 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const su
     }
     float select = pl->cdf[lo] - (lo ? pl->cdf[lo - 1] : 0.0f); // as light_sampler_build recorded it
     light_ref ref = pl->lights[lo];
-    if (ref.kind == LIGHT_REF_SPHERE) return sample_sphere_light(it, pl, ref.index, sf, sp, in_side, a, b, ts);
+    if (ref.kind == LIGHT_REF_SPHERE) return sample_sphere_light(it, pl, ref.index, vx, sp, a, b, ts);
     vec3 x, n;
     float area;
     const tri_light *tl = NULL;
@@ -121,43 +152,47 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const su
         le = light_sampler_tri_emitted(s, tl, b1, b2, x, wi);
         if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return v3s(0.0f);
     }
-    float cos_s = v3_dot(sf->n, wi);
-    if (!(cos_l > 0.0f) || !(cos_s > 0.0f) || v3_dot(wi, sf->ng) * in_side > 0.0f) return v3s(0.0f);
+    float f = nee_density(vx, wi);
+    if (!(cos_l > 0.0f) || !(f > 0.0f)) return v3s(0.0f);
     float pdf_light = (q ? pl->select_pdf[ref.index] : select) * d2 / (cos_l * area);
     if (!(pdf_light > 0.0f) || !isfinite(pdf_light)) return v3s(0.0f);
     // Stop short of the light by a relative margin (pbrt's shadow epsilon) so that it does not occlude itself.
     ray shadow = spawn_ray(sp, wi, 0.0f, dist * (1.0f - 1e-4f));
     ts->shadow_rays++;
-    if (accel_occluded(it->accel, &shadow)) return v3s(0.0f);
+    vec3 tr;
+    if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
     if (q) le = mat_emitted(&s->materials[q->material], s->textures, true, a, b, x);
-    float w = mis_weight(pdf_light, cos_s * inv_pi);
-    return v3_scale(le, cos_s * inv_pi * w / pdf_light);
+    float w = mis_weight(pdf_light, f);
+    return v3_scale(v3_mul(le, tr), f * w / pdf_light);
 }
 
 // Next-event estimation towards the environment map: a direction drawn in proportion to the map's brightness
 // (envmap_sample), a shadow ray to infinity, and the power-heuristic weight against BSDF sampling, whose rays
 // that escape are weighted in turn (path_trace); the same contract as sample_light.
-static vec3 sample_environment(const integrator *it, const envmap_sampler *es, const surface *sf,
-                               const spawn_point *sp, float in_side, rng *r, thread_stats *ts) {
+static vec3 sample_environment(const integrator *it, const envmap_sampler *es, const nee_vertex *vx,
+                               const spawn_point *sp, rng *r, thread_stats *ts) {
     float a = rng_float(r), b = rng_float(r);
     vec3 wi, le;
     float pdf;
     if (!envmap_sample(es, &it->scene->environment, a, b, &wi, &pdf, &le)) return v3s(0.0f);
-    float cos_s = v3_dot(sf->n, wi);
-    if (!(cos_s > 0.0f) || v3_dot(wi, sf->ng) * in_side > 0.0f) return v3s(0.0f);
+    float f = nee_density(vx, wi);
+    if (!(f > 0.0f)) return v3s(0.0f);
     if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return v3s(0.0f);
     ray shadow = spawn_ray(sp, wi, 0.0f, INFINITY);
     ts->shadow_rays++;
-    if (accel_occluded(it->accel, &shadow)) return v3s(0.0f);
-    float w = mis_weight(pdf, cos_s * inv_pi);
-    return v3_scale(le, cos_s * inv_pi * w / pdf);
+    vec3 tr;
+    if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
+    float w = mis_weight(pdf, f);
+    return v3_scale(v3_mul(le, tr), f * w / pdf);
 }
 
-// Direct light from the scene's point and directional lights at a diffuse surface point: BRDF (weight / pi)
-// times irradiance, unoccluded. Point lights fall off with the inverse square of the distance; a
+// Direct light from the scene's point and directional lights at a diffuse surface point (BRDF weight / pi
+// times irradiance) or a point in a medium (weight times phase function times irradiance), unoccluded and
+// through the media's transmittance. Point lights fall off with the inverse square of the distance; a
 // directional light's intensity is the irradiance it gives a surface facing it. Ambient lights have no
 // place in a path tracer (the background is the ambient light) and are ignored.
-static vec3 direct_light(const integrator *it, const spawn_point *sp, vec3 n, vec3 weight, thread_stats *ts) {
+static vec3 direct_light(const integrator *it, const spawn_point *sp, const nee_vertex *vx, vec3 weight,
+                         thread_stats *ts) {
     const glint_scene *s = it->scene;
     vec3 sum = v3s(0.0f);
     for (size_t i = 0; i < s->light_count; i++) {
@@ -179,15 +214,16 @@ static vec3 direct_light(const integrator *it, const spawn_point *sp, vec3 n, ve
         } else {
             continue;
         }
-        float cos_l = v3_dot(n, wl);
+        float cos_l = vx->sf ? v3_dot(vx->sf->n, wl) : phase_hg(vx->g, v3_dot(vx->d, wl));
         if (!(cos_l > 0.0f)) continue;
         // Stop just short of a point light: whatever lies beyond it casts no shadow.
         ray shadow = spawn_ray(sp, wl, 0.0f, dist * (1.0f - 0x1p-20f));
         ts->shadow_rays++;
-        if (accel_occluded(it->accel, &shadow)) continue;
-        sum = v3_add(sum, v3_scale(l->intensity, cos_l * falloff));
+        vec3 tr;
+        if (!shadow_unblocked(it, &shadow, &tr)) continue;
+        sum = v3_add(sum, v3_mul(v3_scale(l->intensity, cos_l * falloff), tr));
     }
-    return v3_scale(v3_mul(sum, weight), inv_pi);
+    return vx->sf ? v3_scale(v3_mul(sum, weight), inv_pi) : v3_mul(sum, weight);
 }
 
 // The radiance a path starting with the primary ray (origin o, direction d, all t > 0, at `time`) carries. The ray comes
@@ -204,13 +240,52 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
     bool light_sampled = false; // the last vertex sampled the area lights: a hit on one is weighted
     bool env_sampled = false;   // the last vertex sampled the environment: an escaping ray is weighted
     float bsdf_pdf = 0.0f;      // solid-angle density of the direction the last vertex sampled
-    bool lean = !has_lights && !pl && !es;
+    size_t media = s->medium_count; // none: the loop does no work for media but this one test
+    medium_path mpath = medium_path_start();
+    bool lean = !has_lights && !pl && !es && !media;
     // Whether cur.d has unit length: camera rays and the lean bounce's Lambertian directions are left unnormalised.
     bool unit = false;
     for (int depth = 0; depth < s->settings.max_depth; depth++) {
         hit h;
         ts->rays++;
-        if (!accel_intersect(it->accel, &cur, &h)) {
+        bool found = accel_intersect(it->accel, &cur, &h);
+        if (media) {
+            if (!unit) { // distances in the media are lengths: a unit direction, t in its units
+                float len = v3_len(cur.d);
+                cur.d = v3_scale(cur.d, 1.0f / len);
+                if (found) h.t *= len;
+                unit = true;
+            }
+            // The ray's free flight through the media up to the surface it meets (or to infinity).
+            medium_event me =
+                medium_sample(s->media, media, s->textures, cur.o, cur.d, found ? h.t : INFINITY, &mpath, r);
+            throughput = v3_mul(throughput, me.weight);
+            if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) break;
+            if (me.scattered) {
+                // It scatters in the medium: the lights are sampled as at a diffuse surface, with the phase
+                // function in place of the BSDF, and the next direction is drawn from the phase function.
+                float g = s->media[me.index].g;
+                nee_vertex nv = {NULL, 0.0f, cur.d, g};
+                spawn_point mp = {me.p, v3s(0.0f), 0.0f, cur.time}; // no surface to step off; the path's time
+                bool more = depth + 1 < s->settings.max_depth;
+                light_sampled = env_sampled = false;
+                if (has_lights) radiance = v3_add(radiance, direct_light(it, &mp, &nv, throughput, ts));
+                if (pl && more) {
+                    radiance = v3_add(radiance, v3_mul(throughput, sample_light(it, pl, &nv, &mp, r, ts)));
+                    light_sampled = true;
+                }
+                if (es && more) {
+                    radiance = v3_add(radiance, v3_mul(throughput, sample_environment(it, es, &nv, &mp, r, ts)));
+                    env_sampled = true;
+                }
+                float a = rng_float(r), b = rng_float(r);
+                vec3 wi = phase_hg_sample(g, cur.d, a, b);
+                bsdf_pdf = phase_hg(g, v3_dot(cur.d, wi));
+                cur = (ray){me.p, wi, 0.0f, INFINITY, cur.time};
+                continue;
+            }
+        }
+        if (!found) {
             if (!unit) cur.d = v3_unit(cur.d);
             vec3 bg = scene_background(s, cur.d);
             if (env_sampled) bg = v3_scale(bg, mis_weight(bsdf_pdf, envmap_pdf(es, &s->environment, cur.d)));
@@ -272,16 +347,17 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
         float in_side = v3_dot(cur.d, sf.ng);
         light_sampled = env_sampled = false;
         if (ev.diffuse) {
-            if (has_lights) radiance = v3_add(radiance, v3_mul(throughput, direct_light(it, &sp, sf.n, ev.weight, ts)));
+            nee_vertex nv = {&sf, in_side, cur.d, 0.0f};
+            if (has_lights) radiance = v3_add(radiance, v3_mul(throughput, direct_light(it, &sp, &nv, ev.weight, ts)));
             // Only where the BSDF sample is traced too, so that the two strategies cover the same paths.
             if (pl && depth + 1 < s->settings.max_depth) {
-                vec3 direct = sample_light(it, pl, &sf, &sp, in_side, r, ts);
+                vec3 direct = sample_light(it, pl, &nv, &sp, r, ts);
                 radiance = v3_add(radiance, v3_mul(throughput, v3_mul(ev.weight, direct)));
                 light_sampled = true;
                 bsdf_pdf = v3_dot(ev.dir, sf.n) * inv_pi;
             }
             if (es && depth + 1 < s->settings.max_depth) {
-                vec3 direct = sample_environment(it, es, &sf, &sp, in_side, r, ts);
+                vec3 direct = sample_environment(it, es, &nv, &sp, r, ts);
                 radiance = v3_add(radiance, v3_mul(throughput, v3_mul(ev.weight, direct)));
                 env_sampled = true;
                 bsdf_pdf = v3_dot(ev.dir, sf.n) * inv_pi;

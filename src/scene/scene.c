@@ -69,6 +69,12 @@ bool scene_add_light(glint_scene *s, light l) {
     return true;
 }
 
+bool scene_add_medium(glint_scene *s, medium m) {
+    if (!SCENE_RESERVE(s, media, s->medium_count)) return false;
+    s->media[s->medium_count++] = m;
+    return true;
+}
+
 bool scene_add_quad(glint_scene *s, quad q) {
     if (!SCENE_RESERVE(s, quads, s->quad_count)) return false;
     s->quads[s->quad_count++] = q;
@@ -232,6 +238,7 @@ void scene_free(glint_scene *s) {
     free(s->spheres);
     free(s->lights);
     free(s->quads);
+    free(s->media);
     for (size_t i = 0; i < s->texture_count; i++) {
         texture_free(&s->textures[i]);
         free(s->texture_names[i]);

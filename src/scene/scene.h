@@ -19,6 +19,7 @@
 #include "geometry/quad.h"
 #include "geometry/triangle.h"
 #include "material/texture.h"
+#include "medium/medium.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -95,6 +96,9 @@ struct glint_scene {
     motion *motions;         ///< motions[k - 1]: how an instance with motion k moves
     size_t motion_count;
 
+    medium *media;           ///< participating media (objects of type constant_medium, homogeneous_medium)
+    size_t medium_count;
+
     envmap environment;      ///< the background of BACKGROUND_ENVMAP (an empty image otherwise)
 
     scene_input *inputs;     ///< the files the scene was read from (scene file, meshes, images), each once
@@ -106,7 +110,7 @@ struct glint_scene {
     /// Room allocated in each array above (core/array.h), in elements; the counts say how many are used.
     struct {
         size_t materials, material_names, spheres, lights, quads, textures, texture_names, meshes, instance_spheres,
-            instances, warnings, inputs, moving_spheres, motions;
+            instances, warnings, inputs, moving_spheres, motions, media;
     } capacity;
 };
 
@@ -120,6 +124,8 @@ bool scene_add_sphere(glint_scene *s, sphere sp);
 bool scene_add_light(glint_scene *s, light l);
 /// Appends a quad; false when out of memory.
 bool scene_add_quad(glint_scene *s, quad q);
+/// Appends a medium; false when out of memory.
+bool scene_add_medium(glint_scene *s, medium m);
 /// Appends a texture, taking what it owns (freed on failure too); its index, or -1 when out of memory.
 long scene_add_texture(glint_scene *s, texture *t, const char *name);
 /// Index of the named texture, or -1.

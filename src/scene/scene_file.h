@@ -66,7 +66,15 @@ typedef struct sf_image_entry {
 
 /// The reader of one scene file. r.status is GLINT_ERR_INPUT, or GLINT_ERR_RENDER when memory ran out.
 /// Object types, in the order of scene_file_objects.c's object_types table, for counting what was read.
-typedef enum sf_object_kind { SF_OBJECT_SPHERE, SF_OBJECT_QUAD, SF_OBJECT_BOX, SF_OBJECT_MESH, SF_OBJECT_KINDS } sf_object_kind;
+typedef enum sf_object_kind {
+    SF_OBJECT_SPHERE,
+    SF_OBJECT_QUAD,
+    SF_OBJECT_BOX,
+    SF_OBJECT_MESH,
+    SF_OBJECT_CONSTANT_MEDIUM,
+    SF_OBJECT_HOMOGENEOUS_MEDIUM,
+    SF_OBJECT_KINDS
+} sf_object_kind;
 
 typedef struct sf_loader {
     json_reader r; ///< the document, positions and the message of a failure
@@ -123,6 +131,10 @@ bool sf_read_texture(sf_loader *ld, jr_val v, const char *what, const char *name
 bool sf_read_material(sf_loader *ld, jr_val v, const char *what, const char *name, uint32_t *index);
 /// The "material" of an object: a name defined in "materials", or an inline material object.
 bool sf_read_material_ref(sf_loader *ld, const jr_obj *o, const char *owner, uint32_t *index);
+/// The optional colour parameter `key` of o: a colour (into *color) or a texture, by name or inline (into *tex),
+/// as material colours are read; a texture must stay within sp's upper bound.
+bool sf_read_color_or_texture(sf_loader *ld, const jr_obj *o, const char *key, const jr_numspec *sp, vec3 *color,
+                              int32_t *tex);
 
 // scene_file_objects.c: transforms, shapes, lights
 
@@ -142,5 +154,12 @@ bool sf_read_light(sf_loader *ld, jr_val v, size_t i);
 
 /// A "mesh" object: its OBJ file loaded once (materials mapped to scene materials), placed as an instance.
 bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what);
+
+// scene_file_media.c: participating media
+
+/// A "constant_medium" object (book 2's: boundary, density, albedo, g).
+bool sf_read_constant_medium(sf_loader *ld, const jr_obj *o, const char *what);
+/// A "homogeneous_medium" object (boundary, sigma_a, sigma_s, g).
+bool sf_read_homogeneous_medium(sf_loader *ld, const jr_obj *o, const char *what);
 
 #endif

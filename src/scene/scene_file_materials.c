@@ -264,6 +264,11 @@ static bool read_material_color(sf_loader *ld, const jr_obj *o, const char *key,
     return true;
 }
 
+bool sf_read_color_or_texture(sf_loader *ld, const jr_obj *o, const char *key, const jr_numspec *sp, vec3 *color,
+                              int32_t *tex) {
+    return read_material_color(ld, o, key, sp, color, tex);
+}
+
 // ---------------------------------------------------------------------------------------------
 // Materials: add a row to material_types (name, kind, keys, reader) for a new kind.
 

@@ -1,5 +1,5 @@
-// scene_file_objects.c — the scene file's "objects" (spheres, quads, boxes; meshes in scene_file_mesh.c),
-// their "transform" operations, and its "lights".
+// scene_file_objects.c — the scene file's "objects" (spheres, quads, boxes; meshes in scene_file_mesh.c, media
+// in scene_file_media.c), their "transform" operations, and its "lights".
 #include "scene/scene_file.h"
 
 #include <float.h>
@@ -160,6 +160,8 @@ static const char *const sphere_keys[] = {"type", "center", "center2", "radius",
 static const char *const quad_keys[] = {"type", "q", "u", "v", "material", "transform", "transform2", NULL};
 static const char *const box_keys[] = {"type", "min", "max", "material", "transform", "transform2", NULL};
 static const char *const mesh_keys[] = {"type", "file", "material", "transform", "transform2", "face_normals", NULL};
+static const char *const constant_medium_keys[] = {"type", "boundary", "density", "albedo", "g", NULL};
+static const char *const homogeneous_medium_keys[] = {"type", "boundary", "sigma_a", "sigma_s", "g", NULL};
 
 // Quads and boxes are baked into world-space quads: they cannot move (yet). Said where "transform2" is.
 static bool refuse_motion(sf_loader *ld, const jr_obj *o, const char *shape) {
@@ -321,6 +323,8 @@ static const struct object_type {
     {"quad", quad_keys, read_quad},
     {"box", box_keys, read_box},
     {"mesh", mesh_keys, sf_read_mesh},
+    {"constant_medium", constant_medium_keys, sf_read_constant_medium},
+    {"homogeneous_medium", homogeneous_medium_keys, sf_read_homogeneous_medium},
 };
 #define OBJECT_TYPES (sizeof object_types / sizeof object_types[0])
 

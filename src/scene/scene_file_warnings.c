@@ -1,4 +1,5 @@
-// scene_file_warnings.c — warnings about what a loaded scene will not show: no light at all, and what paper mode drops.
+// scene_file_warnings.c — warnings about what a loaded scene will not show: no light at all, what paper mode
+// drops, media under the Whitted integrator.
 #include "scene/scene_file.h"
 
 #include <stdio.h>
@@ -120,7 +121,20 @@ static void warn_paper_mode(sf_loader *ld) {
     }
 }
 
+// The Whitted integrators see surfaces only (docs/scene-format.md): media in a Whitted scene are not rendered.
+static void warn_whitted_media(sf_loader *ld) {
+    const glint_scene *s = ld->scene;
+    if (s->settings.integrator != INTEGRATOR_WHITTED || s->medium_count == 0) return;
+    char msg[512];
+    snprintf(msg, sizeof msg,
+             "%s: warning: the Whitted integrator ignores participating media: %zu %s not rendered (the path "
+             "integrator renders them)",
+             ld->r.name, s->medium_count, s->medium_count == 1 ? "medium is" : "media are");
+    sf_add_warning(ld, msg);
+}
+
 void sf_warn_unseen(sf_loader *ld) {
     warn_no_light(ld);
     warn_paper_mode(ld);
+    warn_whitted_media(ld);
 }

@@ -1,0 +1,167 @@
+// medium.c — where a ray lies inside a medium's boundary, the transmittance of the media along a segment, and
+// the free-flight sampling of a path through them (spectral MIS over the three channels).
+#include "medium/medium.h"
+
+#include <math.h>
+
+// M p (w = 1 for a point, 0 for a direction) in double, from the float matrix.
+static void apply_double(const mat4 *a, const double p[3], double w, double out[3]) {
+    for (int i = 0; i < 3; i++)
+        out[i] = (double)a->m[i][0] * p[0] + (double)a->m[i][1] * p[1] + (double)a->m[i][2] * p[2] + (double)a->m[i][3] * w;
+}
+
+// The two roots of |o + t d - c|^2 = r^2, from the distance of the line to the centre (Haines et al.'s form:
+// no cancellation for a ray far from a big sphere); false when the line misses.
+static bool line_sphere(const double o[3], const double d[3], const double c[3], double r, double *t0, double *t1) {
+    double oc[3] = {o[0] - c[0], o[1] - c[1], o[2] - c[2]};
+    double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+    double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    double l2 = 0.0;
+    for (int k = 0; k < 3; k++) {
+        double l = oc[k] - (b / a) * d[k]; // the line's closest point to the centre, relative to it
+        l2 += l * l;
+    }
+    double disc = r * r - l2;
+    if (!(disc >= 0.0) || !(a > 0.0)) return false;
+    double h = sqrt(a * disc);
+    *t0 = (-b - h) / a;
+    *t1 = (-b + h) / a;
+    return true;
+}
+
+// The slab test: where the line o + t d is inside [lo, hi] on every axis; false when nowhere.
+static bool line_box(const double o[3], const double d[3], const double lo[3], const double hi[3], double *t0, double *t1) {
+    double a = -INFINITY, b = INFINITY;
+    for (int k = 0; k < 3; k++) {
+        if (d[k] == 0.0) { // parallel to the slab: inside it everywhere or nowhere
+            if (o[k] < lo[k] || o[k] > hi[k]) return false;
+            continue;
+        }
+        double inv = 1.0 / d[k];
+        double ta = (lo[k] - o[k]) * inv, tb = (hi[k] - o[k]) * inv;
+        if (ta > tb) {
+            double x = ta;
+            ta = tb;
+            tb = x;
+        }
+        a = ta > a ? ta : a;
+        b = tb < b ? tb : b;
+    }
+    if (!(a <= b)) return false;
+    *t0 = a;
+    *t1 = b;
+    return true;
+}
+
+bool medium_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0, float *t1) {
+    double wo[3] = {o.x, o.y, o.z}, wd[3] = {d.x, d.y, d.z}, oo[3], od[3];
+    // An affine map keeps the parameter t of every point of the line: the interval is the object space one.
+    if (m->transformed) {
+        apply_double(&m->to_object, wo, 1.0, oo);
+        apply_double(&m->to_object, wd, 0.0, od);
+    } else {
+        for (int k = 0; k < 3; k++) oo[k] = wo[k], od[k] = wd[k];
+    }
+    double a, b;
+    if (m->shape == MEDIUM_SPHERE) {
+        double c[3] = {m->center.x, m->center.y, m->center.z};
+        if (!line_sphere(oo, od, c, m->radius, &a, &b)) return false;
+    } else {
+        double lo[3] = {m->lo.x, m->lo.y, m->lo.z}, hi[3] = {m->hi.x, m->hi.y, m->hi.z};
+        if (!line_box(oo, od, lo, hi, &a, &b)) return false;
+    }
+    if (a < (double)tmin) a = tmin;
+    if (b > (double)tmax) b = tmax;
+    if (!(a < b)) return false;
+    *t0 = (float)a;
+    *t1 = (float)b;
+    return *t0 < *t1;
+}
+
+// exp(-tau) per channel.
+static vec3 exp_neg(const double tau[3]) { return v3((float)exp(-tau[0]), (float)exp(-tau[1]), (float)exp(-tau[2])); }
+
+// Adds to tau each medium's sigma_t times the length of o + t d (length |d| per unit t) inside it, tmin < t < tmax.
+static void optical_depth(const medium *media, size_t count, vec3 o, vec3 d, float tmin, float tmax, double tau[3]) {
+    double len = sqrt((double)d.x * d.x + (double)d.y * d.y + (double)d.z * d.z);
+    for (size_t i = 0; i < count; i++) {
+        float t0, t1;
+        if (!medium_segment(&media[i], o, d, tmin, tmax, &t0, &t1)) continue;
+        double l = ((double)t1 - (double)t0) * len;
+        tau[0] += media[i].sigma_t.x * l;
+        tau[1] += media[i].sigma_t.y * l;
+        tau[2] += media[i].sigma_t.z * l;
+    }
+}
+
+vec3 medium_transmittance(const medium *media, size_t count, vec3 o, vec3 d, float tmin, float tmax) {
+    double tau[3] = {0.0, 0.0, 0.0};
+    optical_depth(media, count, o, d, tmin, tmax, tau);
+    return exp_neg(tau);
+}
+
+// (a + b + c) / 3 of a vector's channels.
+static float mean3(vec3 v) { return (v.x + v.y + v.z) * (1.0f / 3.0f); }
+
+medium_event medium_sample(const medium *media, size_t count, const texture *textures, vec3 o, vec3 d, float tmax,
+                           medium_path *mp, rng *r) {
+    medium_event ev = {false, 0, tmax, o, v3s(1.0f)};
+    float first = tmax;
+    bool crossed = false;
+    // Each medium's events along its segment form a Poisson process of rate sigma_t (in the path's channel),
+    // independent of the others': the earliest of their first events is the first event of their sum, and it
+    // falls in medium i with probability sigma_t,i / sum, as it must.
+    for (size_t i = 0; i < count; i++) {
+        float t0, t1;
+        if (!medium_segment(&media[i], o, d, 0.0f, tmax, &t0, &t1)) continue;
+        crossed = true;
+        if (mp->hero < 0) { // the path's channel, uniform, drawn once
+            int c = (int)(rng_float(r) * 3.0f);
+            mp->hero = c > 2 ? 2 : c;
+        }
+        float u = rng_float(r);
+        double rate = v3_comp(media[i].sigma_t, mp->hero);
+        if (!(rate > 0.0)) continue;
+        double t = (double)t0 - log1p(-(double)u) / rate; // u < 1: finite
+        if (t < (double)t1 && t < (double)first) {
+            first = (float)t;
+            ev.scattered = true;
+            ev.index = (uint32_t)i;
+        }
+    }
+    if (!crossed) return ev;
+    double tau[3] = {0.0, 0.0, 0.0};
+    optical_depth(media, count, o, d, 0.0f, first, tau);
+    vec3 tr = exp_neg(tau);
+    const medium *m = ev.scattered ? &media[ev.index] : NULL;
+    vec3 sigma_s = v3s(0.0f);
+    if (m) {
+        ev.t = first;
+        ev.p = v3_fma(o, d, first);
+        sigma_s = m->albedo_texture >= 0 ? v3_mul(m->sigma_t, texture_value(&textures[m->albedo_texture], 0.0f, 0.0f, ev.p))
+                                         : m->sigma_s;
+    }
+    // Grey media on a path that has met only grey ones (book 2's): the densities of the three channels are
+    // equal, and the factors are exactly 1 and the albedo, without the rounding of tr / tr.
+    vec3 ra = mp->ratio;
+    bool grey = tau[0] == tau[1] && tau[1] == tau[2] && ra.x == ra.y && ra.y == ra.z;
+    if (grey && !m) return ev;
+    if (grey && m->sigma_t.x == m->sigma_t.y && m->sigma_t.y == m->sigma_t.z) {
+        float st = m->sigma_t.x; // divided, not scaled by 1 / st: an albedo of 1 stays exactly 1
+        ev.weight = v3(sigma_s.x / st, sigma_s.y / st, sigma_s.z / st);
+        return ev;
+    }
+    // The outcome's contribution f and its density q per channel: passing, f = q = tr; scattering at t in m,
+    // f = tr sigma_s and q = tr sigma_t. The path's weight is its f over the mean of its densities in the three
+    // channels: the factor f mean(ratio) / mean(ratio q), and the ratios become ratio q (rescaled).
+    vec3 f = m ? v3_mul(tr, sigma_s) : tr, q = m ? v3_mul(tr, m->sigma_t) : tr;
+    vec3 rq = v3_mul(ra, q);
+    float mean_rq = mean3(rq);
+    if (!(mean_rq > 0.0f) || !isfinite(mean_rq)) {
+        ev.weight = v3s(0.0f);
+        return ev;
+    }
+    ev.weight = v3_scale(f, mean3(ra) / mean_rq);
+    mp->ratio = v3_scale(rq, 1.0f / mean_rq);
+    return ev;
+}
