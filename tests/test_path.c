@@ -623,6 +623,64 @@ static void test_cornell_estimators_agree(void) {
     CHECK(se[1] * sqrt(32.0) < 0.25 * se[0] * sqrt(1024.0)); // per sample, a quarter of the noise at most
 }
 
+// Mean and standard error of the green channel over two seeds of a small Cornell box with a glass sphere,
+// the sphere marked "importance" (book 3's mixture density) or not.
+static void glass_cornell_mean(bool importance, double *mean, double *se) {
+    glint_image *img[2];
+    for (int k = 0; k < 2; k++) {
+        char text[2048];
+        snprintf(text, sizeof text,
+                 "{\"render\": {\"width\": 20, \"height\": 20, \"spp\": 256, \"max_depth\": 12, \"seed\": %d, "
+                 "\"integrator\": \"path\"},"
+                 " \"camera\": {\"type\": \"lookat\", \"lookfrom\": [278, 278, -800], \"lookat\": [278, 278, 0], "
+                 "\"vfov\": 40},"
+                 " \"materials\": {\"w\": {\"type\": \"lambertian\", \"albedo\": 0.73}, \"g\": {\"type\": "
+                 "\"lambertian\", \"albedo\": [0.12, 0.45, 0.15]}, \"l\": {\"type\": \"diffuse_light\", "
+                 "\"emission\": 15}, \"glass\": {\"type\": \"dielectric\", \"ior\": 1.5}},"
+                 " \"objects\": [{\"type\": \"quad\", \"q\": [555, 0, 0], \"u\": [0, 0, 555], \"v\": [0, 555, 0], "
+                 "\"material\": \"g\"}, {\"type\": \"quad\", \"q\": [0, 0, 555], \"u\": [0, 0, -555], \"v\": [0, 555, 0], "
+                 "\"material\": \"w\"}, {\"type\": \"quad\", \"q\": [0, 0, 555], \"u\": [555, 0, 0], \"v\": [0, 0, -555], "
+                 "\"material\": \"w\"}, {\"type\": \"quad\", \"q\": [0, 555, 0], \"u\": [555, 0, 0], \"v\": [0, 0, 555], "
+                 "\"material\": \"w\"}, {\"type\": \"quad\", \"q\": [213, 554, 227], \"u\": [130, 0, 0], \"v\": [0, 0, 105], "
+                 "\"material\": \"l\"}, {\"type\": \"sphere\", \"center\": [278, 120, 278], \"radius\": 110, "
+                 "\"material\": \"glass\", \"importance\": %s}]}",
+                 7 + k, importance ? "true" : "false");
+        glint_scene *sc = NULL;
+        glint_error err;
+        CHECK(glint_scene_parse("glass-cornell.json", text, strlen(text), &sc, &err) == GLINT_OK);
+        if (!sc) {
+            fprintf(stderr, "%s\n", err.message);
+            *mean = *se = 0.0;
+            return;
+        }
+        CHECK(sc->importance_sphere_count == (importance ? 1u : 0u));
+        img[k] = render(sc, 0, NULL);
+        glint_scene_free(sc);
+    }
+    int w, h;
+    const float *a = pixels(img[0], &w, &h), *b = pixels(img[1], &w, &h);
+    double sum = 0.0, diff2 = 0.0;
+    for (int i = 0; i < w * h; i++) {
+        sum += (double)a[i * 3 + 1] + b[i * 3 + 1];
+        diff2 += ((double)a[i * 3 + 1] - b[i * 3 + 1]) * ((double)a[i * 3 + 1] - b[i * 3 + 1]);
+    }
+    *mean = sum / (2.0 * w * h);
+    *se = sqrt(diff2) / (2.0 * w * h);
+    for (int k = 0; k < 2; k++) glint_image_free(img[k]);
+}
+
+// Book 3's glass sphere "sampled as a light": diffuse bounces draw half their directions towards it, weighted
+// by the mixture density. The estimate must not move (the same mean as the plain estimator, within noise).
+static void test_importance_sphere(void) {
+    double mean[2], se[2];
+    glass_cornell_mean(false, &mean[0], &se[0]);
+    glass_cornell_mean(true, &mean[1], &se[1]);
+    printf("glass cornell box, green channel mean: plain %.5f +- %.5f, glass sphere as importance target %.5f +- %.5f\n",
+           mean[0], se[0], mean[1], se[1]);
+    CHECK(mean[0] > 0.0 && se[0] < 0.03 * mean[0] && se[1] < 0.03 * mean[1]);
+    CHECK_NEAR(mean[0], mean[1], 5.0 * sqrt(se[0] * se[0] + se[1] * se[1]));
+}
+
 // Places a mesh of the given vertices and triangles (counter-clockwise seen from outside, no normals or
 // texture coordinates) once, with the object-to-world matrix m.
 static void add_mesh_instance(glint_scene *s, const vec3 *pos, int np, const int (*tri)[3], int nt, uint32_t mat,
@@ -825,6 +883,7 @@ static void test_determinism_quads(void) {
 }
 
 int main(void) {
+    test_importance_sphere();
     test_sphere_cone_sampling();
     test_sphere_light_irradiance();
     test_white_furnace();

@@ -189,6 +189,14 @@ float light_sphere_pdf(const sphere *sp, vec3 p) {
     return gap > 0.0 ? (float)(1.0 / (two_pi * gap)) : 0.0f;
 }
 
+float light_sphere_pdf_towards(const sphere *sp, vec3 p, vec3 wi) {
+    vec3 to = v3_sub(sp->center, p);
+    double r = sp->radius, d2 = (double)v3_len2(to), along = (double)v3_dot(wi, to);
+    // Inside the cone: cos(angle to the centre)^2 >= cos(theta_max)^2 = 1 - r^2 / d^2, on the near side.
+    if (!(along > 0.0) || along * along < d2 - r * r) return 0.0f;
+    return light_sphere_pdf(sp, p);
+}
+
 bool light_sphere_sample(const sphere *sp, vec3 p, float a, float b, vec3 *wi, float *dist, float *pdf) {
     vec3 to = v3_sub(sp->center, p);
     double r = sp->radius, d2 = (double)v3_len2(to), gap = sphere_cone_gap(r * r, d2);

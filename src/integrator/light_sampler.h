@@ -62,6 +62,9 @@ float light_sampler_pdf(const light_sampler *ls, const glint_scene *s, const sur
 bool light_sphere_sample(const sphere *sp, vec3 p, float a, float b, vec3 *wi, float *dist, float *pdf);
 /// The density per unit solid angle of light_sphere_sample's directions from p; 0 when p is not outside.
 float light_sphere_pdf(const sphere *sp, vec3 p);
+/// The density with which light_sphere_sample would draw unit direction wi from p: light_sphere_pdf inside
+/// the cone the sphere subtends, 0 outside it.
+float light_sphere_pdf_towards(const sphere *sp, vec3 p, vec3 wi);
 /// The emitted radiance of triangle light tl at barycentrics (b1, b2), point x, towards unit direction wi.
 vec3 light_sampler_tri_emitted(const glint_scene *s, const tri_light *tl, float b1, float b2, vec3 x, vec3 wi);
 

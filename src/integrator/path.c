@@ -226,6 +226,30 @@ static vec3 direct_light(const integrator *it, const spawn_point *sp, const nee_
     return vx->sf ? v3_scale(v3_mul(sum, weight), inv_pi) : v3_mul(sum, weight);
 }
 
+// Book 3's mixture density for a diffuse bounce in a scene with "importance" spheres: half the directions
+// from the cosine lobe (the one mat_scatter drew), half towards one of those spheres (uniform in the cone it
+// subtends). The weight becomes BRDF x cos / mixture density, and the mixture density, returned, is what MIS
+// weighs a hit on a light with. A direction below the surface ends the path (weight 0).
+static float aim_diffuse(const glint_scene *s, vec3 p, vec3 n, rng *r, scatter_event *ev) {
+    size_t count = s->importance_sphere_count;
+    if (rng_float(r) < 0.5f) {
+        size_t i = (size_t)(rng_float(r) * (float)count);
+        float a = rng_float(r), b = rng_float(r), dist, pdf;
+        vec3 wi;
+        if (light_sphere_sample(&s->spheres[s->importance_spheres[i < count ? i : count - 1]], p, a, b, &wi, &dist, &pdf))
+            ev->dir = wi;
+    }
+    float cos_t = v3_dot(ev->dir, n), pdf = 0.5f * fmaxf(cos_t, 0.0f) * inv_pi;
+    for (size_t i = 0; i < count; i++)
+        pdf += 0.5f / (float)count * light_sphere_pdf_towards(&s->spheres[s->importance_spheres[i]], p, ev->dir);
+    if (!(cos_t > 0.0f) || !(pdf > 0.0f)) {
+        ev->weight = v3s(0.0f);
+        return 0.0f;
+    }
+    ev->weight = v3_scale(ev->weight, cos_t * inv_pi / pdf);
+    return pdf;
+}
+
 // The radiance a path starting with the primary ray (origin o, direction d, all t > 0, at `time`) carries. The ray comes
 // by its parts, in registers: a whole ray passed by value is copied with wide loads that cannot be forwarded
 // from the stores that just made it. d need not have unit length.
@@ -242,7 +266,7 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
     float bsdf_pdf = 0.0f;      // solid-angle density of the direction the last vertex sampled
     size_t media = s->medium_count; // none: the loop does no work for media but this one test
     medium_path mpath = medium_path_start();
-    bool lean = !has_lights && !pl && !es && !media;
+    bool lean = !has_lights && !pl && !es && !media && !s->importance_sphere_count;
     // Whether cur.d has unit length: camera rays and the lean bounce's Lambertian directions are left unnormalised.
     bool unit = false;
     for (int depth = 0; depth < s->settings.max_depth; depth++) {
@@ -347,6 +371,8 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
         float in_side = v3_dot(cur.d, sf.ng);
         light_sampled = env_sampled = false;
         if (ev.diffuse) {
+            float dir_pdf = s->importance_sphere_count ? aim_diffuse(s, sp.p, sf.n, r, &ev)
+                                                       : v3_dot(ev.dir, sf.n) * inv_pi;
             nee_vertex nv = {&sf, in_side, cur.d, 0.0f};
             if (has_lights) radiance = v3_add(radiance, v3_mul(throughput, direct_light(it, &sp, &nv, ev.weight, ts)));
             // Only where the BSDF sample is traced too, so that the two strategies cover the same paths.
@@ -354,13 +380,13 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
                 vec3 direct = sample_light(it, pl, &nv, &sp, r, ts);
                 radiance = v3_add(radiance, v3_mul(throughput, v3_mul(ev.weight, direct)));
                 light_sampled = true;
-                bsdf_pdf = v3_dot(ev.dir, sf.n) * inv_pi;
+                bsdf_pdf = dir_pdf;
             }
             if (es && depth + 1 < s->settings.max_depth) {
                 vec3 direct = sample_environment(it, es, &nv, &sp, r, ts);
                 radiance = v3_add(radiance, v3_mul(throughput, v3_mul(ev.weight, direct)));
                 env_sampled = true;
-                bsdf_pdf = v3_dot(ev.dir, sf.n) * inv_pi;
+                bsdf_pdf = dir_pdf;
             }
         }
         // With shading normals a sampled direction can cross the geometric surface against its event

@@ -133,6 +133,12 @@ bool scene_add_moving_sphere(glint_scene *s, moving_sphere sp) {
     return true;
 }
 
+bool scene_add_importance_sphere(glint_scene *s, uint32_t index) {
+    if (!SCENE_RESERVE(s, importance_spheres, s->importance_sphere_count)) return false;
+    s->importance_spheres[s->importance_sphere_count++] = index;
+    return true;
+}
+
 uint32_t scene_add_motion(glint_scene *s, const motion *m) {
     if (s->motion_count >= UINT32_MAX - 1 || !SCENE_RESERVE(s, motions, s->motion_count)) return 0;
     s->motions[s->motion_count++] = *m;
@@ -250,6 +256,7 @@ void scene_free(glint_scene *s) {
     free(s->instance_spheres);
     free(s->instances);
     free(s->moving_spheres);
+    free(s->importance_spheres);
     free(s->motions);
     envmap_free(&s->environment);
     free(s->inputs);

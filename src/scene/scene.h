@@ -95,6 +95,8 @@ struct glint_scene {
     size_t moving_sphere_count;
     motion *motions;         ///< motions[k - 1]: how an instance with motion k moves
     size_t motion_count;
+    uint32_t *importance_spheres; ///< world spheres diffuse bounces also aim at ("importance": book 3's glass)
+    size_t importance_sphere_count;
 
     medium *media;           ///< participating media (objects of type constant_medium, homogeneous_medium)
     size_t medium_count;
@@ -110,7 +112,7 @@ struct glint_scene {
     /// Room allocated in each array above (core/array.h), in elements; the counts say how many are used.
     struct {
         size_t materials, material_names, spheres, lights, quads, textures, texture_names, meshes, instance_spheres,
-            instances, warnings, inputs, moving_spheres, motions, media;
+            instances, warnings, inputs, moving_spheres, motions, media, importance_spheres;
     } capacity;
 };
 
@@ -138,6 +140,8 @@ long scene_add_instance_sphere(glint_scene *s, sphere sp);
 bool scene_add_instance(glint_scene *s, instance in);
 /// Appends a moving sphere; false when out of memory.
 bool scene_add_moving_sphere(glint_scene *s, moving_sphere sp);
+/// Marks world sphere `index` as one that diffuse bounces also sample directions towards; false when out of memory.
+bool scene_add_importance_sphere(glint_scene *s, uint32_t index);
 /// Appends a motion and returns the value of instance.motion that refers to it (its index + 1), or 0 when out
 /// of memory.
 uint32_t scene_add_motion(glint_scene *s, const motion *m);

@@ -156,7 +156,8 @@ bool sf_read_motion(sf_loader *ld, const jr_obj *o, const transform *xf, bounds3
 // ---------------------------------------------------------------------------------------------
 // Objects: add a row to object_types (name, keys, reader) for a new shape.
 
-static const char *const sphere_keys[] = {"type", "center", "center2", "radius", "material", "transform", "transform2", NULL};
+static const char *const sphere_keys[] = {"type",      "center",     "center2",    "radius",
+                                          "material",  "transform",  "transform2", "importance", NULL};
 static const char *const quad_keys[] = {"type", "q", "u", "v", "material", "transform", "transform2", NULL};
 static const char *const box_keys[] = {"type", "min", "max", "material", "transform", "transform2", NULL};
 static const char *const mesh_keys[] = {"type", "file", "material", "transform", "transform2", "face_normals", NULL};
@@ -190,7 +191,23 @@ static bool read_moving_sphere(sf_loader *ld, const jr_obj *o, const sphere *s, 
 
 // A sphere under a similarity is another sphere; under any other transform, or when its material is
 // textured (the texture must turn with it), it becomes an instance.
+static bool read_sphere_shape(sf_loader *ld, const jr_obj *o, const char *what);
+
+// A sphere, which "importance": true marks as a target of diffuse bounces (it must stay a world sphere).
 static bool read_sphere(sf_loader *ld, const jr_obj *o, const char *what) {
+    bool importance = false;
+    if (!jr_read_bool(&ld->r, o, "importance", &importance)) return false;
+    size_t before = ld->scene->sphere_count;
+    if (!read_sphere_shape(ld, o, what)) return false;
+    if (!importance) return true;
+    if (ld->scene->sphere_count == before)
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "importance"),
+                          "\"importance\" needs a sphere that stays a sphere in world space: not moving, and without "
+                          "a non-uniform transform (nor a transform with a textured material)");
+    return scene_add_importance_sphere(ld->scene, (uint32_t)before) || sf_fail_oom(ld);
+}
+
+static bool read_sphere_shape(sf_loader *ld, const jr_obj *o, const char *what) {
     sphere s = {0};
     transform xf;
     bool moved;
