@@ -72,6 +72,23 @@ typedef struct glint_overrides {
 /// Sets every field of *o to "not overridden".
 GLINT_API void glint_overrides_init(glint_overrides *o);
 
+/// AOVs (arbitrary output variables): per-pixel data of the surfaces seen, rendered beside the colour when
+/// glint_render_options.aovs asks (bits, or-ed), averaged over each pixel's samples exactly as the colour is,
+/// the buffers a denoiser (Intel Open Image Denoise) or a compositor takes. See glint_image_aov.
+typedef enum glint_aov {
+    /// 3 floats a pixel in [0, 1]: the reflectance of the first diffuse or glossy surface seen (the path tracer
+    /// looks past perfect mirrors and glass, tinted by them; the Whitted integrators record the first hit); an
+    /// emitter's emission scaled to a largest channel of 1; the background's colour (clamped) where rays escape
+    GLINT_AOV_ALBEDO = 1,
+    /// 3 floats a pixel: the world-space unit shading normal of that surface, facing the ray; the mean over the
+    /// pixel's samples is not renormalised; (0, 0, 0) where the camera sees only the background
+    GLINT_AOV_NORMAL = 2,
+    /// 1 float a pixel: the distance from the camera to the first surface hit along each sample's ray, the mean
+    /// over the samples that hit one; +infinity where none did
+    GLINT_AOV_DEPTH = 4,
+    GLINT_AOV_ALL = 7
+} glint_aov;
+
 /// A value struct: options of one render that are not part of the scene (zero-initialised: the defaults). Every
 /// field is a value field; initialise the whole struct ({0} or memset) so that fields added later stay default.
 typedef struct glint_render_options {
@@ -84,6 +101,9 @@ typedef struct glint_render_options {
     /// image. Each pixel gets exactly the values it has in a full render; the image is the region's size and
     /// remembers where it lies (a PNG of it records that for glint_merge).
     int region[4];
+    /// The AOVs to render beside the colour (glint_aov bits, or-ed); 0: none, and no cost. Other bits are
+    /// GLINT_ERR_INPUT. glint_image_write writes them as channels of an OpenEXR file.
+    unsigned aovs;
 } glint_render_options;
 
 /// A value struct: counters of one render, filled by glint_render.
@@ -151,7 +171,10 @@ typedef enum glint_format {
     GLINT_FORMAT_HDR       ///< Radiance RGBE, linear (.hdr)
 } glint_format;
 
-/// Writes the image; "-" writes PPM to standard output. The PNG of a region (glint_render_options.region)
+/// Writes the image; "-" writes PPM to standard output. An OpenEXR file holds the image's AOVs too, as channels
+/// albedo.R, albedo.G, albedo.B, normal.X, normal.Y, normal.Z and Z (32-bit float even with
+/// GLINT_FORMAT_EXR_HALF); the other formats hold the colour alone. An OpenEXR file of a region has the region
+/// as its data window inside the full image's display window. The PNG of a region (glint_render_options.region)
 /// holds a tEXt chunk "glint:region" = "X0,Y0,X1,Y1,W,H" (W x H: the full image) for glint_merge; PPM and PFM
 /// have no room for it and hold the region's pixels alone. A whole image's PNG has no such chunk. Writes an
 /// unnamed temporary file (Linux O_TMPFILE; a named one where unsupported) and links it into place, so a
@@ -159,6 +182,12 @@ typedef enum glint_format {
 /// refuses a read-only file ("PATH: cannot write: the file is read-only", GLINT_ERR_RENDER).
 GLINT_API glint_status glint_image_write(const glint_image *img, const char *path, glint_format format,
                                          glint_error *err);
+/// Writes one AOV plane of the image (a single glint_aov bit) to a .pfm file, as glint_image_write writes
+/// files: "PF" (RGB) for albedo and normal, "Pf" (grey) for depth, little-endian floats, rows from the bottom
+/// up: the inputs Intel Open Image Denoise's oidnDenoise reads. GLINT_ERR_INPUT for another extension or an AOV
+/// the image does not hold. (An OpenEXR file written by glint_image_write holds every AOV as channels.)
+GLINT_API glint_status glint_image_write_aov(const glint_image *img, glint_aov aov, const char *path,
+                                             glint_error *err);
 /// Checks before a render that the image can be written there: GLINT_ERR_INPUT for an unknown extension,
 /// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory or a read-only file.
 GLINT_API glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err);
@@ -166,6 +195,10 @@ GLINT_API glint_status glint_image_check_path(const char *path, glint_format for
 GLINT_API void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb);
 /// The 8-bit, display-encoded pixel (x, y) channel c, exactly as PNG/PPM output stores it.
 GLINT_API uint8_t glint_image_byte(const glint_image *img, int x, int y, int c);
+/// The plane of one AOV (a single glint_aov bit) that the image holds: width * height pixels, row 0 at the top,
+/// *channels floats a pixel (3 for albedo and normal, 1 for depth), valid until glint_image_free; NULL (and
+/// *channels 0) when the render did not ask for it. channels may be NULL.
+GLINT_API const float *glint_image_aov(const glint_image *img, glint_aov aov, int *channels);
 /// Frees an image (NULL is allowed).
 GLINT_API void glint_image_free(glint_image *img);
 

@@ -65,7 +65,7 @@ static void reference_pixel(const integrator *it, int x, int y, int n, float out
     double sum[3] = {0, 0, 0};
     for (int k = 0; k < n; k++) {
         rng r = rng_for_sample(s->settings.seed, pixel, (uint64_t)k);
-        vec3 c = it->sample(it, x, y, (uint32_t)k, &r, &ts);
+        vec3 c = it->sample(it, x, y, (uint32_t)k, &r, &ts, NULL);
         if (!v3_is_finite(c)) continue;
         sum[0] += c.x;
         sum[1] += c.y;
@@ -200,7 +200,7 @@ static void test_stop_during(void) {
             bool found = got[0] == 0.0f && got[1] == 0.0f && got[2] == 0.0f;
             for (int k = 0; !found && k < SPP; k++) {
                 rng r = rng_for_sample(s->settings.seed, pixel, (uint64_t)k);
-                vec3 c = it->sample(it, x, y, (uint32_t)k, &r, &ts);
+                vec3 c = it->sample(it, x, y, (uint32_t)k, &r, &ts, NULL);
                 if (v3_is_finite(c)) {
                     sum[0] += c.x;
                     sum[1] += c.y;

@@ -89,7 +89,7 @@ static const bad_scene cases[] = {
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"centre\": [0, 0, 0], \"radius\": 1, "
                     "\"material\": \"m\"}]}"),
      "bad.json:1:33: unknown key \"centre\" in object 0 (sphere); expected one of: type, center, center2, radius, "
-     "material, transform, transform2"},
+     "material, transform, transform2, importance"},
     {__LINE__, TEXT("{\"lights\": [{\"type\": \"ambient\", \"intensity\": 0.2, \"position\": [0, 0, 0]}]}"),
      "bad.json:1:51: unknown key \"position\" in light 0 (ambient); expected one of: type, intensity"},
     {__LINE__, TEXT("{\"render\": {\"width\": 64, \"width\": 32}}"),

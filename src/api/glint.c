@@ -64,6 +64,7 @@ glint_status glint_render(const glint_scene *scene, const glint_render_options *
     glint_error scratch;
     render_options ro = {.threads = opt ? opt->threads : 0, .time_limit = opt ? opt->time_limit : 0.0};
     if (opt) memcpy(ro.region, opt->region, sizeof ro.region);
+    ro.aovs = opt ? opt->aovs : 0u;
     return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);
 }
 
@@ -72,6 +73,14 @@ void glint_request_stop(void) { render_request_stop(); }
 glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
     glint_error scratch;
     return image_write(img, path, format, err ? err : &scratch);
+}
+
+glint_status glint_image_write_aov(const glint_image *img, glint_aov aov, const char *path, glint_error *err) {
+    glint_error scratch;
+    int index = -1;
+    for (int i = 0; i < FILM_AOV_COUNT; i++)
+        if ((unsigned)aov == 1u << i) index = i;
+    return image_write_aov(img, index, path, err ? err : &scratch);
 }
 
 glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err) {
@@ -87,6 +96,16 @@ void glint_image_info(const glint_image *img, int *width, int *height, const flo
 
 uint8_t glint_image_byte(const glint_image *img, int x, int y, int c) {
     return film_encode(img->rgb[((size_t)y * (size_t)img->width + (size_t)x) * 3u + (size_t)c], img->transform);
+}
+
+const float *glint_image_aov(const glint_image *img, glint_aov aov, int *channels) {
+    for (int i = 0; i < FILM_AOV_COUNT; i++)
+        if ((unsigned)aov == 1u << i && img && img->aov[i]) {
+            if (channels) *channels = film_aov_channels(i);
+            return img->aov[i];
+        }
+    if (channels) *channels = 0;
+    return NULL;
 }
 
 void glint_image_free(glint_image *img) { film_image_free(img); }

@@ -12,7 +12,7 @@
 
 typedef enum option_id {
     OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_TIME_LIMIT, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED,
-    OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_QUIET, OPT_HELP, OPT_VERSION
+    OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
 typedef struct option_spec {
@@ -38,6 +38,7 @@ static const option_spec OPTIONS[] = {
     {"accel", 0, true, OPT_ACCEL, 1, 0},
     {"output-encoding", 0, true, OPT_OUTPUT_ENCODING, 1, 0},
     {"region", 0, true, OPT_REGION, 1, 0},
+    {"aov", 0, true, OPT_AOV, 1, 0},
     {"quiet", 'q', false, OPT_QUIET, 1, 0},
     {"help", 'h', false, OPT_HELP, 1, 0},
     {"version", 'V', false, OPT_VERSION, 1, 0},
@@ -83,9 +84,19 @@ static void print_usage(FILE *f) {
             "                     render only the pixels X0 <= x < X1, Y0 <= y < Y1, each exactly as in the\n"
             "                     full image; the image written is (X1-X0)x(Y1-Y0), and a PNG records where\n"
             "                     it lies (a glint:region text chunk) for glint merge\n"
+            "      --aov LIST     also render AOVs, a comma-separated list of albedo, normal and depth: the\n"
+            "                     albedo and world-space normal of the first diffuse or glossy surface seen\n"
+            "                     and the camera distance of the first hit, each the mean over the pixel's\n"
+            "                     samples (the buffers a denoiser such as Intel Open Image Denoise takes).\n"
+            "                     An .exr output holds them as channels albedo.R/G/B, normal.X/Y/Z and Z; a\n"
+            "                     .pfm output NAME.pfm is joined by NAME.albedo.pfm, NAME.normal.pfm and\n"
+            "                     NAME.depth.pfm. Other formats: a usage error\n"
             "  -q, --quiet        no progress bar, statistics line or warnings; errors are still printed\n"
             "  -h, --help         print this help and exit\n"
-            "  -V, --version      print the version and exit\n"
+            "  -V, --version      print the version and exit\n",
+            cpus > 0 ? cpus : 1);
+    // In two parts: ISO C promises string literals of 4095 bytes, no more.
+    fprintf(f,
             "\n"
             "Short options combine (-qo out.png). Unless --quiet, a progress bar (percentage, elapsed time,\n"
             "ETA) is drawn on stderr when stderr is a terminal, and at the end, terminal or not, one\n"
@@ -104,8 +115,7 @@ static void print_usage(FILE *f) {
             "exit status: 0 success; 1 render, I/O or out-of-memory failure (a read-only output too), or\n"
             "             more than 1 %% of samples dropped; 2 usage or scene error (an output that is one of\n"
             "             the scene's files too); 128 + the signal when stopped by one: 130 SIGINT,\n"
-            "             143 SIGTERM, 129 SIGHUP\n",
-            cpus > 0 ? cpus : 1);
+            "             143 SIGTERM, 129 SIGHUP\n");
 }
 
 static void usage_hint(void) { fputs("Try 'glint --help' for more information.\n", stderr); }
@@ -144,6 +154,29 @@ static bool parse_region(const char *text, int region[4]) {
         region[i] = v > INT_MAX ? INT_MAX : (int)v;
     }
     return *p == '\0';
+}
+
+// "albedo,normal,depth" (any of them, any order, repeats allowed) as glint_aov bits; 0 for a bad list, with the
+// message printed.
+static unsigned parse_aovs(const char *text) {
+    static const struct { const char *name; glint_aov bit; } known[] = {
+        {"albedo", GLINT_AOV_ALBEDO}, {"normal", GLINT_AOV_NORMAL}, {"depth", GLINT_AOV_DEPTH}};
+    unsigned mask = 0;
+    const char *p = text;
+    for (;;) {
+        size_t n = strcspn(p, ",");
+        unsigned bit = 0;
+        for (size_t i = 0; i < sizeof known / sizeof known[0]; i++)
+            if (n == strlen(known[i].name) && strncmp(p, known[i].name, n) == 0) bit = (unsigned)known[i].bit;
+        if (!bit) {
+            fprintf(stderr, "glint: --aov: unknown AOV '%.*s' in '%s', expected a comma-separated list of albedo, "
+                            "normal and depth\n", (int)n, p, text);
+            return 0;
+        }
+        mask |= bit;
+        if (p[n] == '\0') return mask;
+        p += n + 1;
+    }
 }
 
 // The default image name: the scene file's base name with its extension replaced by .png.
@@ -211,6 +244,10 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
             fprintf(stderr, "glint: --region: %s is empty, expected X0 < X1 and Y0 < Y1\n", value);
             return CLI_EXIT_USAGE;
         }
+        break;
+    case OPT_AOV:
+        o->aovs = parse_aovs(value);
+        if (!o->aovs) return CLI_EXIT_USAGE;
         break;
     case OPT_QUIET: o->quiet = true; break;
     case OPT_HELP: print_usage(stdout); return CLI_EXIT_OK;
@@ -291,6 +328,24 @@ cli_action cli_parse(int argc, char **argv, cli_options *o) {
     if (o->half && !(out_len > 4 && strcasecmp(o->output + out_len - 4, ".exr") == 0)) {
         fprintf(stderr, "glint: --half: the output '%s' is not an .exr file\n", o->output);
         return CLI_EXIT_USAGE;
+    }
+    bool exr = out_len > 4 && strcasecmp(o->output + out_len - 4, ".exr") == 0;
+    bool pfm = out_len > 4 && strcasecmp(o->output + out_len - 4, ".pfm") == 0;
+    if (o->aovs && !exr && !pfm) {
+        fprintf(stderr, "glint: --aov: the output '%s' is not an .exr or .pfm file, expected an OpenEXR file (AOVs "
+                        "as channels) or a PFM (AOVs in files beside it)\n", o->output);
+        return CLI_EXIT_USAGE;
+    }
+    // A PFM holds one image: each AOV goes to a file of its own, NAME.albedo.pfm beside NAME.pfm.
+    static const char *const aov_names[CLI_AOV_COUNT] = {"albedo", "normal", "depth"};
+    for (int i = 0; pfm && i < CLI_AOV_COUNT; i++) {
+        if (!(o->aovs & (1u << i))) continue;
+        int len = snprintf(o->aov_output[i], sizeof o->aov_output[i], "%.*s.%s%s", (int)(out_len - 4), o->output,
+                           aov_names[i], o->output + out_len - 4);
+        if (len < 0 || (size_t)len >= sizeof o->aov_output[i]) {
+            fprintf(stderr, "glint: --aov: the output name '%s' is too long for the AOV files beside it\n", o->output);
+            return CLI_EXIT_USAGE;
+        }
     }
     return CLI_RUN;
 }

@@ -6,6 +6,8 @@
 
 #include <stdbool.h>
 
+enum { CLI_AOV_COUNT = 3 }; ///< albedo, normal, depth: the bits of glint_aov, in order
+
 /// Everything the command line asked for.
 typedef struct cli_options {
     const char *scene_path; ///< "-" reads the scene from standard input
@@ -15,6 +17,10 @@ typedef struct cli_options {
     int threads;            ///< 0 = all online CPUs
     long time_limit;        ///< seconds after which no new sample pass starts; 0: none
     int region[4];          ///< --region X0,Y0,X1,Y1; all zero: the whole image
+    unsigned aovs;          ///< --aov: glint_aov bits; 0: none
+    /// With a .pfm output and --aov: the file of AOV i (bit 1 << i): NAME.albedo.pfm, NAME.normal.pfm,
+    /// NAME.depth.pfm; "" for the AOVs not asked for and for an .exr output, which holds them as channels.
+    char aov_output[CLI_AOV_COUNT][4096];
     bool quiet, ascii_ppm, half;
 } cli_options;
 

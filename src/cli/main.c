@@ -148,15 +148,23 @@ int main(int argc, char **argv) {
     glint_error err;
     glint_format format = opt.ascii_ppm ? GLINT_FORMAT_PPM_ASCII : opt.half ? GLINT_FORMAT_EXR_HALF : GLINT_FORMAT_AUTO;
     // Before the render, not after it: a typo in -o must not cost a long render.
-    glint_status st = glint_image_check_path(opt.output, format, &err);
-    if (st != GLINT_OK) {
-        fprintf(stderr, "glint: %s\n", err.message);
-        return exit_code(st);
+    // Every file the render will write: the image, and the AOV files beside a PFM.
+    const char *outputs[1 + CLI_AOV_COUNT] = {opt.output};
+    int output_count = 1;
+    for (int i = 0; i < CLI_AOV_COUNT; i++)
+        if (opt.aov_output[i][0]) outputs[output_count++] = opt.aov_output[i];
+    for (int i = 0; i < output_count; i++) {
+        glint_status st = glint_image_check_path(outputs[i], i == 0 ? format : GLINT_FORMAT_PFM, &err);
+        if (st != GLINT_OK) {
+            fprintf(stderr, "glint: %s\n", err.message);
+            return exit_code(st);
+        }
+        if (output_is_scene(outputs[i], opt.scene_path)) {
+            fprintf(stderr, "glint: %s: cannot write: it is the scene file, which would be lost\n", outputs[i]);
+            return exit_code(GLINT_ERR_INPUT);
+        }
     }
-    if (output_is_scene(opt.output, opt.scene_path)) {
-        fprintf(stderr, "glint: %s: cannot write: it is the scene file, which would be lost\n", opt.output);
-        return exit_code(GLINT_ERR_INPUT);
-    }
+    glint_status st;
 
     quiet_signals = opt.quiet;
     atomic_store(&loading, 1);
@@ -171,12 +179,13 @@ int main(int argc, char **argv) {
         return exit_code(st);
     }
     // Nor any other file the scene was read from: a mesh, a texture, an environment map.
-    if (glint_scene_reads_file(scene, opt.output)) {
-        fprintf(stderr, "glint: %s: cannot write: the scene reads it (a mesh, texture or environment map), which "
-                        "would be lost\n", opt.output);
-        glint_scene_free(scene);
-        return exit_code(GLINT_ERR_INPUT);
-    }
+    for (int i = 0; i < output_count; i++)
+        if (glint_scene_reads_file(scene, outputs[i])) {
+            fprintf(stderr, "glint: %s: cannot write: the scene reads it (a mesh, texture or environment map), which "
+                            "would be lost\n", outputs[i]);
+            glint_scene_free(scene);
+            return exit_code(GLINT_ERR_INPUT);
+        }
     // The library never prints: what it worked around in mesh files is reported here, unless --quiet.
     for (size_t i = 0; !opt.quiet && i < glint_scene_warning_count(scene); i++)
         fprintf(stderr, "glint: %s\n", glint_scene_warning(scene, i));
@@ -190,6 +199,7 @@ int main(int argc, char **argv) {
     bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
     glint_render_options ropt = {.threads = opt.threads, .time_limit = (double)opt.time_limit};
     memcpy(ropt.region, opt.region, sizeof ropt.region);
+    ropt.aovs = opt.aovs;
     glint_image *img = NULL;
     glint_render_stats stats;
     memset(&stats, 0, sizeof stats);
@@ -232,6 +242,8 @@ int main(int argc, char **argv) {
 
     if (strcmp(opt.output, "-") != 0) block_stop_signals();
     st = glint_image_write(img, opt.output, format, &err);
+    for (int i = 0; st == GLINT_OK && i < CLI_AOV_COUNT; i++)
+        if (opt.aov_output[i][0]) st = glint_image_write_aov(img, (glint_aov)(1u << i), opt.aov_output[i], &err);
     glint_image_free(img);
     if (st != GLINT_OK) {
         fprintf(stderr, "glint: %s\n", err.message);

@@ -13,12 +13,23 @@ glint_image *film_image_new(int width, int height, output_transform encoding) {
     img->x0 = img->y0 = 0;
     img->full_width = width;
     img->full_height = height;
+    for (int i = 0; i < FILM_AOV_COUNT; i++) img->aov[i] = NULL;
     img->rgb = calloc((size_t)width * (size_t)height * 3u, sizeof(float));
     if (!img->rgb) {
         free(img);
         return NULL;
     }
     return img;
+}
+
+bool film_image_add_aovs(glint_image *img, unsigned mask) {
+    size_t pixels = (size_t)img->width * (size_t)img->height;
+    for (int i = 0; i < FILM_AOV_COUNT; i++) {
+        if (!(mask & (1u << i)) || img->aov[i]) continue;
+        img->aov[i] = calloc(pixels * (size_t)film_aov_channels(i), sizeof(float));
+        if (!img->aov[i]) return false;
+    }
+    return true;
 }
 
 bool film_image_is_region(const glint_image *img) {
@@ -28,6 +39,7 @@ bool film_image_is_region(const glint_image *img) {
 void film_image_free(glint_image *img) {
     if (!img) return;
     free(img->rgb);
+    for (int i = 0; i < FILM_AOV_COUNT; i++) free(img->aov[i]);
     free(img);
 }
 
@@ -54,10 +66,12 @@ float film_decode(uint8_t byte, output_transform encoding) {
 }
 
 bool film_init(film *f, const int region[4], int full_width, int full_height, int spp, int passes,
-               output_transform encoding) {
+               output_transform encoding, unsigned aovs) {
     int width = region[2] - region[0], height = region[3] - region[1];
     f->spp = spp;
     f->sums = NULL;
+    f->aov_sums = NULL;
+    f->aovs = aovs & ((1u << FILM_AOV_COUNT) - 1u);
     f->x0 = region[0];
     f->y0 = region[1];
     f->image = film_image_new(width, height, encoding);
@@ -66,14 +80,33 @@ bool film_init(film *f, const int region[4], int full_width, int full_height, in
     f->image->y0 = region[1];
     f->image->full_width = full_width;
     f->image->full_height = full_height;
-    if (passes > 1) {
-        f->sums = malloc((size_t)width * (size_t)height * 3u * sizeof *f->sums);
-        if (!f->sums) {
-            film_release(f);
-            return false;
-        }
+    size_t pixels = (size_t)width * (size_t)height;
+    bool ok = film_image_add_aovs(f->image, f->aovs);
+    if (ok && passes > 1) {
+        f->sums = malloc(pixels * 3u * sizeof *f->sums);
+        if (f->aovs) f->aov_sums = malloc(pixels * FILM_AOV_STRIDE * sizeof *f->aov_sums);
+        ok = f->sums && (!f->aovs || f->aov_sums);
     }
-    return true;
+    if (!ok) film_release(f);
+    return ok;
+}
+
+void film_store_aov_pixel(film *f, size_t pixel, const double sum[FILM_AOV_STRIDE], int k, int k1) {
+    if (f->aov_sums && k1 < f->spp) memcpy(&f->aov_sums[pixel * FILM_AOV_STRIDE], sum, FILM_AOV_STRIDE * sizeof *sum);
+    if (k <= 0) return;
+    double inv = 1.0 / k;
+    float *const *plane = f->image->aov;
+    // Albedo and normal are plain means (a normal is not renormalised: OIDN takes the mean as it is).
+    for (int i = 0; i < 2; i++) {
+        if (!plane[i]) continue;
+        const double *s = &sum[i == FILM_AOV_ALBEDO ? FILM_AOV_SUM_ALBEDO : FILM_AOV_SUM_NORMAL];
+        for (int c = 0; c < 3; c++) plane[i][pixel * 3u + (size_t)c] = (float)(s[c] * inv);
+    }
+    // Depth: the mean over the samples that hit a surface; a pixel where none did is infinitely far.
+    if (plane[FILM_AOV_DEPTH]) {
+        double hits = sum[FILM_AOV_SUM_HITS];
+        plane[FILM_AOV_DEPTH][pixel] = hits > 0.0 ? (float)(sum[FILM_AOV_SUM_DEPTH] / hits) : INFINITY;
+    }
 }
 
 glint_image *film_take_image(film *f) {
@@ -85,8 +118,10 @@ glint_image *film_take_image(film *f) {
 void film_release(film *f) {
     film_image_free(f->image);
     free(f->sums);
+    free(f->aov_sums);
     f->image = NULL;
     f->sums = NULL;
+    f->aov_sums = NULL;
 }
 
 void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *stats,
@@ -105,4 +140,5 @@ void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int 
     t->progress = progress;
     t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
     if (k0 > 0) memcpy(t->sum, &f->sums[t->pixel * 3u], sizeof t->sum);
+    film_tile_load_aovs(t);
 }

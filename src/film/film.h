@@ -7,6 +7,7 @@
 #include "core/stats.h"
 #include "core/vec.h"
 
+#include <math.h>
 #include <stdatomic.h>
 #include <stdbool.h>
 #include <stddef.h>
@@ -16,10 +17,17 @@
 /// How linear radiance becomes an 8-bit value: none (clamp only), gamma 2 (square root), or sRGB.
 typedef enum output_transform { TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SRGB } output_transform;
 
+/// The AOVs a film can keep (the bits of glint_aov), in the order of glint_image.aov[].
+enum { FILM_AOV_ALBEDO, FILM_AOV_NORMAL, FILM_AOV_DEPTH, FILM_AOV_COUNT };
+
+/// Floats a pixel of AOV plane i (FILM_AOV_*): 3 for albedo RGB and normal XYZ, 1 for depth Z.
+static inline int film_aov_channels(int i) { return i == FILM_AOV_DEPTH ? 1 : 3; }
+
 /// The rendered image (the public glint_image): linear RGB means and how they are displayed.
 struct glint_image {
     int width, height;
     float *rgb;                 ///< linear RGB, 3 floats a pixel, row 0 at the top
+    float *aov[FILM_AOV_COUNT]; ///< the AOV planes rendered (film_aov_channels floats a pixel), NULL for the others
     output_transform transform; ///< how rgb becomes 8-bit values
     int x0, y0;                 ///< where pixel (0, 0) lies in the full image (0, 0 unless a region)
     int full_width, full_height; ///< the full image this one is a region of (width, height unless a region)
@@ -27,6 +35,8 @@ struct glint_image {
 
 /// A black image; NULL when out of memory.
 glint_image *film_image_new(int width, int height, output_transform encoding);
+/// Adds zeroed planes for the AOVs of mask (glint_aov bits) that img lacks; false when out of memory.
+bool film_image_add_aovs(glint_image *img, unsigned mask);
 /// Whether img is a region of a larger image rather than a whole image.
 bool film_image_is_region(const glint_image *img);
 /// Frees an image (NULL is allowed).
@@ -37,19 +47,37 @@ uint8_t film_encode(float linear, output_transform encoding);
 /// A linear value that film_encode turns into exactly `byte` under `encoding` (decoding 8-bit images).
 float film_decode(uint8_t byte, output_transform encoding);
 
+/// What an integrator reports of one sample besides its colour, for the AOVs (arbitrary output variables): the
+/// albedo and the world-space shading normal (facing the ray) of the surface it saw first (after following
+/// perfect mirrors and glass, in the path tracer), and the camera distance of the first hit (INFINITY: none).
+typedef struct film_aov_sample {
+    vec3 albedo, normal;
+    float depth;
+} film_aov_sample;
+
+/// Doubles a pixel of the AOV running sums: albedo RGB, normal XYZ, the sum of the finite depths, and their
+/// count (the depth plane is their mean: the mean distance of the samples that hit something).
+enum { FILM_AOV_SUM_ALBEDO = 0, FILM_AOV_SUM_NORMAL = 3, FILM_AOV_SUM_DEPTH = 6, FILM_AOV_SUM_HITS = 7,
+       FILM_AOV_STRIDE = 8 };
+
 /// A film: the image of means, and each pixel's running sum in double between sample passes, so that the
-/// final mean is bit for bit the plain sum over samples 0..spp-1 in index order divided by spp.
+/// final mean is bit for bit the plain sum over samples 0..spp-1 in index order divided by spp. The AOVs are
+/// summed the same way, beside the colour, when asked for. A checkpoint of the render is sums, aov_sums (when
+/// not NULL) and the passes completed: the image's means follow from them.
 typedef struct film {
     glint_image *image;
-    double *sums; ///< RGB sums of the samples completed in earlier passes; NULL when one pass renders them all
-    int spp;      ///< samples per pixel of the whole render
-    int x0, y0;   ///< the image's origin in full-image pixels: tiles are given in full-image coordinates
+    double *sums;     ///< RGB sums of the samples completed in earlier passes; NULL when one pass renders them all
+    double *aov_sums; ///< FILM_AOV_STRIDE doubles a pixel, as sums; NULL without AOVs or with a single pass
+    unsigned aovs;    ///< the AOVs kept (glint_aov bits); 0: none, and no AOV work at all
+    int spp;          ///< samples per pixel of the whole render
+    int x0, y0;       ///< the image's origin in full-image pixels: tiles are given in full-image coordinates
 } film;
 
-/// A black film of the region [x0, x0 + width) x [y0, y0 + height) of a full_width x full_height image;
-/// `passes` > 1 keeps running sums. False when out of memory (f is then empty).
+/// A black film of the region [x0, x0 + width) x [y0, y0 + height) of a full_width x full_height image, with
+/// the AOV planes of `aovs` (glint_aov bits); `passes` > 1 keeps running sums. False when out of memory (f is
+/// then empty).
 bool film_init(film *f, const int region[4], int full_width, int full_height, int spp, int passes,
-               output_transform encoding);
+               output_transform encoding, unsigned aovs);
 /// Hands the image over to the caller; the film no longer owns it.
 glint_image *film_take_image(film *f);
 /// Frees what the film still owns.
@@ -64,6 +92,7 @@ typedef struct film_tile {
     int x, y, k;            ///< the next sample's pixel and index
     size_t pixel;           ///< the film's index of (x, y): (y - y0) * width + (x - x0)
     double sum[3];          ///< the current pixel's sum so far
+    double aov_sum[FILM_AOV_STRIDE]; ///< the current pixel's AOV sums so far (when the film keeps AOVs)
     thread_stats *stats;    ///< counts samples and discarded samples
     _Atomic uint64_t *progress; ///< the samples counter the progress reporter reads
 } film_tile;
@@ -73,15 +102,27 @@ typedef struct film_tile {
 void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *stats,
                      _Atomic uint64_t *progress);
 
+/// Stores a pixel's AOV state after its samples [0, k): running sums, and means in the image's planes.
+void film_store_aov_pixel(film *f, size_t pixel, const double sum[FILM_AOV_STRIDE], int k, int k1);
+
 /// Stores a pixel's state after its samples [0, k) (k1: the end of this pass): its running sum for the next
-/// pass, and the mean of its samples so far in the image.
-static inline void film_store_pixel(film *f, size_t pixel, const double sum[3], int k, int k1) {
+/// pass, and the mean of its samples so far in the image; the same for the AOV sums (t's) when the film keeps them.
+static inline void film_store_pixel(film *f, size_t pixel, const double sum[3], const double *aov_sum, int k, int k1) {
     if (f->sums && k1 < f->spp) memcpy(&f->sums[pixel * 3u], sum, 3 * sizeof *sum);
     if (k > 0) {
         float *px = &f->image->rgb[pixel * 3u];
         double inv = 1.0 / k; // one division for the three channels, at every pass of every pixel
         for (int c = 0; c < 3; c++) px[c] = (float)(sum[c] * inv);
     }
+    if (f->aovs) film_store_aov_pixel(f, pixel, aov_sum, k, k1); // once a pixel and pass: no cost per sample
+}
+
+/// Starts the AOV sums of the tile's current pixel: zero, or what earlier passes left.
+static inline void film_tile_load_aovs(film_tile *t) {
+    if (t->k0 > 0 && t->film->aov_sums)
+        memcpy(t->aov_sum, &t->film->aov_sums[t->pixel * FILM_AOV_STRIDE], sizeof t->aov_sum);
+    else
+        memset(t->aov_sum, 0, sizeof t->aov_sum);
 }
 
 /// The index in the film's image of full-image pixel (x, y).
@@ -101,7 +142,7 @@ static inline bool film_tile_add(film_tile *t, vec3 c) {
         t->sum[2] += c.z;
     }
     if (++t->k < t->k1) return true;
-    film_store_pixel(t->film, t->pixel, t->sum, t->k1, t->k1); // this pixel's samples of the pass are done
+    film_store_pixel(t->film, t->pixel, t->sum, t->aov_sum, t->k1, t->k1); // the pixel's samples of the pass are done
     t->k = t->k0;
     if (++t->x == t->x1) {
         t->x = t->x0;
@@ -111,11 +152,35 @@ static inline bool film_tile_add(film_tile *t, vec3 c) {
     t->pixel = film_pixel_index(t->film, t->x, t->y);
     t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
     if (t->k0 > 0) memcpy(t->sum, &t->film->sums[t->pixel * 3u], sizeof t->sum);
+    if (t->film->aovs) film_tile_load_aovs(t);
     return true;
+}
+
+/// film_tile_add for a film that keeps AOVs: adds the sample's AOVs to the pixel's, then its colour. Non-finite
+/// albedos or normals are dropped (as black), a non-finite depth counts as a miss.
+static inline bool film_tile_add_aov(film_tile *t, vec3 c, const film_aov_sample *a) {
+    double *s = t->aov_sum;
+    if (v3_is_finite(a->albedo)) {
+        s[FILM_AOV_SUM_ALBEDO] += a->albedo.x;
+        s[FILM_AOV_SUM_ALBEDO + 1] += a->albedo.y;
+        s[FILM_AOV_SUM_ALBEDO + 2] += a->albedo.z;
+    }
+    if (v3_is_finite(a->normal)) {
+        s[FILM_AOV_SUM_NORMAL] += a->normal.x;
+        s[FILM_AOV_SUM_NORMAL + 1] += a->normal.y;
+        s[FILM_AOV_SUM_NORMAL + 2] += a->normal.z;
+    }
+    if (isfinite(a->depth)) {
+        s[FILM_AOV_SUM_DEPTH] += a->depth;
+        s[FILM_AOV_SUM_HITS] += 1.0;
+    }
+    return film_tile_add(t, c);
 }
 
 /// Ends a tile pass cut short by a stop request: the current pixel keeps the mean of the samples it completed,
 /// the pixels not reached keep the previous pass's.
-static inline void film_tile_stop(film_tile *t) { film_store_pixel(t->film, t->pixel, t->sum, t->k, t->k1); }
+static inline void film_tile_stop(film_tile *t) {
+    film_store_pixel(t->film, t->pixel, t->sum, t->aov_sum, t->k, t->k1);
+}
 
 #endif

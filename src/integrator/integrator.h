@@ -13,6 +13,7 @@
 #include "film/film.h"
 #include "scene/scene.h"
 
+#include <math.h>
 #include <stdatomic.h>
 #include <stdbool.h>
 #include <stdint.h>
@@ -30,8 +31,11 @@ typedef struct integrator_options {
 
 typedef struct integrator integrator;
 
-/// Radiance of sample `sample` of pixel (x, y); r is seeded for exactly this sample (rng_for_key).
-typedef vec3 (*integrator_sample_fn)(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts);
+/// Radiance of sample `sample` of pixel (x, y); r is seeded for exactly this sample (rng_for_key). When aov is not
+/// NULL it receives the sample's AOVs (film_aov_sample); the radiance and the random numbers drawn are the same
+/// either way.
+typedef vec3 (*integrator_sample_fn)(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts,
+                                     film_aov_sample *aov);
 /// Renders a tile pass into ft, in ft's order; false when a stop request cut it short (after film_tile_stop).
 typedef bool (*integrator_tile_fn)(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts);
 
@@ -60,6 +64,19 @@ integrator *whitted_create(const glint_scene *s, const accel *a, glint_error *er
 /// The path tracer; `sample_area_lights` false turns off next-event estimation towards emissive surfaces.
 integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_lights, glint_error *err);
 
+/// The albedo an AOV records: each channel clamped to [0, 1], as denoisers expect (NaN becomes 0).
+static inline vec3 integrator_aov_albedo(vec3 a) {
+    return v3(a.x > 0.0f ? (a.x < 1.0f ? a.x : 1.0f) : 0.0f, a.y > 0.0f ? (a.y < 1.0f ? a.y : 1.0f) : 0.0f,
+              a.z > 0.0f ? (a.z < 1.0f ? a.z : 1.0f) : 0.0f);
+}
+
+/// The albedo an emitter records: its emission scaled so that the largest channel is 1 (0 when it is black), so
+/// that a light's pixels tell a denoiser its colour and its edges.
+static inline vec3 integrator_aov_emitter(vec3 le) {
+    float peak = v3_max_comp(le);
+    return peak > 0.0f && isfinite(peak) ? integrator_aov_albedo(v3_scale(le, 1.0f / peak)) : v3s(0.0f);
+}
+
 /// Whether a stop was requested (polled before every sample).
 static inline bool tile_pass_stopping(const tile_pass *tp) {
     return atomic_load_explicit(tp->stop, memory_order_relaxed) != 0;
@@ -72,6 +89,7 @@ static inline bool integrator_tile_by_samples(const integrator *it, const tile_p
                                               thread_stats *ts, integrator_sample_fn sample) {
     const render_settings *rs = &it->scene->settings;
     film_tile t = *ft; // a local copy whose address does not escape: its fields can live in registers
+    bool aovs = t.film->aovs != 0;
     for (int y = tp->y0; y < tp->y1; y++)
         for (int x = tp->x0; x < tp->x1; x++) {
             // rng_for_sample(seed, pixel, k), its per-render and per-pixel parts computed once.
@@ -83,7 +101,13 @@ static inline bool integrator_tile_by_samples(const integrator *it, const tile_p
                     return false;
                 }
                 rng r = rng_for_key(it->stream, key, (uint64_t)k);
-                film_tile_add(&t, sample(it, x, y, (uint32_t)k, &r, ts));
+                if (aovs) {
+                    film_aov_sample a;
+                    vec3 c = sample(it, x, y, (uint32_t)k, &r, ts, &a);
+                    film_tile_add_aov(&t, c, &a);
+                } else {
+                    film_tile_add(&t, sample(it, x, y, (uint32_t)k, &r, ts, NULL));
+                }
             }
         }
     *ft = t;

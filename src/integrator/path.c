@@ -250,10 +250,28 @@ static float aim_diffuse(const glint_scene *s, vec3 p, vec3 n, rng *r, scatter_e
     return pdf;
 }
 
-// The radiance a path starting with the primary ray (origin o, direction d, all t > 0, at `time`) carries. The ray comes
-// by its parts, in registers: a whole ray passed by value is copied with wide loads that cannot be forwarded
-// from the stores that just made it. d need not have unit length.
-static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts) {
+// Whether m scatters only into one direction (a perfect mirror, glass): the AOVs look past it.
+static inline bool path_aov_passes(const material *m) {
+    return m->kind == MAT_DIELECTRIC || (m->kind == MAT_METAL && m->fuzz == 0.0f);
+}
+
+// The AOVs of a surface vertex of a path that has so far bounced only off perfect mirrors and glass (OIDN's
+// advice: follow perfect specular paths and record the first diffuse or glossy surface): the albedo seen
+// through those bounces (throughput), and the normal. True while they stay pending: a mirror or glass records
+// itself in case the path ends there, and the next vertex overwrites it.
+static inline bool path_aov_surface(film_aov_sample *aov, vec3 throughput, vec3 albedo, vec3 n, const material *m) {
+    aov->albedo = integrator_aov_albedo(v3_mul(throughput, albedo));
+    aov->normal = n;
+    return path_aov_passes(m);
+}
+
+// The radiance a path starting with the primary ray (origin o, direction d, all t > 0, at `time`) carries, and its AOVs
+// when aov is not NULL. The ray comes by its parts, in registers: a whole ray passed by value is copied with
+// wide loads that cannot be forwarded from the stores that just made it. d need not have unit length. Always
+// inlined into path_trace (aov NULL: every AOV branch folds away) and path_trace_aov.
+static inline __attribute__((always_inline)) vec3 path_trace_with(const path_integrator *pi, vec3 o, vec3 d,
+                                                                  float time, rng *r, thread_stats *ts,
+                                                                  film_aov_sample *aov) {
     const integrator *it = &pi->base;
     const glint_scene *s = it->scene;
     ray cur = {o, d, 0.0f, INFINITY, time};
@@ -269,6 +287,11 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
     bool lean = !has_lights && !pl && !es && !media && !s->importance_sphere_count;
     // Whether cur.d has unit length: camera rays and the lean bounce's Lambertian directions are left unnormalised.
     bool unit = false;
+    bool aov_pending = aov != NULL; // the AOVs wait for the path's first diffuse or glossy vertex
+    if (aov) {
+        aov->albedo = aov->normal = v3s(0.0f);
+        aov->depth = INFINITY;
+    }
     for (int depth = 0; depth < s->settings.max_depth; depth++) {
         hit h;
         ts->rays++;
@@ -312,10 +335,13 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
         if (!found) {
             if (!unit) cur.d = v3_unit(cur.d);
             vec3 bg = scene_background(s, cur.d);
+            // The background seen (through mirrors and glass) is the albedo; the normal stays (0 for no surface).
+            if (aov_pending) aov->albedo = integrator_aov_albedo(v3_mul(throughput, bg));
             if (env_sampled) bg = v3_scale(bg, mis_weight(bsdf_pdf, envmap_pdf(es, &s->environment, cur.d)));
             radiance = v3_add(radiance, v3_mul(throughput, bg));
             break;
         }
+        if (aov && depth == 0) aov->depth = unit ? h.t : h.t * v3_len(cur.d); // camera rays may be unnormalised
         // A world sphere of an untextured material that does not emit, with no light to sample (the book's
         // scenes): exactly what the general code below computes for it, without the surface record, texture
         // lookups, emission, shading normals and light sampling, which cost as much as the bounce itself.
@@ -327,6 +353,7 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
                 sphere_hit_frame(sp, &cur, h.t, &p, &n);
                 bool front = v3_dot(cur.d, n) < 0.0f;
                 if (!front) n = v3_neg(n);
+                if (aov_pending) aov_pending = path_aov_surface(aov, throughput, m->albedo, n, m);
                 scatter_event ev;
                 if (m->kind == MAT_LAMBERTIAN) {
                     // Only the direction matters to the next intersection: the normalisation (a square root
@@ -357,6 +384,10 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
         if (m->kind == MAT_DIFFUSE_LIGHT) {
             vec3 tp = surface_texture_point(s, &sf, m->emission_texture);
             vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, tp);
+            if (aov_pending) {
+                aov->albedo = integrator_aov_albedo(v3_mul(throughput, integrator_aov_emitter(le)));
+                aov->normal = sf.n;
+            }
             if (light_sampled) {
                 float pdf_light = light_sampler_pdf(pl, s, &sf, cur.o, cur.d, h.t);
                 if (pdf_light > 0.0f) le = v3_scale(le, mis_weight(bsdf_pdf, pdf_light));
@@ -366,6 +397,7 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
         }
         scatter_event ev;
         vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
+        if (aov_pending) aov_pending = path_aov_surface(aov, throughput, albedo, sf.n, m);
         if (!mat_scatter(m, albedo, cur.d, sf.n, sf.front, r, &ev)) break;
         spawn_point sp = spawn_point_of(s, &sf);
         float in_side = v3_dot(cur.d, sf.ng);
@@ -404,11 +436,25 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
     return radiance;
 }
 
+// A path's radiance, nothing else: the render's hot loop when no AOV is asked for.
+static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts) {
+    return path_trace_with(pi, o, d, time, r, ts, NULL);
+}
+
+// A path's radiance and its AOVs (the same radiance, from the same random numbers).
+static vec3 path_trace_aov(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts,
+                           film_aov_sample *aov) {
+    return path_trace_with(pi, o, d, time, r, ts, aov);
+}
+
 // One sample of pixel (x, y): its camera ray, then its path (what path_render_tile does eight at a time).
-static vec3 path_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
+static vec3 path_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts,
+                        film_aov_sample *aov) {
     (void)sample;
     ray primary = camera_sample_ray(&it->camera, x, y, r);
-    return path_trace((const path_integrator *)(const void *)it, primary.o, primary.d, primary.time, r, ts);
+    const path_integrator *pi = (const path_integrator *)(const void *)it;
+    return aov ? path_trace_aov(pi, primary.o, primary.d, primary.time, r, ts, aov)
+               : path_trace(pi, primary.o, primary.d, primary.time, r, ts);
 }
 
 // One tile pass: the samples' camera rays (and generators) are made CAMERA_BATCH at a time, in vector
@@ -424,6 +470,7 @@ static bool path_render_tile(const integrator *it, const tile_pass *tp, film_til
     uint64_t gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
     camera_batch cb;
     film_tile t = *ft; // a local copy whose address does not escape: its fields can live in registers
+    bool aovs = t.film->aovs != 0;
     for (int j = 0; j < items; j += CAMERA_BATCH) {
         int n = items - j < CAMERA_BATCH ? items - j : CAMERA_BATCH;
         for (int i = 0; i < CAMERA_BATCH; i++) {
@@ -449,7 +496,15 @@ static bool path_render_tile(const integrator *it, const tile_pass *tp, film_til
                 return false;
             }
             rng r = cb.r[i];
-            if (!film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts))) {
+            bool more;
+            if (aovs) {
+                film_aov_sample a;
+                vec3 c = path_trace_aov(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, &a);
+                more = film_tile_add_aov(&t, c, &a);
+            } else {
+                more = film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts));
+            }
+            if (!more) {
                 *ft = t;
                 return true;
             }

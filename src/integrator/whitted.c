@@ -156,12 +156,12 @@ static dvec paper_lighting(const glint_scene *s, dvec normal, dvec p, dvec o, in
 }
 
 // The program's rtx_inner: intensity along o + t d (t >= tmin) with up to `limit` reflections, and the
-// sphere hit first (-1 when the ray escapes; the intensity is then 0). The program recurses,
+// sphere hit first (-1 when the ray escapes; the intensity is then 0), at t = *t_first (when not NULL). The program recurses,
 // I = I_local (1 - rfl) + rfl I_reflected; this walks the chain forwards, keeps each level, and folds from
 // the deepest level back so that every sum rounds as the recursion's does. Chains longer than PAPER_CHAIN
 // continue in a recursive call, so the stack stays small for any depth.
 static long paper_trace(const glint_scene *s, dvec o, dvec d, double tmin, int limit, thread_stats *ts,
-                        dvec *out) {
+                        dvec *out, double *t_first) {
     dvec level_i[PAPER_CHAIN];
     double level_rfl[PAPER_CHAIN];
     int n = 0;
@@ -172,7 +172,10 @@ static long paper_trace(const glint_scene *s, dvec o, dvec d, double tmin, int l
         double t;
         long k = paper_closest(s, o, d, tmin, INFINITY, &t);
         if (k < 0) break;
-        if (n == 0) first = k;
+        if (n == 0) {
+            first = k;
+            if (t_first) *t_first = t;
+        }
         const sphere *sp = &s->spheres[k];
         const material *m = &s->materials[sp->material];
         bool phong = m->kind == MAT_PHONG;
@@ -193,7 +196,7 @@ static long paper_trace(const glint_scene *s, dvec o, dvec d, double tmin, int l
         tmin = 0.001;
         limit--;
         if (n == PAPER_CHAIN) {
-            paper_trace(s, o, d, tmin, limit, ts, &value);
+            paper_trace(s, o, d, tmin, limit, ts, &value, NULL);
             break;
         }
     }
@@ -218,7 +221,35 @@ static float paper_channel(double colour, double intensity) {
     return (float)byte / 255.0f;
 }
 
-static vec3 paper_sample(const integrator *it, int x, int y, rng *r, thread_stats *ts) {
+// The albedo AOV of material m of albedo `albedo` at a Whitted integrator's first hit: an emitter's normalised
+// emission, any other material's albedo (a mirror's and glass's tint: the Whitted integrators do not look past
+// them), clamped to [0, 1].
+static vec3 whitted_aov_albedo(const material *m, vec3 albedo, vec3 emitted) {
+    return m->kind == MAT_DIFFUSE_LIGHT ? integrator_aov_emitter(emitted) : integrator_aov_albedo(albedo);
+}
+
+// The AOVs of the paper mode's first hit: sphere k (-1: none, the white background) at o + t d.
+static void paper_aov(const glint_scene *s, long k, dvec o, dvec d, double t, film_aov_sample *aov) {
+    aov->normal = v3s(0.0f);
+    aov->depth = INFINITY;
+    if (k < 0) {
+        aov->albedo = v3s(1.0f); // the program's white background
+        return;
+    }
+    const sphere *sp = &s->spheres[k];
+    const material *m = &s->materials[sp->material];
+    aov->albedo = whitted_aov_albedo(m, m->albedo, m->emission);
+    dvec p = dv_add(o, dv_scale(t, d)), q = dv_sub(p, paper_vec(sp->center));
+    double len = dv_norm(q);
+    if (len > 0.0) {
+        // The normal facing the ray, whichever side of the sphere it arrived on.
+        double sign = dv_dot(q, d) > 0.0 ? -1.0 : 1.0;
+        aov->normal = v3((float)(sign * q.x / len), (float)(sign * q.y / len), (float)(sign * q.z / len));
+    }
+    aov->depth = (float)(t * dv_norm(d)); // the ray starts at the eye: the distance from the camera
+}
+
+static vec3 paper_sample(const integrator *it, int x, int y, rng *r, thread_stats *ts, film_aov_sample *aov) {
     const glint_scene *s = it->scene;
     const camera *c = &it->camera;
     float fx, fy;
@@ -240,7 +271,9 @@ static vec3 paper_sample(const integrator *it, int x, int y, rng *r, thread_stat
         tmin = 0.0;
     }
     dvec intensity;
-    long k = paper_trace(s, o, d, tmin, s->settings.max_depth, ts, &intensity);
+    double t_first = 0.0;
+    long k = paper_trace(s, o, d, tmin, s->settings.max_depth, ts, &intensity, &t_first);
+    if (aov) paper_aov(s, k, o, d, t_first, aov);
     if (k < 0) return v3s(1.0f); // the program's background is white
     vec3 albedo = s->materials[s->spheres[k].material].albedo;
     return v3(paper_channel(paper_colour(albedo.x), intensity.x), paper_channel(paper_colour(albedo.y), intensity.y),
@@ -392,25 +425,46 @@ static vec3 color_local(const integrator *it, const material *m, vec3 albedo, co
     return v3_add(v3_mul(albedo, v3_add(ambient, diffuse)), v3_mul(highlight, specular));
 }
 
-// Radiance along r times weight w, with `depth` bounces left. Mirror chains loop; at a glass surface the
-// lighter of the reflected and refracted branches recurses and the heavier loops, so the stack depth stays
-// logarithmic in 1 / MIN_WEIGHT whatever the depth budget.
-static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thread_stats *ts) {
+// Radiance along r times weight w, with `depth` bounces left, and (aov not NULL) the AOVs of r's first hit,
+// its depth measured from r's origin. Mirror chains loop; at a glass surface the lighter of the reflected and
+// refracted branches recurses and the heavier loops, so the stack depth stays logarithmic in 1 / MIN_WEIGHT
+// whatever the depth budget.
+static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thread_stats *ts, film_aov_sample *aov) {
     const glint_scene *s = it->scene;
     vec3 sum = v3s(0.0f);
+    if (aov) {
+        aov->albedo = aov->normal = v3s(0.0f);
+        aov->depth = INFINITY;
+    }
     for (;;) {
         if (v3_max_comp(w) < MIN_WEIGHT) return sum;
         ts->rays++;
         hit h;
         vec3 d = v3_unit(r.r.d);
-        if (!color_intersect(it, &r, &h)) return v3_add(sum, v3_mul(w, scene_background(s, d)));
+        if (!color_intersect(it, &r, &h)) {
+            vec3 bg = scene_background(s, d);
+            if (aov) aov->albedo = integrator_aov_albedo(bg); // the background is the albedo; no normal
+            return v3_add(sum, v3_mul(w, bg));
+        }
         surface sf = surface_at(s, &r.r, &h);
         const material *m = &s->materials[sf.material];
         if (m->kind == MAT_DIFFUSE_LIGHT) {
             vec3 tp = surface_texture_point(s, &sf, m->emission_texture);
-            return v3_add(sum, v3_mul(w, mat_emitted(m, s->textures, sf.front, sf.u, sf.v, tp)));
+            vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, tp);
+            if (aov) {
+                aov->albedo = integrator_aov_emitter(le);
+                aov->normal = sf.n;
+                aov->depth = h.t * v3_len(r.r.d);
+            }
+            return v3_add(sum, v3_mul(w, le));
         }
         vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
+        if (aov) { // the first hit: recorded once, never by the reflected and refracted rays
+            aov->albedo = whitted_aov_albedo(m, albedo, v3s(0.0f));
+            aov->normal = sf.n;
+            aov->depth = h.t * v3_len(r.r.d);
+            aov = NULL;
+        }
         color_origin co = color_origin_of(s, &sf);
         switch (m->kind) {
         case MAT_DIFFUSE_LIGHT: return sum; // handled above
@@ -451,11 +505,11 @@ static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thre
             vec3 w_refl = v3_scale(w, fresnel);
             vec3 w_refr = v3_mul(w, v3_scale(albedo, 1.0f - fresnel));
             if (v3_max_comp(w_refl) < v3_max_comp(w_refr)) {
-                sum = v3_add(sum, color_trace(it, reflected, depth, w_refl, ts));
+                sum = v3_add(sum, color_trace(it, reflected, depth, w_refl, ts, NULL));
                 r = refracted;
                 w = w_refr;
             } else {
-                sum = v3_add(sum, color_trace(it, refracted, depth, w_refr, ts));
+                sum = v3_add(sum, color_trace(it, refracted, depth, w_refr, ts, NULL));
                 r = reflected;
                 w = w_refl;
             }
@@ -466,16 +520,19 @@ static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thre
     }
 }
 
-// Primary ray of a colour-mode sample. The viewport camera maps pixels as the paper does (pixel (x, y) is
-// centred on film point (x, y + 1)), computed in double; the look-at camera is the camera module's.
-static ray color_primary_ray(const integrator *it, int x, int y, rng *r) {
+// Primary ray of a colour-mode sample, and how far its origin lies from the camera (*from_eye). The viewport
+// camera maps pixels as the paper does (pixel (x, y) is centred on film point (x, y + 1)), computed in double,
+// and its rays start on the viewport; the look-at camera is the camera module's, its rays start at the camera.
+static ray color_primary_ray(const integrator *it, int x, int y, rng *r, float *from_eye) {
     const glint_scene *s = it->scene;
     const camera *c = &it->camera;
     float fx, fy;
     whitted_film_point(s, x, y, r, &fx, &fy);
+    *from_eye = 0.0f;
     if (c->kind != CAMERA_VIEWPORT) return camera_ray(c, fx, fy, r);
     double v[3];
     camera_viewport_point(c, (double)fx - 0.5, (double)fy + 0.5, v);
+    *from_eye = (float)sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
     ray out;
     out.o = v3((float)(c->position[0] + v[0]), (float)(c->position[1] + v[1]), (float)(c->position[2] + v[2]));
     out.d = v3_unit(v3((float)v[0], (float)v[1], (float)v[2]));
@@ -486,12 +543,16 @@ static ray color_primary_ray(const integrator *it, int x, int y, rng *r) {
 }
 
 // One sample of pixel (x, y); r is already seeded for exactly this sample.
-static vec3 whitted_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts) {
+static vec3 whitted_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts,
+                           film_aov_sample *aov) {
     (void)sample;
     const glint_scene *s = it->scene;
-    if (s->settings.whitted_mode == WHITTED_PAPER) return paper_sample(it, x, y, r, ts);
-    spawned primary = {color_primary_ray(it, x, y, r), NO_SPHERE};
-    return color_trace(it, primary, s->settings.max_depth, v3s(1.0f), ts);
+    if (s->settings.whitted_mode == WHITTED_PAPER) return paper_sample(it, x, y, r, ts, aov);
+    float from_eye;
+    spawned primary = {color_primary_ray(it, x, y, r, &from_eye), NO_SPHERE};
+    vec3 c = color_trace(it, primary, s->settings.max_depth, v3s(1.0f), ts, aov);
+    if (aov) aov->depth += from_eye; // from the camera, not from the viewport
+    return c;
 }
 
 // A tile pass, sample by sample.

@@ -1,5 +1,6 @@
 // exr_write.h — OpenEXR output through the library's C API (Debian's libopenexr-dev, openexr.h): linear RGB
-// as 32-bit float or 16-bit half channels "R", "G", "B", ZIP-compressed scanlines.
+// as 32-bit float or 16-bit half channels "R", "G", "B", and the image's AOVs as "albedo.R/G/B", "normal.X/Y/Z"
+// and "Z" (always 32-bit), ZIP-compressed scanlines; a region's data window lies inside the full display window.
 #ifndef GLINT_EXR_WRITE_H
 #define GLINT_EXR_WRITE_H
 

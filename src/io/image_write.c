@@ -1,4 +1,5 @@
-// image_write.c — PNG, PPM and PFM output, written to an unnamed temporary file and linked into place.
+// image_write.c — PNG, PPM, PFM, EXR and HDR output (and AOV planes as PFM), written to an unnamed temporary
+// file and linked into place.
 // O_TMPFILE is Linux's: <fcntl.h> declares it only for _GNU_SOURCE (without it, the named fallback is used).
 #define _GNU_SOURCE
 #include "io/image_write.h"
@@ -86,15 +87,16 @@ static int write_ppm_ascii(FILE *f, const glint_image *img) {
     return rc;
 }
 
-// Portable float map: linear RGB floats, little-endian (scale -1.0), rows from the bottom up.
-static int write_pfm(FILE *f, const glint_image *img) {
-    size_t n = (size_t)img->width * 3u;
+// Portable float map of a plane of `channels` (3: "PF", RGB; 1: "Pf", grey) floats a pixel: little-endian
+// (scale -1.0), rows from the bottom up.
+static int write_pfm_plane(FILE *f, const glint_image *img, const float *plane, int channels) {
+    size_t n = (size_t)img->width * (size_t)channels;
     uint8_t *row = malloc(n * 4u);
     if (!row) return ENOMEM;
     errno = 0;
-    int rc = fprintf(f, "PF\n%d %d\n-1.0\n", img->width, img->height) < 0 ? fail_errno() : 0;
+    int rc = fprintf(f, "P%c\n%d %d\n-1.0\n", channels == 1 ? 'f' : 'F', img->width, img->height) < 0 ? fail_errno() : 0;
     for (int y = img->height - 1; y >= 0 && rc == 0; y--) {
-        const float *src = &img->rgb[(size_t)y * n];
+        const float *src = &plane[(size_t)y * n];
         for (size_t i = 0; i < n; i++) {
             uint32_t bits;
             memcpy(&bits, &src[i], sizeof bits);
@@ -106,6 +108,9 @@ static int write_pfm(FILE *f, const glint_image *img) {
     free(row);
     return rc;
 }
+
+// Portable float map of the image's linear RGB.
+static int write_pfm(FILE *f, const glint_image *img) { return write_pfm_plane(f, img, img->rgb, 3); }
 
 // libpng reports errors by longjmp; everything the error path needs lives here, outside the function
 // that calls setjmp, so nothing it reads can be clobbered.
@@ -196,7 +201,9 @@ static int write_hdr(FILE *f, const glint_image *img) {
     return out ? 0 : (errno ? errno : EIO);
 }
 
-static int write_format(FILE *f, const glint_image *img, glint_format format, char *why, size_t why_size) {
+// Writes the image in `format`, or, for aov >= 0 (FILM_AOV_*), that AOV plane as a PFM.
+static int write_format(FILE *f, const glint_image *img, glint_format format, int aov, char *why, size_t why_size) {
+    if (aov >= 0) return write_pfm_plane(f, img, img->aov[aov], film_aov_channels(aov));
     switch (format) {
     case GLINT_FORMAT_PNG: return write_png(f, img, why, why_size);
     case GLINT_FORMAT_PPM_ASCII: return write_ppm_ascii(f, img);
@@ -394,19 +401,17 @@ static int publish_unnamed(int fd, const char *target) {
 
 static glint_status write_stdout(const glint_image *img, glint_format format, glint_error *err) {
     char why[300] = "";
-    int rc = write_format(stdout, img, format, why, sizeof why);
+    int rc = write_format(stdout, img, format, -1, why, sizeof why);
     errno = 0;
     if (rc == 0 && fflush(stdout) != 0) rc = fail_errno();
     return rc == 0 ? GLINT_OK : cannot_write("standard output", rc, why, err);
 }
 
-glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
-    glint_status st = resolve_format(path, format, &format, err);
-    if (st != GLINT_OK) return st;
-    if (strcmp(path, "-") == 0) return write_stdout(img, format, err);
-
+// Writes the image (aov < 0) or one AOV plane (as PFM) to the file path, through a temporary file.
+static glint_status write_file(const glint_image *img, const char *path, glint_format format, int aov,
+                               glint_error *err) {
     char *target = NULL, *tmp = NULL;
-    st = prepare_target(path, &target, err);
+    glint_status st = prepare_target(path, &target, err);
     if (st != GLINT_OK) return st;
     int fd = open_temp(target, &tmp);
     if (fd < 0) {
@@ -421,7 +426,7 @@ glint_status image_write(const glint_image *img, const char *path, glint_format 
         rc = fail_errno();
         close(fd);
     } else {
-        rc = write_format(f, img, format, why, sizeof why);
+        rc = write_format(f, img, format, aov, why, sizeof why);
         errno = 0;
         if (rc == 0 && fflush(f) != 0) rc = fail_errno();
         // On disk before it takes the image's name: a crash leaves the old file or the new one, never half.
@@ -434,6 +439,31 @@ glint_status image_write(const glint_image *img, const char *path, glint_format 
     free(tmp);
     free(target);
     return rc == 0 ? GLINT_OK : cannot_write(path, rc, why, err);
+}
+
+glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
+    glint_status st = resolve_format(path, format, &format, err);
+    if (st != GLINT_OK) return st;
+    if (strcmp(path, "-") == 0) return write_stdout(img, format, err);
+    return write_file(img, path, format, -1, err);
+}
+
+glint_status image_write_aov(const glint_image *img, int aov, const char *path, glint_error *err) {
+    static const char *const names[FILM_AOV_COUNT] = {"albedo", "normal", "depth"};
+    glint_format format;
+    glint_status st = resolve_format(path, GLINT_FORMAT_AUTO, &format, err);
+    if (st != GLINT_OK) return st;
+    if (format != GLINT_FORMAT_PFM || strcmp(path, "-") == 0) {
+        snprintf(err->message, sizeof err->message, "%s: an AOV is written as PFM alone, expected a .pfm file "
+                 "(OpenEXR files hold the AOVs as channels beside the colour)", path);
+        return GLINT_ERR_INPUT;
+    }
+    if (aov < 0 || aov >= FILM_AOV_COUNT || !img->aov[aov]) {
+        snprintf(err->message, sizeof err->message, "%s: the image has no %s AOV, expected a render that asked "
+                 "for it (glint_render_options.aovs)", path, aov >= 0 && aov < FILM_AOV_COUNT ? names[aov] : "such");
+        return GLINT_ERR_INPUT;
+    }
+    return write_file(img, path, format, aov, err);
 }
 
 glint_status image_check_path(const char *path, glint_format format, glint_error *err) {

@@ -10,6 +10,9 @@
 
 /// Writes img to path in the format (GLINT_FORMAT_AUTO: from the extension); "-" writes PPM to standard output.
 glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err);
+/// Writes AOV plane `aov` (FILM_AOV_*) of img to the .pfm file path ("PF" for albedo and normal, "Pf" for depth),
+/// as image_write writes files; GLINT_ERR_INPUT for another extension or an AOV the image lacks.
+glint_status image_write_aov(const glint_image *img, int aov, const char *path, glint_error *err);
 /// Checks before a render that an image can be written at path: GLINT_ERR_INPUT for an unknown extension,
 /// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory or a read-only file.
 glint_status image_check_path(const char *path, glint_format format, glint_error *err);

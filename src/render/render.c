@@ -233,7 +233,7 @@ static int online_cpus(void) {
 }
 
 // Sets up the job's passes, tiles and film over the (checked) region; false when out of memory.
-static bool job_init(render_job *job, const glint_scene *s, const integrator *it, const int region[4]) {
+static bool job_init(render_job *job, const glint_scene *s, const integrator *it, const int region[4], unsigned aovs) {
     const render_settings *rs = &s->settings;
     memset(job, 0, sizeof *job);
     job->scene = s;
@@ -250,7 +250,7 @@ static bool job_init(render_job *job, const glint_scene *s, const integrator *it
     atomic_init(&job->waiters, 0);
     atomic_init(&job->stopping, 0);
     for (int p = 0; p < MAX_PASSES; p++) atomic_init(&job->pass_decision[p], 0);
-    if (!film_init(&job->film, region, rs->width, rs->height, rs->spp, job->pass_count, rs->transform))
+    if (!film_init(&job->film, region, rs->width, rs->height, rs->spp, job->pass_count, rs->transform, aovs))
         return false;
     job->tile_passes = malloc((size_t)job->tile_count * sizeof *job->tile_passes);
     if (!job->tile_passes) {
@@ -303,13 +303,19 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
     int region[4];
     glint_status st = resolve_region(&s->settings, opt, region, err);
     if (st != GLINT_OK) return st;
+    unsigned aovs = opt ? opt->aovs : 0u;
+    if (aovs & ~(unsigned)GLINT_AOV_ALL) {
+        snprintf(err->message, sizeof err->message, "--aov: unknown AOV bits 0x%x, expected GLINT_AOV_ALBEDO, "
+                 "GLINT_AOV_NORMAL or GLINT_AOV_DEPTH", aovs & ~(unsigned)GLINT_AOV_ALL);
+        return GLINT_ERR_INPUT;
+    }
     render_frame frame;
     st = frame_build(&frame, s, opt ? &opt->integrator : NULL, &stop_requested, err);
     if (st == GLINT_ERR_INTERRUPTED) { // stopped while the BVH was built: no sample, a black image
         atomic_store(&stop_requested, 0);
         if (stats) memset(stats, 0, sizeof *stats);
         film f;
-        if (!film_init(&f, region, s->settings.width, s->settings.height, 1, 1, s->settings.transform)) {
+        if (!film_init(&f, region, s->settings.width, s->settings.height, 1, 1, s->settings.transform, aovs)) {
             snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image", region[2] - region[0],
                      region[3] - region[1]);
             return GLINT_ERR_RENDER;
@@ -323,7 +329,7 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
     if (threads > MAX_THREADS) threads = MAX_THREADS;
 
     render_job job;
-    bool job_ready = job_init(&job, s, frame.integrator, region);
+    bool job_ready = job_init(&job, s, frame.integrator, region, aovs);
     if (job_ready && opt && opt->time_limit > 0.0) job.deadline = t_built + opt->time_limit;
     worker *workers = job_ready ? aligned_alloc(64, sizeof(worker) * (size_t)threads) : NULL;
     if (!workers) {

@@ -11,6 +11,7 @@ typedef struct render_options {
     int threads;                   ///< worker threads; 0 = all online CPUs
     double time_limit;             ///< > 0: no sample pass starts after this many seconds of rendering
     int region[4];                 ///< pixels X0 <= x < X1, Y0 <= y < Y1 to render; all zero: the whole image
+    unsigned aovs;                 ///< AOV planes to render beside the colour (glint_aov bits); 0: none
     integrator_options integrator; ///< choices of the integrator that are not in the scene
 } render_options;
 
