@@ -72,6 +72,10 @@ typedef struct glint_overrides {
 /// Sets every field of *o to "not overridden".
 GLINT_API void glint_overrides_init(glint_overrides *o);
 
+/// Receives the image while it is being rendered (glint_render_options.live_image): the image (of the region's
+/// size), the samples per pixel that every pixel has completed, and the fraction of all samples done.
+typedef void (*glint_live_image_fn)(const glint_image *image, int spp_done, double fraction_done, void *user);
+
 /// A value struct: options of one render that are not part of the scene (zero-initialised: the defaults). Every
 /// field is a value field; initialise the whole struct ({0} or memset) so that fields added later stay default.
 typedef struct glint_render_options {
@@ -84,6 +88,14 @@ typedef struct glint_render_options {
     /// image. Each pixel gets exactly the values it has in a full render; the image is the region's size and
     /// remembers where it lies (a PNG of it records that for glint_merge).
     int region[4];
+    /// When not NULL: called from one helper thread of the render (never two calls at once) every 0.2 s or so
+    /// while it runs, and once more after the last sample (or the stop), with the image being made. During the
+    /// render the workers are writing it: a pixel may be read mid-update (its channels from two passes); the last
+    /// call sees the final values. The image may be read (glint_image_info, glint_image_rgb8) only during the
+    /// call, never freed or kept. The time spent in the call is the caller's: keep it short (a preview window
+    /// converts to 8 bits and returns). Rendering itself pays nothing for it.
+    glint_live_image_fn live_image;
+    void *live_user; ///< passed to live_image
 } glint_render_options;
 
 /// A value struct: counters of one render, filled by glint_render.
@@ -166,6 +178,9 @@ GLINT_API glint_status glint_image_check_path(const char *path, glint_format for
 GLINT_API void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb);
 /// The 8-bit, display-encoded pixel (x, y) channel c, exactly as PNG/PPM output stores it.
 GLINT_API uint8_t glint_image_byte(const glint_image *img, int x, int y, int c);
+/// Fills rgb (width * height * 3 bytes, row 0 at the top) with the image's 8-bit, display-encoded values: exactly
+/// glint_image_byte of every pixel and channel, in one pass fast enough for a live preview.
+GLINT_API void glint_image_rgb8(const glint_image *img, uint8_t *rgb);
 /// Frees an image (NULL is allowed).
 GLINT_API void glint_image_free(glint_image *img);
 

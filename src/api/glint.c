@@ -63,7 +63,11 @@ glint_status glint_render(const glint_scene *scene, const glint_render_options *
                           void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
     glint_error scratch;
     render_options ro = {.threads = opt ? opt->threads : 0, .time_limit = opt ? opt->time_limit : 0.0};
-    if (opt) memcpy(ro.region, opt->region, sizeof ro.region);
+    if (opt) {
+        memcpy(ro.region, opt->region, sizeof ro.region);
+        ro.live_image = opt->live_image;
+        ro.live_user = opt->live_user;
+    }
     return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);
 }
 
@@ -88,6 +92,8 @@ void glint_image_info(const glint_image *img, int *width, int *height, const flo
 uint8_t glint_image_byte(const glint_image *img, int x, int y, int c) {
     return film_encode(img->rgb[((size_t)y * (size_t)img->width + (size_t)x) * 3u + (size_t)c], img->transform);
 }
+
+void glint_image_rgb8(const glint_image *img, uint8_t *rgb) { film_encode_image(img, rgb); }
 
 void glint_image_free(glint_image *img) { film_image_free(img); }
 

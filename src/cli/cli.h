@@ -4,6 +4,7 @@
 
 #include "glint.h"
 
+#include <signal.h>
 #include <stdbool.h>
 
 /// Everything the command line asked for.
@@ -16,10 +17,14 @@ typedef struct cli_options {
     long time_limit;        ///< seconds after which no new sample pass starts; 0: none
     int region[4];          ///< --region X0,Y0,X1,Y1; all zero: the whole image
     bool quiet, ascii_ppm, half;
+    bool preview;           ///< --preview: show the image in a window as it converges
 } cli_options;
 
 /// What main does after parsing: render, or exit at once with this code.
 typedef enum cli_action { CLI_RUN = -1, CLI_EXIT_OK = 0, CLI_EXIT_USAGE = 2 } cli_action;
+
+/// Fills *set with the signals that stop a render (SIGINT, SIGTERM, SIGHUP).
+void cli_stop_signals(sigset_t *set);
 
 /// Runs `glint merge OUT PART...` (argv[1] is "merge"): returns the exit status, messages on stderr.
 int cli_merge(int argc, char **argv);
