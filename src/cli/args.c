@@ -115,7 +115,7 @@ static void print_usage(FILE *f) {
             "exit status: 0 success; 1 render, I/O or out-of-memory failure (a read-only output too), or\n"
             "             more than 1 %% of samples dropped; 2 usage or scene error (an output that is one of\n"
             "             the scene's files too); 128 + the signal when stopped by one: 130 SIGINT,\n"
-            "             143 SIGTERM, 129 SIGHUP\n");
+            "             143 SIGTERM, 129 SIGHUP; 130 too when the --preview window stopped it\n");
 }
 
 static void usage_hint(void) { fputs("Try 'glint --help' for more information.\n", stderr); }
