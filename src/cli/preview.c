@@ -109,9 +109,11 @@ static void destroy_window(cli_preview *p) {
 // Opens SDL and the window; false with SDL's reason in *why.
 static bool open_window(cli_preview *p, const char **why) {
     // glint's own handlers keep SIGINT and SIGTERM (the partial image is written); the software renderer draws
-    // one image a few times a second without starting a GPU driver's threads. SDL_RENDER_DRIVER overrides it.
+    // one image a few times a second without loading OpenGL and starting its driver's threads (Mesa's llvmpipe
+    // starts one a core). SDL_RENDER_DRIVER and SDL_FRAMEBUFFER_ACCELERATION override.
     SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
     SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
+    SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0"); // the window's pixels straight to X, not through OpenGL
     if (!start_video(why)) return false;
     int w, h;
     window_size(p->width, p->height, &w, &h);
