@@ -52,7 +52,7 @@ static void test_rgb8_exact(output_transform enc) {
     float *sweep = malloc(n * sizeof *sweep);
     float *near = malloc(256u * SWEEP_STRIDE * 2u * sizeof *near);
     if (!sweep || !near) {
-        CHECK(!"out of memory");
+        CHECK(sweep && near); // out of memory
         free(sweep);
         free(near);
         return;
