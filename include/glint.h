@@ -88,6 +88,9 @@ typedef enum glint_aov {
     GLINT_AOV_DEPTH = 4,
     GLINT_AOV_ALL = 7
 } glint_aov;
+/// Receives the image while it is being rendered (glint_render_options.live_image): the image (of the region's
+/// size), the samples per pixel that every pixel has completed, and the fraction of all samples done.
+typedef void (*glint_live_image_fn)(const glint_image *image, int spp_done, double fraction_done, void *user);
 
 /// A value struct: options of one render that are not part of the scene (zero-initialised: the defaults). Every
 /// field is a value field; initialise the whole struct ({0} or memset) so that fields added later stay default.
@@ -104,6 +107,14 @@ typedef struct glint_render_options {
     /// The AOVs to render beside the colour (glint_aov bits, or-ed); 0: none, and no cost. Other bits are
     /// GLINT_ERR_INPUT. glint_image_write writes them as channels of an OpenEXR file.
     unsigned aovs;
+    /// When not NULL: called from one helper thread of the render (never two calls at once) every 0.2 s or so
+    /// while it runs, and once more after the last sample (or the stop), with the image being made. During the
+    /// render the workers are writing it: a pixel may be read mid-update (its channels from two passes); the last
+    /// call sees the final values. The image may be read (glint_image_info, glint_image_rgb8) only during the
+    /// call, never freed or kept. The time spent in the call is the caller's: keep it short (a preview window
+    /// converts to 8 bits and returns). Rendering itself pays nothing for it.
+    glint_live_image_fn live_image;
+    void *live_user; ///< passed to live_image
 } glint_render_options;
 
 /// A value struct: counters of one render, filled by glint_render.
@@ -199,6 +210,9 @@ GLINT_API uint8_t glint_image_byte(const glint_image *img, int x, int y, int c);
 /// *channels floats a pixel (3 for albedo and normal, 1 for depth), valid until glint_image_free; NULL (and
 /// *channels 0) when the render did not ask for it. channels may be NULL.
 GLINT_API const float *glint_image_aov(const glint_image *img, glint_aov aov, int *channels);
+/// Fills rgb (width * height * 3 bytes, row 0 at the top) with the image's 8-bit, display-encoded values: exactly
+/// glint_image_byte of every pixel and channel, in one pass fast enough for a live preview.
+GLINT_API void glint_image_rgb8(const glint_image *img, uint8_t *rgb);
 /// Frees an image (NULL is allowed).
 GLINT_API void glint_image_free(glint_image *img);
 

@@ -63,7 +63,11 @@ glint_status glint_render(const glint_scene *scene, const glint_render_options *
                           void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
     glint_error scratch;
     render_options ro = {.threads = opt ? opt->threads : 0, .time_limit = opt ? opt->time_limit : 0.0};
-    if (opt) memcpy(ro.region, opt->region, sizeof ro.region);
+    if (opt) {
+        memcpy(ro.region, opt->region, sizeof ro.region);
+        ro.live_image = opt->live_image;
+        ro.live_user = opt->live_user;
+    }
     ro.aovs = opt ? opt->aovs : 0u;
     return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);
 }
@@ -107,6 +111,8 @@ const float *glint_image_aov(const glint_image *img, glint_aov aov, int *channel
     if (channels) *channels = 0;
     return NULL;
 }
+
+void glint_image_rgb8(const glint_image *img, uint8_t *rgb) { film_encode_image(img, rgb); }
 
 void glint_image_free(glint_image *img) { film_image_free(img); }
 

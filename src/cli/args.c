@@ -12,7 +12,7 @@
 
 typedef enum option_id {
     OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_TIME_LIMIT, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED,
-    OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_QUIET, OPT_HELP, OPT_VERSION
+    OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_PREVIEW, OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
 typedef struct option_spec {
@@ -39,6 +39,7 @@ static const option_spec OPTIONS[] = {
     {"output-encoding", 0, true, OPT_OUTPUT_ENCODING, 1, 0},
     {"region", 0, true, OPT_REGION, 1, 0},
     {"aov", 0, true, OPT_AOV, 1, 0},
+    {"preview", 0, false, OPT_PREVIEW, 1, 0},
     {"quiet", 'q', false, OPT_QUIET, 1, 0},
     {"help", 'h', false, OPT_HELP, 1, 0},
     {"version", 'V', false, OPT_VERSION, 1, 0},
@@ -91,6 +92,13 @@ static void print_usage(FILE *f) {
             "                     An .exr output holds them as channels albedo.R/G/B, normal.X/Y/Z and Z; a\n"
             "                     .pfm output NAME.pfm is joined by NAME.albedo.pfm, NAME.normal.pfm and\n"
             "                     NAME.depth.pfm. Other formats: a usage error\n"
+            "      --preview      show the image in a window (SDL2) as it converges, in the output's 8-bit\n"
+            "                     encoding; the title shows the progress and the samples per pixel done.\n"
+            "                     Esc, Q or closing the window stops the render as Ctrl-C does (the\n"
+            "                     partial image is written, exit 130). A finished image is written at once\n"
+            "                     and the window stays open until it is closed or Esc/Q is pressed. With no\n"
+            "                     display (DISPLAY and WAYLAND_DISPLAY unset), or in a glint built without\n"
+            "                     SDL2, it says so and renders without a window\n"
             "  -q, --quiet        no progress bar, statistics line or warnings; errors are still printed\n"
             "  -h, --help         print this help and exit\n"
             "  -V, --version      print the version and exit\n",
@@ -115,7 +123,7 @@ static void print_usage(FILE *f) {
             "exit status: 0 success; 1 render, I/O or out-of-memory failure (a read-only output too), or\n"
             "             more than 1 %% of samples dropped; 2 usage or scene error (an output that is one of\n"
             "             the scene's files too); 128 + the signal when stopped by one: 130 SIGINT,\n"
-            "             143 SIGTERM, 129 SIGHUP\n");
+            "             143 SIGTERM, 129 SIGHUP; 130 too when the --preview window stopped it\n");
 }
 
 static void usage_hint(void) { fputs("Try 'glint --help' for more information.\n", stderr); }
@@ -249,6 +257,7 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
         o->aovs = parse_aovs(value);
         if (!o->aovs) return CLI_EXIT_USAGE;
         break;
+    case OPT_PREVIEW: o->preview = true; break;
     case OPT_QUIET: o->quiet = true; break;
     case OPT_HELP: print_usage(stdout); return CLI_EXIT_OK;
     case OPT_VERSION: printf("glint %s\n", glint_version()); return CLI_EXIT_OK;

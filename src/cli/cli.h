@@ -4,6 +4,7 @@
 
 #include "glint.h"
 
+#include <signal.h>
 #include <stdbool.h>
 
 enum { CLI_AOV_COUNT = 3 }; ///< albedo, normal, depth: the bits of glint_aov, in order
@@ -22,10 +23,14 @@ typedef struct cli_options {
     /// NAME.depth.pfm; "" for the AOVs not asked for and for an .exr output, which holds them as channels.
     char aov_output[CLI_AOV_COUNT][4096];
     bool quiet, ascii_ppm, half;
+    bool preview;           ///< --preview: show the image in a window as it converges
 } cli_options;
 
 /// What main does after parsing: render, or exit at once with this code.
 typedef enum cli_action { CLI_RUN = -1, CLI_EXIT_OK = 0, CLI_EXIT_USAGE = 2 } cli_action;
+
+/// Fills *set with the signals that stop a render (SIGINT, SIGTERM, SIGHUP).
+void cli_stop_signals(sigset_t *set);
 
 /// Runs `glint merge OUT PART...` (argv[1] is "merge"): returns the exit status, messages on stderr.
 int cli_merge(int argc, char **argv);

@@ -2,6 +2,7 @@
 // SIGINT/SIGTERM/SIGHUP stop the render and keep the samples completed so far.
 #include "cli.h"
 #include "glint.h"
+#include "preview.h"
 
 #include <errno.h>
 #include <math.h>
@@ -64,12 +65,23 @@ static void install_signal_handlers(void) {
     for (int i = 0; i < STOP_SIGNAL_COUNT; i++) sigaction(STOP_SIGNALS[i], &sa, NULL);
 }
 
+void cli_stop_signals(sigset_t *set) {
+    sigemptyset(set);
+    for (int i = 0; i < STOP_SIGNAL_COUNT; i++) sigaddset(set, STOP_SIGNALS[i]);
+}
+
 // Holds the stop signals back while a file is being written, so that a rename never races an abort.
 static void block_stop_signals(void) {
     sigset_t set;
-    sigemptyset(&set);
-    for (int i = 0; i < STOP_SIGNAL_COUNT; i++) sigaddset(&set, STOP_SIGNALS[i]);
+    cli_stop_signals(&set);
     pthread_sigmask(SIG_BLOCK, &set, NULL);
+}
+
+// Lets them in again: a preview window waiting after the image was written still ends on Ctrl-C.
+static void unblock_stop_signals(void) {
+    sigset_t set;
+    cli_stop_signals(&set);
+    pthread_sigmask(SIG_UNBLOCK, &set, NULL);
 }
 
 // The conventional status of a program stopped by a signal: 128 + its number (130 for SIGINT).
@@ -139,6 +151,39 @@ static bool output_is_scene(const char *output, const char *scene_path) {
     return found == 0 && S_ISREG(in.st_mode) && in.st_dev == out.st_dev && in.st_ino == out.st_ino;
 }
 
+// One call of glint_render: on the main thread, or on a thread of its own while a preview window has the main one.
+typedef struct render_call {
+    const glint_scene *scene;
+    const glint_render_options *options;
+    glint_progress_fn progress;
+    void *user;
+    glint_image *image;
+    glint_render_stats stats;
+    glint_error err;
+    glint_status status;
+} render_call;
+
+static void render_call_run(void *arg) {
+    render_call *c = arg;
+    c->status = glint_render(c->scene, c->options, c->progress, c->user, &c->image, &c->stats, &c->err);
+}
+
+// The preview window for the image the render will make (NULL when there is none to be had); none for a region
+// the render will refuse, so that its message comes alone.
+static cli_preview *open_preview(const cli_options *opt, const glint_scene *scene) {
+    int w, h;
+    glint_scene_size(scene, &w, &h);
+    const int *r = opt->region;
+    if (r[2] > 0) {
+        if (r[2] > w || r[3] > h) return NULL;
+        w = r[2] - r[0];
+        h = r[3] - r[1];
+    }
+    const char *base = strrchr(opt->scene_path, '/');
+    const char *name = strcmp(opt->scene_path, "-") == 0 ? "standard input" : base ? base + 1 : opt->scene_path;
+    return cli_preview_open(name, w, h, opt->quiet);
+}
+
 int main(int argc, char **argv) {
     if (argc > 1 && strcmp(argv[1], "merge") == 0) return cli_merge(argc, argv);
     cli_options opt;
@@ -200,12 +245,26 @@ int main(int argc, char **argv) {
     glint_render_options ropt = {.threads = opt.threads, .time_limit = (double)opt.time_limit};
     memcpy(ropt.region, opt.region, sizeof ropt.region);
     ropt.aovs = opt.aovs;
-    glint_image *img = NULL;
-    glint_render_stats stats;
-    memset(&stats, 0, sizeof stats);
-    st = glint_render(scene, &ropt, show_progress ? cli_progress_draw : NULL, &bar, &img, &stats, &err);
+    cli_preview *preview = opt.preview ? open_preview(&opt, scene) : NULL;
+    if (preview) {
+        ropt.live_image = cli_preview_live_image;
+        ropt.live_user = preview;
+    }
+    render_call call = {.scene = scene, .options = &ropt, .progress = show_progress ? cli_progress_draw : NULL,
+                        .user = &bar};
+    if (preview) cli_preview_run(preview, render_call_run, &call);
+    else render_call_run(&call);
+    glint_image *img = call.image;
+    glint_render_stats stats = call.stats;
+    err = call.err;
+    st = call.status;
     glint_scene_free(scene);
     cli_progress_clear(&bar);
+    // Only a finished render keeps its window: a stopped one was stopped to end the program.
+    if (st != GLINT_OK) {
+        cli_preview_close(preview);
+        preview = NULL;
+    }
     if (st != GLINT_OK && st != GLINT_ERR_INTERRUPTED) {
         fprintf(stderr, "glint: %s\n", err.message);
         glint_image_free(img);
@@ -244,10 +303,21 @@ int main(int argc, char **argv) {
     st = glint_image_write(img, opt.output, format, &err);
     for (int i = 0; st == GLINT_OK && i < CLI_AOV_COUNT; i++)
         if (opt.aov_output[i][0]) st = glint_image_write_aov(img, (glint_aov)(1u << i), opt.aov_output[i], &err);
-    glint_image_free(img);
     if (st != GLINT_OK) {
         fprintf(stderr, "glint: %s\n", err.message);
+        glint_image_free(img);
+        cli_preview_close(preview);
         return exit_code(st);
     }
+    if (cli_preview_is_open(preview)) { // the image is written; the window stays until the user closes it
+        if (!opt.quiet) fprintf(stderr, "glint: the preview window stays open until it is closed (or Esc)\n");
+        char status[128];
+        snprintf(status, sizeof status, "done, %d spp - Esc closes", stats.spp_done);
+        unblock_stop_signals();
+        cli_preview_hold(preview, img, status, &first_signal);
+    }
+    glint_image_free(img);
+    cli_preview_close(preview);
+    if (atomic_load(&first_signal)) return interrupted_status(); // Ctrl-C while the window waited
     return interrupted ? interrupted_status() : lost ? 1 : 0;
 }

@@ -3,6 +3,7 @@
 
 #include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 glint_image *film_image_new(int width, int height, output_transform encoding) {
     glint_image *img = malloc(sizeof *img);
@@ -63,6 +64,67 @@ float film_decode(uint8_t byte, output_transform encoding) {
     for (int i = 0; i < 64 && film_encode(f, encoding) < byte; i++) f = nextafterf(f, 2.0f);
     for (int i = 0; i < 64 && film_encode(f, encoding) > byte; i++) f = nextafterf(f, -1.0f);
     return f;
+}
+
+// The exact encoder of a whole image. film_encode is non-decreasing in its argument, so the byte of a value in
+// (0, 1) is the number of thresholds at or below it, threshold b being the smallest float that encodes to b or
+// more; positive floats compare as their bits do. A value starts from the byte of the first float of its bucket
+// (2^16 consecutive floats) and rarely passes more than one threshold from there: no powf per value.
+enum {
+    ENCODE_ONE_BITS = 0x3F800000,                     // the bits of 1.0f: from there on every value encodes to 255
+    ENCODE_BUCKET_SHIFT = 16,
+    ENCODE_BUCKETS = ENCODE_ONE_BITS >> ENCODE_BUCKET_SHIFT,
+};
+typedef struct encode_table {
+    uint32_t threshold[257];        ///< bits of the smallest float encoding to >= b; [256] lies past every float
+    uint8_t bucket[ENCODE_BUCKETS]; ///< the byte of the float whose bits are k << ENCODE_BUCKET_SHIFT
+} encode_table;
+
+static uint32_t float_bits(float v) {
+    uint32_t u;
+    memcpy(&u, &v, sizeof u);
+    return u;
+}
+
+static float bits_float(uint32_t u) {
+    float v;
+    memcpy(&v, &u, sizeof v);
+    return v;
+}
+
+static void encode_table_build(encode_table *t, output_transform encoding) {
+    t->threshold[0] = 0;
+    for (unsigned b = 1; b < 256; b++) { // bisection: 30 film_encode calls a byte
+        uint32_t lo = t->threshold[b - 1], hi = ENCODE_ONE_BITS; // film_encode(1.0f) is 255
+        while (lo < hi) {
+            uint32_t mid = lo + (hi - lo) / 2;
+            if (film_encode(bits_float(mid), encoding) >= b) hi = mid;
+            else lo = mid + 1;
+        }
+        t->threshold[b] = lo;
+    }
+    t->threshold[256] = UINT32_MAX;
+    unsigned b = 0;
+    for (uint32_t k = 0; k < ENCODE_BUCKETS; k++) {
+        while (t->threshold[b + 1] <= k << ENCODE_BUCKET_SHIFT) b++;
+        t->bucket[k] = (uint8_t)b;
+    }
+}
+
+static uint8_t encode_with(const encode_table *t, float v) {
+    if (!(v > 0.0f)) return 0; // as film_encode: NaN is black too
+    uint32_t u = float_bits(v);
+    if (u >= ENCODE_ONE_BITS) return 255;
+    unsigned b = t->bucket[u >> ENCODE_BUCKET_SHIFT];
+    while (u >= t->threshold[b + 1]) b++;
+    return (uint8_t)b;
+}
+
+void film_encode_image(const glint_image *img, uint8_t *out) {
+    encode_table t;
+    encode_table_build(&t, img->transform);
+    size_t n = (size_t)img->width * (size_t)img->height * 3u;
+    for (size_t i = 0; i < n; i++) out[i] = encode_with(&t, img->rgb[i]);
 }
 
 bool film_init(film *f, const int region[4], int full_width, int full_height, int spp, int passes,

@@ -44,6 +44,9 @@ void film_image_free(glint_image *img);
 
 /// Display encoding of one linear value: transform, clamp to [0,1], round to nearest of 0..255.
 uint8_t film_encode(float linear, output_transform encoding);
+/// The whole image display-encoded into out (width * height * 3 bytes): film_encode of every value, exactly,
+/// through a table of the 255 values where the byte changes (fast enough for a live preview).
+void film_encode_image(const glint_image *img, uint8_t *out);
 /// A linear value that film_encode turns into exactly `byte` under `encoding` (decoding 8-bit images).
 float film_decode(uint8_t byte, output_transform encoding);
 

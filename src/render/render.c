@@ -69,8 +69,10 @@ typedef struct progress_state {
     render_job *job;
     worker *workers;
     int worker_count;
-    glint_progress_fn fn;
+    glint_progress_fn fn;          ///< may be NULL
     void *user;
+    glint_live_image_fn live_image; ///< may be NULL
+    void *live_user;
     bool finished;
     pthread_mutex_t lock;
     pthread_cond_t wake;
@@ -182,6 +184,16 @@ static uint64_t samples_so_far(const progress_state *p) {
     return n;
 }
 
+// Samples per pixel that every pixel has completed: those of the passes every tile has finished.
+static int spp_completed(const render_job *job) {
+    int passes = job->pass_count;
+    for (int i = 0; i < job->tile_count && passes > 0; i++) {
+        int p = atomic_load_explicit(&job->tile_passes[i], memory_order_relaxed);
+        if (p < passes) passes = p;
+    }
+    return job->pass_start[passes];
+}
+
 static void *progress_main(void *arg) {
     progress_state *p = arg;
     struct timespec next;
@@ -195,7 +207,9 @@ static void *progress_main(void *arg) {
         if (p->finished) break;
         // Call out without the lock: a slow terminal must not hold up the end of the render.
         pthread_mutex_unlock(&p->lock);
-        p->fn((double)samples_so_far(p) / (double)p->job->total_samples, p->user);
+        double fraction = (double)samples_so_far(p) / (double)p->job->total_samples;
+        if (p->fn) p->fn(fraction, p->user);
+        if (p->live_image) p->live_image(p->job->film.image, spp_completed(p->job), fraction, p->live_user);
         pthread_mutex_lock(&p->lock);
     }
     pthread_mutex_unlock(&p->lock);
@@ -345,9 +359,11 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
         atomic_init(&workers[i].samples_done, 0);
     }
 
-    progress_state prog = {.job = &job, .workers = workers, .worker_count = threads, .fn = progress, .user = user};
+    glint_live_image_fn live_image = opt ? opt->live_image : NULL;
+    progress_state prog = {.job = &job, .workers = workers, .worker_count = threads, .fn = progress, .user = user,
+                           .live_image = live_image, .live_user = opt ? opt->live_user : NULL};
     pthread_t prog_thread;
-    bool prog_running = progress && progress_start(&prog, &prog_thread);
+    bool prog_running = (progress || live_image) && progress_start(&prog, &prog_thread);
 
     int started = 0; // worker threads 1..started run; the calling thread is worker 0
     for (int i = 1; i < threads; i++) {
@@ -365,7 +381,10 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
         total.discarded_samples += workers[i].stats.discarded_samples;
         total.samples += workers[i].stats.samples;
     }
-    if (progress) progress((double)total.samples / (double)job.total_samples, user);
+    double fraction_done = (double)total.samples / (double)job.total_samples;
+    if (progress) progress(fraction_done, user);
+    // Every worker has stopped: this call sees the image as it will be returned.
+    if (live_image) live_image(job.film.image, spp_completed(&job), fraction_done, opt->live_user);
     if (stats) {
         memset(stats, 0, sizeof *stats);
         stats->rays = total.rays;

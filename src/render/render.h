@@ -12,6 +12,8 @@ typedef struct render_options {
     double time_limit;             ///< > 0: no sample pass starts after this many seconds of rendering
     int region[4];                 ///< pixels X0 <= x < X1, Y0 <= y < Y1 to render; all zero: the whole image
     unsigned aovs;                 ///< AOV planes to render beside the colour (glint_aov bits); 0: none
+    glint_live_image_fn live_image; ///< hears the image being made a few times a second and at the end (NULL: none)
+    void *live_user;
     integrator_options integrator; ///< choices of the integrator that are not in the scene
 } render_options;
 
