@@ -84,6 +84,17 @@ typedef struct glint_render_options {
     /// image. Each pixel gets exactly the values it has in a full render; the image is the region's size and
     /// remembers where it lies (a PNG of it records that for glint_merge).
     int region[4];
+    /// Not NULL: a checkpoint file, written (atomically, as images are) after every sample pass and when the
+    /// render ends, completed, stopped or out of time: every pixel's count of samples and their sums, and what
+    /// render they belong to (the bytes of the scene's files, the settings, the region). Rendering pauses while
+    /// it is written; a write that fails ends the render with GLINT_ERR_RENDER.
+    const char *checkpoint;
+    /// Not NULL: a checkpoint file this render continues; the image is exactly that of an uninterrupted render
+    /// (byte for byte, for any thread count). The scene's files and settings must be those it was made with,
+    /// spp excepted (it may grow, or stay as long as no pixel has more samples): GLINT_ERR_INPUT otherwise, the
+    /// message naming the file and what differs, and for a file that is no checkpoint, truncated or corrupt.
+    /// It may be the same file as checkpoint.
+    const char *resume;
 } glint_render_options;
 
 /// A value struct: counters of one render, filled by glint_render.
@@ -91,10 +102,11 @@ typedef struct glint_render_stats {
     double wall_seconds, build_seconds;
     double render_seconds; ///< the render loop alone: wall_seconds less the preparation (BVH build)
     uint64_t samples, rays, shadow_rays, discarded_samples;
+    uint64_t samples_resumed; ///< samples the resumed checkpoint held (not in `samples`, which this render took)
     uint64_t bvh_nodes, bvh_leaves, bvh_depth;
     int threads;
     int spp;      ///< samples per pixel the scene asked for
-    int spp_done; ///< samples per pixel every pixel received (spp, or fewer under a time limit; 0 if stopped)
+    int spp_done; ///< samples per pixel every pixel has (spp, or fewer under a time limit; 0 if stopped)
 } glint_render_stats;
 
 /// Called from one thread at a time with the fraction of work done, a few times a second at most.

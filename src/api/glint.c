@@ -63,7 +63,11 @@ glint_status glint_render(const glint_scene *scene, const glint_render_options *
                           void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
     glint_error scratch;
     render_options ro = {.threads = opt ? opt->threads : 0, .time_limit = opt ? opt->time_limit : 0.0};
-    if (opt) memcpy(ro.region, opt->region, sizeof ro.region);
+    if (opt) {
+        memcpy(ro.region, opt->region, sizeof ro.region);
+        ro.checkpoint = opt->checkpoint;
+        ro.resume = opt->resume;
+    }
     return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);
 }
 

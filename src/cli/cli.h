@@ -15,6 +15,8 @@ typedef struct cli_options {
     int threads;            ///< 0 = all online CPUs
     long time_limit;        ///< seconds after which no new sample pass starts; 0: none
     int region[4];          ///< --region X0,Y0,X1,Y1; all zero: the whole image
+    const char *checkpoint; ///< --checkpoint FILE (the --resume file when only that is given), or NULL
+    const char *resume;     ///< --resume FILE, or NULL
     bool quiet, ascii_ppm, half;
 } cli_options;
 
