@@ -300,17 +300,17 @@ static glint_status read_checkpoint(reader *r, const checkpoint_identity *id, ch
         return GLINT_ERR_INPUT;
     }
 
-    // Only now the render is compared: the scene first, then each setting by name.
+    // Only now the render is compared: each setting by name, then the scene's files.
     char was[96], is[96];
+    if (first_difference(&hd, id, was, is, sizeof was)) {
+        snprintf(r->err->message, sizeof r->err->message, "%s: checkpoint of another render: it was made for %.300s with "
+                 "%s, this render has %s; only --spp may change on resuming", r->path, name, was, is);
+        return GLINT_ERR_INPUT;
+    }
     if (hd.scene_hash != id->scene_hash) {
         snprintf(r->err->message, sizeof r->err->message, "%s: checkpoint of another scene: it was made for %.300s, "
                  "and this render's scene %s or a file it reads (mesh, material library, texture, environment map) "
                  "is not the same", r->path, name, id->scene_name);
-        return GLINT_ERR_INPUT;
-    }
-    if (first_difference(&hd, id, was, is, sizeof was)) {
-        snprintf(r->err->message, sizeof r->err->message, "%s: checkpoint of another render: it was made for %.300s with "
-                 "%s, this render has %s; only --spp may change on resuming", r->path, name, was, is);
         return GLINT_ERR_INPUT;
     }
     for (size_t i = 0; i < plane_count; i++) {
