@@ -91,7 +91,7 @@ typedef struct glint_render_options {
     const char *checkpoint;
     /// Not NULL: a checkpoint file this render continues; the image is exactly that of an uninterrupted render
     /// (byte for byte, for any thread count). The scene's files and settings must be those it was made with,
-    /// spp excepted (it may grow, or stay as long as no pixel has more samples): GLINT_ERR_INPUT otherwise, the
+    /// spp excepted (it may change, to no fewer than the samples a pixel of it has): GLINT_ERR_INPUT otherwise, the
     /// message naming the file and what differs, and for a file that is no checkpoint, truncated or corrupt.
     /// It may be the same file as checkpoint.
     const char *resume;
