@@ -421,7 +421,7 @@ static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *
         return GLINT_ERR_RENDER;
     }
     job->checkpoint = opt->checkpoint;
-    job->gated = true;
+    job->gated = opt->checkpoint != NULL; // a pass waits for the previous one only to be written
     if (!opt->resume) return GLINT_OK;
     checkpoint_plane planes[] = {{"count", CHECKPOINT_U32, 1, job->counts}, {"rgb", CHECKPOINT_F64, 3, job->film.sums}};
     int made_for = 0;
