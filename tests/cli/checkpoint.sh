@@ -88,4 +88,7 @@ expect 1 "glint: $TMP/missing/a.ckp: cannot write: No such file or directory" \
     -q "$SCENE" --checkpoint "$TMP/missing/a.ckp" -o "$TMP/x.png"
 check "nothing written for refused checkpoints" test ! -e "$TMP/x.png"
 
+run --help
+check "--help documents --checkpoint and --resume" grep -q -- '--checkpoint FILE.*--resume FILE' <(tr '\n' ' ' <"$TMP/out")
+
 summary
