@@ -115,6 +115,17 @@ typedef struct glint_render_options {
     /// converts to 8 bits and returns). Rendering itself pays nothing for it.
     glint_live_image_fn live_image;
     void *live_user; ///< passed to live_image
+    /// Not NULL: a checkpoint file, written (atomically, as images are) after every sample pass and when the
+    /// render ends, completed, stopped or out of time: every pixel's count of samples and their sums, and what
+    /// render they belong to (the bytes of the scene's files, the settings, the region). Rendering pauses while
+    /// it is written; a write that fails ends the render with GLINT_ERR_RENDER.
+    const char *checkpoint;
+    /// Not NULL: a checkpoint file this render continues; the image is exactly that of an uninterrupted render
+    /// (byte for byte, for any thread count). The scene's files and settings must be those it was made with,
+    /// spp excepted (it may change, to no fewer than the samples a pixel of it has): GLINT_ERR_INPUT otherwise, the
+    /// message naming the file and what differs, and for a file that is no checkpoint, truncated or corrupt.
+    /// It may be the same file as checkpoint.
+    const char *resume;
 } glint_render_options;
 
 /// A value struct: counters of one render, filled by glint_render.
@@ -122,10 +133,11 @@ typedef struct glint_render_stats {
     double wall_seconds, build_seconds;
     double render_seconds; ///< the render loop alone: wall_seconds less the preparation (BVH build)
     uint64_t samples, rays, shadow_rays, discarded_samples;
+    uint64_t samples_resumed; ///< samples the resumed checkpoint held (not in `samples`, which this render took)
     uint64_t bvh_nodes, bvh_leaves, bvh_depth;
     int threads;
     int spp;      ///< samples per pixel the scene asked for
-    int spp_done; ///< samples per pixel every pixel received (spp, or fewer under a time limit; 0 if stopped)
+    int spp_done; ///< samples per pixel every pixel has (spp, or fewer under a time limit; 0 if stopped)
 } glint_render_stats;
 
 /// Called from one thread at a time with the fraction of work done, a few times a second at most.

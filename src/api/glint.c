@@ -67,6 +67,8 @@ glint_status glint_render(const glint_scene *scene, const glint_render_options *
         memcpy(ro.region, opt->region, sizeof ro.region);
         ro.live_image = opt->live_image;
         ro.live_user = opt->live_user;
+        ro.checkpoint = opt->checkpoint;
+        ro.resume = opt->resume;
     }
     ro.aovs = opt ? opt->aovs : 0u;
     return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);

@@ -12,7 +12,8 @@
 
 typedef enum option_id {
     OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_TIME_LIMIT, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED,
-    OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_PREVIEW, OPT_QUIET, OPT_HELP, OPT_VERSION
+    OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_PREVIEW, OPT_CHECKPOINT, OPT_RESUME,
+    OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
 typedef struct option_spec {
@@ -40,6 +41,8 @@ static const option_spec OPTIONS[] = {
     {"region", 0, true, OPT_REGION, 1, 0},
     {"aov", 0, true, OPT_AOV, 1, 0},
     {"preview", 0, false, OPT_PREVIEW, 1, 0},
+    {"checkpoint", 0, true, OPT_CHECKPOINT, 1, 0},
+    {"resume", 0, true, OPT_RESUME, 1, 0},
     {"quiet", 'q', false, OPT_QUIET, 1, 0},
     {"help", 'h', false, OPT_HELP, 1, 0},
     {"version", 'V', false, OPT_VERSION, 1, 0},
@@ -84,7 +87,10 @@ static void print_usage(FILE *f) {
             "      --region X0,Y0,X1,Y1\n"
             "                     render only the pixels X0 <= x < X1, Y0 <= y < Y1, each exactly as in the\n"
             "                     full image; the image written is (X1-X0)x(Y1-Y0), and a PNG records where\n"
-            "                     it lies (a glint:region text chunk) for glint merge\n"
+            "                     it lies (a glint:region text chunk) for glint merge\n",
+            cpus > 0 ? cpus : 1);
+    // In parts: ISO C promises string literals of 4095 bytes, no more.
+    fprintf(f,
             "      --aov LIST     also render AOVs, a comma-separated list of albedo, normal and depth: the\n"
             "                     albedo and world-space normal of the first diffuse or glossy surface seen\n"
             "                     and the camera distance of the first hit, each the mean over the pixel's\n"
@@ -99,11 +105,15 @@ static void print_usage(FILE *f) {
             "                     and the window stays open until it is closed or Esc/Q is pressed. With no\n"
             "                     display (DISPLAY and WAYLAND_DISPLAY unset), or in a glint built without\n"
             "                     SDL2, it says so and renders without a window\n"
+            "      --checkpoint FILE  keep the render's state in FILE: every pixel's samples so far, written\n"
+            "                     after each sample pass and when the render ends (Ctrl-C, time limit or done)\n"
+            "      --resume FILE  continue the render kept in FILE (and keep checkpointing to it, unless\n"
+            "                     --checkpoint names another file): the image is exactly that of an\n"
+            "                     uninterrupted render. --spp may grow; the scene's files and every other\n"
+            "                     setting must be those of the checkpoint, or it is refused (status 2)\n"
             "  -q, --quiet        no progress bar, statistics line or warnings; errors are still printed\n"
             "  -h, --help         print this help and exit\n"
-            "  -V, --version      print the version and exit\n",
-            cpus > 0 ? cpus : 1);
-    // In two parts: ISO C promises string literals of 4095 bytes, no more.
+            "  -V, --version      print the version and exit\n");
     fprintf(f,
             "\n"
             "Short options combine (-qo out.png). Unless --quiet, a progress bar (percentage, elapsed time,\n"
@@ -258,6 +268,15 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
         if (!o->aovs) return CLI_EXIT_USAGE;
         break;
     case OPT_PREVIEW: o->preview = true; break;
+    case OPT_CHECKPOINT:
+    case OPT_RESUME:
+        if (value[0] == '\0') {
+            fprintf(stderr, "glint: --%s: empty file name, expected a checkpoint file name\n", spec->long_name);
+            return CLI_EXIT_USAGE;
+        }
+        if (spec->id == OPT_CHECKPOINT) o->checkpoint = value;
+        else o->resume = value;
+        break;
     case OPT_QUIET: o->quiet = true; break;
     case OPT_HELP: print_usage(stdout); return CLI_EXIT_OK;
     case OPT_VERSION: printf("glint %s\n", glint_version()); return CLI_EXIT_OK;
@@ -329,6 +348,7 @@ cli_action cli_parse(int argc, char **argv, cli_options *o) {
         return CLI_EXIT_USAGE;
     }
     if (!o->output) set_default_output(o);
+    if (o->resume && !o->checkpoint) o->checkpoint = o->resume; // a resumed render stays resumable
     if (o->ascii_ppm && !is_ppm_path(o->output)) {
         fprintf(stderr, "glint: --ascii-ppm: the output '%s' is not a .ppm file (or -)\n", o->output);
         return CLI_EXIT_USAGE;

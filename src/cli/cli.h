@@ -22,6 +22,8 @@ typedef struct cli_options {
     /// With a .pfm output and --aov: the file of AOV i (bit 1 << i): NAME.albedo.pfm, NAME.normal.pfm,
     /// NAME.depth.pfm; "" for the AOVs not asked for and for an .exr output, which holds them as channels.
     char aov_output[CLI_AOV_COUNT][4096];
+    const char *checkpoint; ///< --checkpoint FILE (the --resume file when only that is given), or NULL
+    const char *resume;     ///< --resume FILE, or NULL
     bool quiet, ascii_ppm, half;
     bool preview;           ///< --preview: show the image in a window as it converges
 } cli_options;

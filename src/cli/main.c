@@ -184,6 +184,13 @@ static cli_preview *open_preview(const cli_options *opt, const glint_scene *scen
     return cli_preview_open(name, w, h, opt->quiet);
 }
 
+// Whether two paths name one file: the same name, or the same file by device and inode.
+static bool same_file(const char *a, const char *b) {
+    struct stat sa, sb;
+    if (strcmp(a, b) == 0) return true;
+    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
+}
+
 int main(int argc, char **argv) {
     if (argc > 1 && strcmp(argv[1], "merge") == 0) return cli_merge(argc, argv);
     cli_options opt;
@@ -209,6 +216,11 @@ int main(int argc, char **argv) {
             return exit_code(GLINT_ERR_INPUT);
         }
     }
+    if (opt.checkpoint && (same_file(opt.checkpoint, opt.output) || output_is_scene(opt.checkpoint, opt.scene_path))) {
+        fprintf(stderr, "glint: --checkpoint: %s: cannot write: it is the %s, which would be lost\n", opt.checkpoint,
+                same_file(opt.checkpoint, opt.output) ? "output image" : "scene file");
+        return exit_code(GLINT_ERR_INPUT);
+    }
     glint_status st;
 
     quiet_signals = opt.quiet;
@@ -231,6 +243,12 @@ int main(int argc, char **argv) {
             glint_scene_free(scene);
             return exit_code(GLINT_ERR_INPUT);
         }
+    if (opt.checkpoint && glint_scene_reads_file(scene, opt.checkpoint)) {
+        fprintf(stderr, "glint: --checkpoint: %s: cannot write: the scene reads it (a mesh, texture or environment "
+                        "map), which would be lost\n", opt.checkpoint);
+        glint_scene_free(scene);
+        return exit_code(GLINT_ERR_INPUT);
+    }
     // The library never prints: what it worked around in mesh files is reported here, unless --quiet.
     for (size_t i = 0; !opt.quiet && i < glint_scene_warning_count(scene); i++)
         fprintf(stderr, "glint: %s\n", glint_scene_warning(scene, i));
@@ -245,6 +263,8 @@ int main(int argc, char **argv) {
     glint_render_options ropt = {.threads = opt.threads, .time_limit = (double)opt.time_limit};
     memcpy(ropt.region, opt.region, sizeof ropt.region);
     ropt.aovs = opt.aovs;
+    ropt.checkpoint = opt.checkpoint;
+    ropt.resume = opt.resume;
     cli_preview *preview = opt.preview ? open_preview(&opt, scene) : NULL;
     if (preview) {
         ropt.live_image = cli_preview_live_image;
@@ -271,14 +291,15 @@ int main(int argc, char **argv) {
         return exit_code(st);
     }
     bool interrupted = st == GLINT_ERR_INTERRUPTED;
-    if (!opt.quiet) cli_print_stats(&stats, interrupted && stats.samples == 0 ? NULL : opt.output);
+    uint64_t samples_kept = stats.samples + stats.samples_resumed; // a resumed render keeps what it resumed
+    if (!opt.quiet) cli_print_stats(&stats, interrupted && samples_kept == 0 ? NULL : opt.output);
     // A render that lost more than a small share of its samples is wrong, but its image is still written.
     bool lost = cli_warn_discarded(&stats);
     if (st == GLINT_OK && stats.spp_done < stats.spp && !opt.quiet)
         fprintf(stderr, "glint: time limit of %ld s reached: %d of %d samples per pixel rendered\n", opt.time_limit,
                 stats.spp_done, stats.spp);
 
-    if (interrupted && stats.samples == 0) {
+    if (interrupted && samples_kept == 0) {
         if (!opt.quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
         glint_image_free(img);
         return interrupted_status();
@@ -289,7 +310,7 @@ int main(int argc, char **argv) {
         glint_image_info(img, &w, &h, &rgb);
         // The mean to one decimal when it is a whole number; else to as many digits as it takes not to look
         // whole (255 of 256 pixels done: 0.996, not 1.0).
-        unsigned long long pixels = (unsigned long long)w * (unsigned long long)h, done = stats.samples;
+        unsigned long long pixels = (unsigned long long)w * (unsigned long long)h, done = samples_kept;
         double mean = (double)done / (double)pixels;
         char shown[32];
         int digits = 1;

@@ -134,6 +134,7 @@ bool film_init(film *f, const int region[4], int full_width, int full_height, in
     f->sums = NULL;
     f->aov_sums = NULL;
     f->aovs = aovs & ((1u << FILM_AOV_COUNT) - 1u);
+    f->keep_all_sums = false;
     f->x0 = region[0];
     f->y0 = region[1];
     f->image = film_image_new(width, height, encoding);
@@ -169,6 +170,21 @@ void film_store_aov_pixel(film *f, size_t pixel, const double sum[FILM_AOV_STRID
         double hits = sum[FILM_AOV_SUM_HITS];
         plane[FILM_AOV_DEPTH][pixel] = hits > 0.0 ? (float)(sum[FILM_AOV_SUM_DEPTH] / hits) : INFINITY;
     }
+}
+
+bool film_keep_all_sums(film *f) {
+    f->keep_all_sums = true;
+    size_t n = (size_t)f->image->width * (size_t)f->image->height * 3u;
+    // Zeroed: a checkpoint written before every pixel had a pass holds defined bytes for them.
+    if (f->sums) memset(f->sums, 0, n * sizeof *f->sums);
+    else f->sums = calloc(n, sizeof *f->sums);
+    return f->sums != NULL;
+}
+
+void film_restore_means(film *f, const uint32_t *counts) {
+    size_t n = (size_t)f->image->width * (size_t)f->image->height;
+    for (size_t i = 0; i < n; i++)
+        if (counts[i] > 0) film_store_mean(f, i, &f->sums[i * 3u], (int)counts[i]);
 }
 
 glint_image *film_take_image(film *f) {

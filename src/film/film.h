@@ -73,6 +73,7 @@ typedef struct film {
     double *aov_sums; ///< FILM_AOV_STRIDE doubles a pixel, as sums; NULL without AOVs or with a single pass
     unsigned aovs;    ///< the AOVs kept (glint_aov bits); 0: none, and no AOV work at all
     int spp;          ///< samples per pixel of the whole render
+    bool keep_all_sums; ///< the last pass stores its sums too (for a checkpoint), not only the earlier ones
     int x0, y0;       ///< the image's origin in full-image pixels: tiles are given in full-image coordinates
 } film;
 
@@ -81,6 +82,12 @@ typedef struct film {
 /// then empty).
 bool film_init(film *f, const int region[4], int full_width, int full_height, int spp, int passes,
                output_transform encoding, unsigned aovs);
+/// Makes the film keep every pixel's sums after every pass, the last included, as a checkpoint needs them;
+/// false when out of memory for them.
+bool film_keep_all_sums(film *f);
+/// Sets the image to the mean of each pixel's counts[i] samples whose sums the film holds (a resumed
+/// render: exactly what the passes that took them stored); pixels of no sample stay black.
+void film_restore_means(film *f, const uint32_t *counts);
 /// Hands the image over to the caller; the film no longer owns it.
 glint_image *film_take_image(film *f);
 /// Frees what the film still owns.
@@ -105,18 +112,22 @@ typedef struct film_tile {
 void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *stats,
                      _Atomic uint64_t *progress);
 
+/// Stores in the image the mean of a pixel's k > 0 samples whose sum is `sum`.
+static inline void film_store_mean(film *f, size_t pixel, const double sum[3], int k) {
+    float *px = &f->image->rgb[pixel * 3u];
+    double inv = 1.0 / k; // one division for the three channels, at every pass of every pixel
+    for (int c = 0; c < 3; c++) px[c] = (float)(sum[c] * inv);
+}
+
 /// Stores a pixel's AOV state after its samples [0, k): running sums, and means in the image's planes.
 void film_store_aov_pixel(film *f, size_t pixel, const double sum[FILM_AOV_STRIDE], int k, int k1);
 
 /// Stores a pixel's state after its samples [0, k) (k1: the end of this pass): its running sum for the next
-/// pass, and the mean of its samples so far in the image; the same for the AOV sums (t's) when the film keeps them.
+/// pass (after the last one too when a checkpoint keeps them), and the mean of its samples so far in the image;
+/// the same for the AOV sums (t's) when the film keeps them.
 static inline void film_store_pixel(film *f, size_t pixel, const double sum[3], const double *aov_sum, int k, int k1) {
-    if (f->sums && k1 < f->spp) memcpy(&f->sums[pixel * 3u], sum, 3 * sizeof *sum);
-    if (k > 0) {
-        float *px = &f->image->rgb[pixel * 3u];
-        double inv = 1.0 / k; // one division for the three channels, at every pass of every pixel
-        for (int c = 0; c < 3; c++) px[c] = (float)(sum[c] * inv);
-    }
+    if (f->sums && (k1 < f->spp || f->keep_all_sums)) memcpy(&f->sums[pixel * 3u], sum, 3 * sizeof *sum);
+    if (k > 0) film_store_mean(f, pixel, sum, k);
     if (f->aovs) film_store_aov_pixel(f, pixel, aov_sum, k, k1); // once a pixel and pass: no cost per sample
 }
 

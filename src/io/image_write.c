@@ -407,9 +407,26 @@ static glint_status write_stdout(const glint_image *img, glint_format format, gl
     return rc == 0 ? GLINT_OK : cannot_write("standard output", rc, why, err);
 }
 
-// Writes the image (aov < 0) or one AOV plane (as PFM) to the file path, through a temporary file.
+// The writer of the image (aov < 0) or of one AOV plane (as PFM) in one format, for image_write_file.
+typedef struct image_job {
+    const glint_image *img;
+    glint_format format;
+    int aov;
+} image_job;
+
+static int write_image_job(FILE *f, const void *user, char *why, size_t why_size) {
+    const image_job *job = user;
+    return write_format(f, job->img, job->format, job->aov, why, why_size);
+}
+
+// Writes the image (aov < 0) or one AOV plane to the file path, through a temporary file.
 static glint_status write_file(const glint_image *img, const char *path, glint_format format, int aov,
                                glint_error *err) {
+    image_job job = {img, format, aov};
+    return image_write_file(path, write_image_job, &job, err);
+}
+
+glint_status image_write_file(const char *path, image_file_writer fill, const void *user, glint_error *err) {
     char *target = NULL, *tmp = NULL;
     glint_status st = prepare_target(path, &target, err);
     if (st != GLINT_OK) return st;
@@ -426,7 +443,7 @@ static glint_status write_file(const glint_image *img, const char *path, glint_f
         rc = fail_errno();
         close(fd);
     } else {
-        rc = write_format(f, img, format, aov, why, sizeof why);
+        rc = fill(f, user, why, sizeof why);
         errno = 0;
         if (rc == 0 && fflush(f) != 0) rc = fail_errno();
         // On disk before it takes the image's name: a crash leaves the old file or the new one, never half.
@@ -469,10 +486,14 @@ glint_status image_write_aov(const glint_image *img, int aov, const char *path, 
 glint_status image_check_path(const char *path, glint_format format, glint_error *err) {
     glint_status st = resolve_format(path, format, &format, err);
     if (st != GLINT_OK || strcmp(path, "-") == 0) return st;
+    return image_check_file(path, err);
+}
+
+glint_status image_check_file(const char *path, glint_error *err) {
     char *target = NULL, *tmp = NULL;
-    st = prepare_target(path, &target, err);
+    glint_status st = prepare_target(path, &target, err);
     if (st != GLINT_OK) return st;
-    // Create and remove a temporary file exactly where the image will go: the one test that sees every reason.
+    // Create and remove a temporary file exactly where the file will go: the one test that sees every reason.
     int fd = open_temp(target, &tmp);
     int e = errno;
     if (fd >= 0) {

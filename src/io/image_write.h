@@ -5,6 +5,9 @@
 
 #include "glint.h"
 
+#include <stddef.h>
+#include <stdio.h>
+
 /// The PNG tEXt keyword under which a region's image records "X0,Y0,X1,Y1,W,H" (W x H: the full image).
 #define IMAGE_REGION_KEY "glint:region"
 
@@ -16,5 +19,14 @@ glint_status image_write_aov(const glint_image *img, int aov, const char *path, 
 /// Checks before a render that an image can be written at path: GLINT_ERR_INPUT for an unknown extension,
 /// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory or a read-only file.
 glint_status image_check_path(const char *path, glint_format format, glint_error *err);
+
+/// Fills the open file f with what user describes: 0, an errno value, or -1 with the reason in why.
+typedef int (*image_file_writer)(FILE *f, const void *user, char *why, size_t why_size);
+/// Writes any file as images are written (the same path checks, the temporary file linked into place, nothing
+/// left behind on failure): `fill` fills it. GLINT_ERR_RENDER ("PATH: cannot write: reason") on failure.
+glint_status image_write_file(const char *path, image_file_writer fill, const void *user, glint_error *err);
+/// image_check_path for a file of any kind: GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or
+/// unwritable directory or a read-only file.
+glint_status image_check_file(const char *path, glint_error *err);
 
 #endif

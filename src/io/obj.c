@@ -1110,6 +1110,8 @@ static bool obj_line(void *state, cursor *c) { return obj_statement(state, c); }
 void obj_model_free(obj_model *m) {
     mesh_free(&m->mesh);
     obj_materials_free(m->materials, m->material_count);
+    for (size_t i = 0; i < m->library_count; i++) free(m->libraries[i]);
+    free(m->libraries);
     memset(m, 0, sizeof *m);
     m->mesh.bounds = bounds3_empty();
 }
@@ -1166,8 +1168,9 @@ glint_status obj_parse(const char *name, const char *text, size_t length, const 
     strmap_free(&ps.slots);
     strmap_free(&ps.def_names);
     obj_materials_free(ps.defs, ps.def_count);
-    for (size_t i = 0; i < ps.lib_count; i++) free(ps.libs[i]);
-    free(ps.libs);
+    // The model keeps the list of libraries read: they are inputs of the scene as much as the OBJ file.
+    out->libraries = ps.libs;
+    out->library_count = ps.lib_count;
     if (!ok) {
         obj_model_free(out);
         return ps.rep.nomem ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;

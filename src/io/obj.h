@@ -78,6 +78,8 @@ typedef struct obj_model {
     size_t material_count;
     size_t warning_count;       ///< warnings reported (including those not passed to a callback)
     size_t zero_area_faces;     ///< faces skipped for having no area
+    char **libraries;           ///< the material library files read (paths as opened), each once
+    size_t library_count;
 } obj_model;
 
 /// Receives each warning, formatted "file:line: warning: what happened; what is done instead".

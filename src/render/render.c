@@ -4,11 +4,12 @@
 #include "render/render.h"
 #include "core/clock.h"
 #include "film/film.h"
+#include "io/image_write.h"
+#include "render/checkpoint.h"
 #include "render/frame.h"
 
 #include <errno.h>
 #include <pthread.h>
-#include <sched.h>
 #include <stdatomic.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,7 +51,16 @@ typedef struct render_job {
     atomic_int waiters;            ///< workers blocked in wait_for_tile
     atomic_int stopping;           ///< a worker saw the stop request; waiters must give up
     double deadline;               ///< clock_seconds() after which no new pass starts (0: no time limit)
-    atomic_int pass_decision[MAX_PASSES]; ///< under a time limit: 0 undecided, PASS_RUN or PASS_SKIP
+    bool gated;                    ///< a time limit or checkpoints: each pass waits for its first tile's decision
+    atomic_int pass_decision[MAX_PASSES]; ///< when gated: 0 undecided, PASS_RUN or PASS_SKIP
+    // Checkpoints and resumes only: each pixel's count of samples, so that any state can be saved and continued.
+    uint32_t *counts;              ///< samples each pixel of the region has completed; NULL otherwise
+    uint64_t resumed_samples;      ///< samples the resumed checkpoint brought (sum of counts at the start)
+    const char *checkpoint;        ///< the file written after each pass and at the end, or NULL
+    checkpoint_identity identity;  ///< of this render, as checkpoints record it
+    atomic_int tiles_done[MAX_PASSES]; ///< with checkpoints: tiles that have finished each pass
+    atomic_int failed;             ///< a checkpoint could not be written: the render stops, with `failure`
+    glint_error failure;
     pthread_mutex_t lock;
     pthread_cond_t tile_finished;
 } render_job;
@@ -95,23 +105,65 @@ static int plan_passes(int spp, int start[MAX_PASSES + 1]) {
 static int max_int(int a, int b) { return a > b ? a : b; }
 static int min_int(int a, int b) { return a < b ? a : b; }
 
+// Samples [k0, k1) of the pixels [x0, x1) x [y0, y1) (rect, full-image coordinates) into the film; false when
+// stopped part-way (ft then says where: pixels not reached keep the previous pass's mean).
+static bool render_rect(render_job *job, const int rect[4], int k0, int k1, thread_stats *ts,
+                        _Atomic uint64_t *progress, film_tile *ft) {
+    tile_pass tp = {.x0 = rect[0], .y0 = rect[1], .x1 = rect[2], .y1 = rect[3], .k0 = k0, .k1 = k1,
+                    .stop = &stop_requested};
+    film_tile_begin(ft, &job->film, tp.x0, tp.y0, tp.x1, tp.y1, k0, k1, ts, progress);
+    return job->integrator->render_tile(job->integrator, &tp, ft, ts);
+}
+
+// A tile pass when every pixel's count is kept (checkpoints, resumes). A pixel continues from the samples it
+// has, whatever the pass says: a resumed tile may have been stopped part-way, or rendered to a smaller spp. The
+// sum after k samples does not depend on where the passes split them, so the image is an uninterrupted one's.
+static bool render_tile_counted(render_job *job, const int r[4], int pass, thread_stats *ts,
+                                _Atomic uint64_t *progress) {
+    const uint32_t k1 = (uint32_t)job->pass_start[pass + 1];
+    film *f = &job->film;
+    uint32_t *counts = job->counts, lo = UINT32_MAX, hi = 0;
+    for (int y = r[1]; y < r[3]; y++)
+        for (int x = r[0]; x < r[2]; x++) {
+            uint32_t c = counts[film_pixel_index(f, x, y)];
+            lo = c < lo ? c : lo;
+            hi = c > hi ? c : hi;
+        }
+    if (lo >= k1) return true; // a resumed tile that has these samples already
+    film_tile ft;
+    if (lo == hi) { // the whole tile at one count: one tile pass from there, as an uninterrupted render makes it
+        bool done = render_rect(job, r, (int)lo, (int)k1, ts, progress, &ft);
+        // Stopped at (ft.x, ft.y): the pixels before it in row order have k1 samples, it has ft.k, the rest lo.
+        for (int y = r[1]; y < r[3]; y++)
+            for (int x = r[0]; x < r[2]; x++) {
+                bool before = done || y < ft.y || (y == ft.y && x < ft.x);
+                if (before || (x == ft.x && y == ft.y)) counts[film_pixel_index(f, x, y)] = before ? k1 : (uint32_t)ft.k;
+            }
+        return done;
+    }
+    // A tile stopped part-way: each pixel on its own, from its own count (a one-pixel tile pass).
+    for (int y = r[1]; y < r[3]; y++)
+        for (int x = r[0]; x < r[2]; x++) {
+            size_t i = film_pixel_index(f, x, y);
+            if (counts[i] >= k1) continue;
+            int px[4] = {x, y, x + 1, y + 1};
+            bool done = render_rect(job, px, (int)counts[i], (int)k1, ts, progress, &ft);
+            counts[i] = done ? k1 : (uint32_t)ft.k;
+            if (!done) return false;
+        }
+    return true;
+}
+
 // Renders one pass of one tile; false when stopped part-way (pixels not reached keep the previous pass's mean).
 // Tiles are the cells of the full image's 16x16 grid, clipped to the region: a region's pixels are rendered in
 // the same tiles, batches and order as in a full render.
 static bool render_tile(render_job *job, int tile, int pass, thread_stats *ts, _Atomic uint64_t *progress) {
     const int *r = job->region;
-    tile_pass tp;
     int cx = (job->tile_x0 + tile % job->tiles_x) * TILE_SIZE, cy = (job->tile_y0 + tile / job->tiles_x) * TILE_SIZE;
-    tp.x0 = max_int(cx, r[0]);
-    tp.y0 = max_int(cy, r[1]);
-    tp.x1 = min_int(cx + TILE_SIZE, r[2]);
-    tp.y1 = min_int(cy + TILE_SIZE, r[3]);
-    tp.k0 = job->pass_start[pass];
-    tp.k1 = job->pass_start[pass + 1];
-    tp.stop = &stop_requested;
+    int rect[4] = {max_int(cx, r[0]), max_int(cy, r[1]), min_int(cx + TILE_SIZE, r[2]), min_int(cy + TILE_SIZE, r[3])};
+    if (job->counts) return render_tile_counted(job, rect, pass, ts, progress);
     film_tile ft;
-    film_tile_begin(&ft, &job->film, tp.x0, tp.y0, tp.x1, tp.y1, tp.k0, tp.k1, ts, progress);
-    return job->integrator->render_tile(job->integrator, &tp, &ft, ts);
+    return render_rect(job, rect, job->pass_start[pass], job->pass_start[pass + 1], ts, progress, &ft);
 }
 
 // Wakes the workers waiting for a tile; the waiters count (sequentially consistent, as is the tile store
@@ -136,17 +188,61 @@ static bool wait_for_tile(render_job *job, int tile, int pass) {
     return atomic_load(&job->tile_passes[tile]) >= pass;
 }
 
-// Under a time limit, whether pass `pass` runs: the worker that takes its first tile decides, by the clock,
-// once for everyone (items are handed out in order, so no tile of a pass is taken before its first); the
-// others wait for that decision. Every pixel thus ends with the same passes: the image of a shorter render.
+// Writes a checkpoint of the job as it is now (every worker waits or has left); false, with the render
+// stopping and the message kept, when it cannot be written.
+static bool job_write_checkpoint(render_job *job) {
+    size_t pixels = (size_t)job->film.image->width * (size_t)job->film.image->height;
+    uint32_t complete = UINT32_MAX;
+    for (size_t i = 0; i < pixels; i++) complete = job->counts[i] < complete ? job->counts[i] : complete;
+    checkpoint_plane planes[] = {{"count", CHECKPOINT_U32, 1, job->counts}, {"rgb", CHECKPOINT_F64, 3, job->film.sums}};
+    glint_error e;
+    if (checkpoint_write(job->checkpoint, &job->identity, job->film.spp, (int)complete, planes,
+                         sizeof planes / sizeof planes[0], &e) == GLINT_OK)
+        return true;
+    if (atomic_exchange(&job->failed, 1) == 0) job->failure = e;
+    render_request_stop();
+    return false;
+}
+
+// Blocks until every tile has finished `pass`; false when the render is stopping instead.
+static bool wait_for_pass(render_job *job, int pass) {
+    pthread_mutex_lock(&job->lock);
+    atomic_fetch_add(&job->waiters, 1);
+    while (atomic_load(&job->tiles_done[pass]) < job->tile_count && !atomic_load(&job->stopping))
+        pthread_cond_wait(&job->tile_finished, &job->lock);
+    atomic_fetch_sub(&job->waiters, 1);
+    pthread_mutex_unlock(&job->lock);
+    return atomic_load(&job->tiles_done[pass]) >= job->tile_count;
+}
+
+// Whether pass `pass` runs, under a time limit or with checkpoints: the worker that takes its first tile decides
+// once for everyone (items are handed out in order, so no tile of a pass is taken before its first); the others
+// wait for that decision. With checkpoints it first waits for the previous pass to end everywhere and writes
+// one; under a time limit it asks the clock. Every pixel thus ends with the same passes: the image of a shorter
+// render, and a checkpoint of one.
 static bool pass_may_run(render_job *job, int pass, int tile) {
-    if (tile == 0)
-        atomic_store(&job->pass_decision[pass], clock_seconds() > job->deadline ? PASS_SKIP : PASS_RUN);
-    int d;
-    while ((d = atomic_load(&job->pass_decision[pass])) == 0) {
-        if (stop_is_requested()) return false;
-        sched_yield();
+    if (tile == 0) {
+        if (job->checkpoint && (!wait_for_pass(job, pass - 1) || !job_write_checkpoint(job))) return false;
+        int d = job->deadline > 0.0 && clock_seconds() > job->deadline ? PASS_SKIP : PASS_RUN;
+        pthread_mutex_lock(&job->lock);
+        atomic_store(&job->pass_decision[pass], d);
+        pthread_cond_broadcast(&job->tile_finished);
+        pthread_mutex_unlock(&job->lock);
+        return d == PASS_RUN;
     }
+    int d;
+    pthread_mutex_lock(&job->lock);
+    atomic_fetch_add(&job->waiters, 1);
+    while ((d = atomic_load(&job->pass_decision[pass])) == 0 && !atomic_load(&job->stopping) && !stop_is_requested()) {
+        // A stop request sets a flag and wakes nobody: look at it again every 50 ms.
+        struct timespec until;
+        clock_gettime(CLOCK_REALTIME, &until);
+        until.tv_nsec += 50000000L;
+        if (until.tv_nsec >= 1000000000L) { until.tv_sec++; until.tv_nsec -= 1000000000L; }
+        pthread_cond_timedwait(&job->tile_finished, &job->lock, &until);
+    }
+    atomic_fetch_sub(&job->waiters, 1);
+    pthread_mutex_unlock(&job->lock);
     return d == PASS_RUN;
 }
 
@@ -160,10 +256,11 @@ static void *worker_main(void *arg) {
         int item = atomic_fetch_add(&job->next_item, 1);
         if (item >= items) break;
         int pass = item / job->tile_count, tile = item % job->tile_count;
-        if (job->deadline > 0.0 && pass > 0 && !pass_may_run(job, pass, tile)) break;
+        if (job->gated && pass > 0 && !pass_may_run(job, pass, tile)) break;
         if (!wait_for_tile(job, tile, pass)) break;
         if (!render_tile(job, tile, pass, &local, &w->samples_done)) break;
         atomic_store(&job->tile_passes[tile], pass + 1);
+        if (job->checkpoint) atomic_fetch_add(&job->tiles_done[pass], 1);
         wake_waiters(job);
     }
     // Whoever leaves early releases the waiters: the tiles they wait for may never finish now.
@@ -194,6 +291,11 @@ static int spp_completed(const render_job *job) {
     return job->pass_start[passes];
 }
 
+// The share of the render's samples done, those a resumed checkpoint brought included.
+static double fraction_done(const render_job *job, uint64_t samples) {
+    return job->total_samples ? (double)(job->resumed_samples + samples) / (double)job->total_samples : 1.0;
+}
+
 static void *progress_main(void *arg) {
     progress_state *p = arg;
     struct timespec next;
@@ -207,7 +309,7 @@ static void *progress_main(void *arg) {
         if (p->finished) break;
         // Call out without the lock: a slow terminal must not hold up the end of the render.
         pthread_mutex_unlock(&p->lock);
-        double fraction = (double)samples_so_far(p) / (double)p->job->total_samples;
+        double fraction = fraction_done(p->job, samples_so_far(p));
         if (p->fn) p->fn(fraction, p->user);
         if (p->live_image) p->live_image(p->job->film.image, spp_completed(p->job), fraction, p->live_user);
         pthread_mutex_lock(&p->lock);
@@ -263,7 +365,11 @@ static bool job_init(render_job *job, const glint_scene *s, const integrator *it
     atomic_init(&job->next_item, 0);
     atomic_init(&job->waiters, 0);
     atomic_init(&job->stopping, 0);
-    for (int p = 0; p < MAX_PASSES; p++) atomic_init(&job->pass_decision[p], 0);
+    atomic_init(&job->failed, 0);
+    for (int p = 0; p < MAX_PASSES; p++) {
+        atomic_init(&job->pass_decision[p], 0);
+        atomic_init(&job->tiles_done[p], 0);
+    }
     if (!film_init(&job->film, region, rs->width, rs->height, rs->spp, job->pass_count, rs->transform, aovs))
         return false;
     job->tile_passes = malloc((size_t)job->tile_count * sizeof *job->tile_passes);
@@ -281,6 +387,7 @@ static void job_free(render_job *job) {
     pthread_cond_destroy(&job->tile_finished);
     pthread_mutex_destroy(&job->lock);
     free(job->tile_passes);
+    free(job->counts);
     film_release(&job->film);
 }
 
@@ -310,6 +417,48 @@ static glint_status resolve_region(const render_settings *rs, const render_optio
     return GLINT_OK;
 }
 
+// Prepares the job's checkpoints and resume (opt->checkpoint, opt->resume): the render's identity, every
+// pixel's count, the film's sums kept after every pass, and the resumed checkpoint's samples in the film.
+static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *s, const render_options *opt,
+                                            glint_error *err) {
+    // Before the render, not after it: a checkpoint that cannot be written must not cost a render.
+    glint_status st = opt->checkpoint ? image_check_file(opt->checkpoint, err) : GLINT_OK;
+    if (st != GLINT_OK) return st;
+    bool light_sampling = !opt->integrator.no_light_sampling;
+    st = checkpoint_identity_of(s, job->region, light_sampling, &job->identity, err);
+    if (st != GLINT_OK) return st;
+    size_t pixels = (size_t)job->film.image->width * (size_t)job->film.image->height;
+    job->counts = calloc(pixels, sizeof *job->counts);
+    if (!job->counts || !film_keep_all_sums(&job->film)) {
+        snprintf(err->message, sizeof err->message, "out of memory for the sums of a %dx%d image",
+                 job->film.image->width, job->film.image->height);
+        return GLINT_ERR_RENDER;
+    }
+    job->checkpoint = opt->checkpoint;
+    job->gated = opt->checkpoint != NULL; // a pass waits for the previous one only to be written
+    if (!opt->resume) return GLINT_OK;
+    checkpoint_plane planes[] = {{"count", CHECKPOINT_U32, 1, job->counts}, {"rgb", CHECKPOINT_F64, 3, job->film.sums}};
+    int made_for = 0;
+    st = checkpoint_read(opt->resume, &job->identity, planes, sizeof planes / sizeof planes[0], &made_for, err);
+    if (st != GLINT_OK) return st;
+    uint32_t most = 0;
+    uint64_t total = 0;
+    for (size_t i = 0; i < pixels; i++) {
+        most = job->counts[i] > most ? job->counts[i] : most;
+        total += job->counts[i];
+    }
+    // Samples cannot be taken back: the mean of fewer is another sum.
+    if (most > (uint32_t)s->settings.spp) {
+        snprintf(err->message, sizeof err->message, "%s: the checkpoint has pixels of %u samples (it was made for "
+                 "%d spp), more than this render's %d; expected --spp %u or more", opt->resume, most, made_for,
+                 s->settings.spp, most);
+        return GLINT_ERR_INPUT;
+    }
+    job->resumed_samples = total;
+    film_restore_means(&job->film, job->counts);
+    return GLINT_OK;
+}
+
 glint_status render_scene(const glint_scene *s, const render_options *opt, glint_progress_fn progress, void *user,
                           glint_image **out, glint_render_stats *stats, glint_error *err) {
     *out = NULL;
@@ -323,9 +472,30 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
                  "GLINT_AOV_NORMAL or GLINT_AOV_DEPTH", aovs & ~(unsigned)GLINT_AOV_ALL);
         return GLINT_ERR_INPUT;
     }
+    // Checkpoints hold the colour's sums: AOVs are not saved in them (yet), so the two do not go together.
+    if (aovs && opt && (opt->checkpoint || opt->resume)) {
+        snprintf(err->message, sizeof err->message, "--aov cannot be combined with --checkpoint or --resume: "
+                 "checkpoints keep the colour's sums only");
+        return GLINT_ERR_INPUT;
+    }
+    // The job, and the checkpoint it resumes, before the frame: a wrong checkpoint must not wait for a BVH.
+    render_job job;
+    if (!job_init(&job, s, NULL, region, aovs)) {
+        snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image", region[2] - region[0],
+                 region[3] - region[1]);
+        return GLINT_ERR_RENDER;
+    }
+    if (opt && (opt->checkpoint || opt->resume)) {
+        st = job_prepare_checkpoints(&job, s, opt, err);
+        if (st != GLINT_OK) {
+            job_free(&job);
+            return st;
+        }
+    }
     render_frame frame;
     st = frame_build(&frame, s, opt ? &opt->integrator : NULL, &stop_requested, err);
     if (st == GLINT_ERR_INTERRUPTED) { // stopped while the BVH was built: no sample, a black image
+        job_free(&job);
         atomic_store(&stop_requested, 0);
         if (stats) memset(stats, 0, sizeof *stats);
         film f;
@@ -337,17 +507,22 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
         *out = film_take_image(&f);
         return st;
     }
-    if (st != GLINT_OK) return st;
+    if (st != GLINT_OK) {
+        job_free(&job);
+        return st;
+    }
+    job.integrator = frame.integrator;
     double t_built = clock_seconds();
     int threads = opt && opt->threads > 0 ? opt->threads : online_cpus();
     if (threads > MAX_THREADS) threads = MAX_THREADS;
 
-    render_job job;
-    bool job_ready = job_init(&job, s, frame.integrator, region, aovs);
-    if (job_ready && opt && opt->time_limit > 0.0) job.deadline = t_built + opt->time_limit;
-    worker *workers = job_ready ? aligned_alloc(64, sizeof(worker) * (size_t)threads) : NULL;
+    if (opt && opt->time_limit > 0.0) {
+        job.deadline = t_built + opt->time_limit;
+        job.gated = true;
+    }
+    worker *workers = aligned_alloc(64, sizeof(worker) * (size_t)threads);
     if (!workers) {
-        if (job_ready) job_free(&job);
+        job_free(&job);
         frame_release(&frame);
         snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image on %d threads",
                  region[2] - region[0], region[3] - region[1], threads);
@@ -381,16 +556,17 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
         total.discarded_samples += workers[i].stats.discarded_samples;
         total.samples += workers[i].stats.samples;
     }
-    double fraction_done = (double)total.samples / (double)job.total_samples;
-    if (progress) progress(fraction_done, user);
+    double fraction = fraction_done(&job, total.samples);
+    if (progress) progress(fraction, user);
     // Every worker has stopped: this call sees the image as it will be returned.
-    if (live_image) live_image(job.film.image, spp_completed(&job), fraction_done, opt->live_user);
+    if (live_image) live_image(job.film.image, spp_completed(&job), fraction, opt->live_user);
     if (stats) {
         memset(stats, 0, sizeof *stats);
         stats->rays = total.rays;
         stats->shadow_rays = total.shadow_rays;
         stats->discarded_samples = total.discarded_samples;
         stats->samples = total.samples;
+        stats->samples_resumed = job.resumed_samples;
         accel_stats as;
         accel_get_stats(frame.accel, &as);
         stats->bvh_nodes = as.nodes;
@@ -410,19 +586,34 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
             break;
         }
     uint64_t pixels = job.total_samples / (uint64_t)s->settings.spp; // of the region rendered
-    bool timed_out = passes_run < job.pass_count && total.samples == pixels * (uint64_t)job.pass_start[passes_run];
+    uint64_t done = job.resumed_samples + total.samples;
+    // Every pixel at the same count: with counts kept (a resumed render may start from any), that count.
+    int uniform = job.pass_start[passes_run];
+    bool same = done == pixels * (uint64_t)uniform;
+    if (job.counts) {
+        same = true;
+        for (uint64_t i = 1; i < pixels && same; i++) same = job.counts[i] == job.counts[0];
+        uniform = (int)job.counts[0];
+    }
+    bool timed_out = passes_run < job.pass_count && same;
     if (stats) stats->spp = s->settings.spp;
-    if (stats) stats->spp_done = total.samples == job.total_samples ? s->settings.spp
-                                 : timed_out                      ? job.pass_start[passes_run]
-                                                                  : 0;
+    if (stats) stats->spp_done = done == job.total_samples ? s->settings.spp : timed_out ? uniform : 0;
     free(workers);
-    *out = film_take_image(&job.film);
-    job_free(&job);
     frame_release(&frame);
     atomic_store(&stop_requested, 0); // this render has answered any stop request made so far
-    if (total.samples < job.total_samples && !timed_out) {
+    // The last checkpoint, whatever ended the render; none after a failed one (its message is the error).
+    if (job.checkpoint && !atomic_load(&job.failed)) job_write_checkpoint(&job);
+    atomic_store(&stop_requested, 0);
+    if (atomic_load(&job.failed)) {
+        *err = job.failure;
+        job_free(&job);
+        return GLINT_ERR_RENDER;
+    }
+    *out = film_take_image(&job.film);
+    job_free(&job);
+    if (done < job.total_samples && !timed_out) {
         snprintf(err->message, sizeof err->message, "interrupted after %llu of %llu samples",
-                 (unsigned long long)total.samples, (unsigned long long)job.total_samples);
+                 (unsigned long long)done, (unsigned long long)job.total_samples);
         return GLINT_ERR_INTERRUPTED;
     }
     return GLINT_OK;

@@ -145,11 +145,13 @@ uint32_t scene_add_motion(glint_scene *s, const motion *m) {
     return (uint32_t)s->motion_count;
 }
 
-bool scene_add_input(glint_scene *s, uint64_t dev, uint64_t ino) {
+bool scene_add_input(glint_scene *s, uint64_t dev, uint64_t ino, const char *path) {
     for (size_t i = 0; i < s->input_count; i++)
         if (s->inputs[i].dev == dev && s->inputs[i].ino == ino) return true;
     if (!SCENE_RESERVE(s, inputs, s->input_count)) return false;
-    s->inputs[s->input_count++] = (scene_input){dev, ino};
+    char *copy = dup_string(path);
+    if (!copy) return false;
+    s->inputs[s->input_count++] = (scene_input){dev, ino, copy};
     return true;
 }
 
@@ -259,6 +261,7 @@ void scene_free(glint_scene *s) {
     free(s->importance_spheres);
     free(s->motions);
     envmap_free(&s->environment);
+    for (size_t i = 0; i < s->input_count; i++) free(s->inputs[i].path);
     free(s->inputs);
     for (size_t i = 0; i < s->warning_count; i++) free(s->warnings[i]);
     free(s->warnings);

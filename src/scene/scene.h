@@ -61,10 +61,12 @@ typedef struct scene_mesh {
 /// A file a scene was read from, by identity (device and inode): two spellings of a path are one file.
 typedef struct scene_input {
     uint64_t dev, ino;
+    char *path; ///< the path it was opened by (owned), to read it again for a checkpoint's identity
 } scene_input;
 
 struct glint_scene {
     char *path;            ///< scene file name, as given, for messages
+    uint64_t text_hash;    ///< hash_bytes of the scene text (a file or standard input), for checkpoints
     render_settings settings;
     camera camera;
 
@@ -103,7 +105,7 @@ struct glint_scene {
 
     envmap environment;      ///< the background of BACKGROUND_ENVMAP (an empty image otherwise)
 
-    scene_input *inputs;     ///< the files the scene was read from (scene file, meshes, images), each once
+    scene_input *inputs;     ///< the files the scene was read from (scene file, meshes, MTL, images), each once
     size_t input_count;
 
     char **warnings;         ///< problems the loader worked around ("file:line: warning: ..."); never printed by the library
@@ -145,8 +147,8 @@ bool scene_add_importance_sphere(glint_scene *s, uint32_t index);
 /// Appends a motion and returns the value of instance.motion that refers to it (its index + 1), or 0 when out
 /// of memory.
 uint32_t scene_add_motion(glint_scene *s, const motion *m);
-/// Records that the scene was read from file (dev, ino), once; false when out of memory.
-bool scene_add_input(glint_scene *s, uint64_t dev, uint64_t ino);
+/// Records that the scene was read from file (dev, ino), opened as `path`, once; false when out of memory.
+bool scene_add_input(glint_scene *s, uint64_t dev, uint64_t ino, const char *path);
 /// Whether path names one of the files the scene was read from (following symbolic links).
 bool scene_reads_file(const glint_scene *s, const char *path);
 /// Appends a copy of a warning message; false when out of memory.

@@ -5,6 +5,7 @@
 #include "scene/scene_file.h"
 #include "core/array.h"
 #include "core/file_read.h"
+#include "core/hash.h"
 #include "core/filepath.h"
 #include "io/exr_read.h"
 #include "io/hdr_read.h"
@@ -150,7 +151,7 @@ bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const ch
         free(p);
         return false;
     }
-    if (!scene_add_input(ld->scene, (uint64_t)st.st_dev, (uint64_t)st.st_ino)) {
+    if (!scene_add_input(ld->scene, (uint64_t)st.st_dev, (uint64_t)st.st_ino, p)) {
         free(p);
         return sf_fail_oom(ld);
     }
@@ -598,6 +599,7 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
         scene_free(ld.scene);
         return ld.r.status;
     }
+    ld.scene->text_hash = hash_bytes(HASH_START, text, length);
     *out = ld.scene;
     return GLINT_OK;
 }
@@ -647,7 +649,7 @@ glint_status scene_file_load(const char *path, glint_scene **out, glint_error *e
     free(buf);
     // The scene file is an input too: nothing should overwrite it.
     if (status == GLINT_OK && stat_ok && S_ISREG(st.st_mode) &&
-        !scene_add_input(*out, (uint64_t)st.st_dev, (uint64_t)st.st_ino)) {
+        !scene_add_input(*out, (uint64_t)st.st_dev, (uint64_t)st.st_ino, path)) {
         scene_free(*out);
         *out = NULL;
         return out_of_memory_reading(path, err);

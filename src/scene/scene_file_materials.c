@@ -33,7 +33,7 @@ bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *
         }
     if (ld->scene->texture_count >= SF_MAX_ITEMS)
         return jr_fail_at(&ld->r, where, "too many textures (the limit is %d)", SF_MAX_ITEMS);
-    if (!scene_add_input(ld->scene, (uint64_t)id.dev, (uint64_t)id.ino)) return sf_fail_oom(ld);
+    if (!scene_add_input(ld->scene, (uint64_t)id.dev, (uint64_t)id.ino, path)) return sf_fail_oom(ld);
     // The file is decoded here (io/), and the texture module only takes the pixels.
     image_rgb img;
     glint_error err;

@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
 
 // ---------------------------------------------------------------------------------------------
 // Meshes from OBJ files
@@ -103,6 +104,15 @@ static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id i
     if (ld->warning_oom) {
         obj_model_free(&model);
         return sf_fail_oom(ld);
+    }
+    // Its material libraries are inputs too: never overwritten by an image, part of a checkpoint's identity.
+    for (size_t i = 0; i < model.library_count; i++) {
+        struct stat sb;
+        if (stat(model.libraries[i], &sb) == 0 &&
+            !scene_add_input(ld->scene, (uint64_t)sb.st_dev, (uint64_t)sb.st_ino, model.libraries[i])) {
+            obj_model_free(&model);
+            return sf_fail_oom(ld);
+        }
     }
     scene_mesh sm = {0};
     bool ok = true;
