@@ -18,14 +18,27 @@ typedef struct cli_options {
     bool quiet, ascii_ppm, half;
 } cli_options;
 
+/// A program built on this command line (glint, glint-mpi): its name in messages ("NAME: ...", "NAME X.Y.Z")
+/// and its own parts of --help around the options they share.
+typedef struct cli_program {
+    const char *name;
+    const char *usage;    ///< the usage lines and what the program does, before the options
+    const char *stopping; ///< what signals do, after the options
+    const char *notes;    ///< anything more, at the end
+    bool silent;          ///< print nothing at all (glint-mpi's ranks other than 0 parse the same arguments)
+} cli_program;
+
+/// The glint program.
+extern const cli_program CLI_GLINT;
+
 /// What main does after parsing: render, or exit at once with this code.
 typedef enum cli_action { CLI_RUN = -1, CLI_EXIT_OK = 0, CLI_EXIT_USAGE = 2 } cli_action;
 
 /// Runs `glint merge OUT PART...` (argv[1] is "merge"): returns the exit status, messages on stderr.
 int cli_merge(int argc, char **argv);
 
-/// Parses argv into *o; prints --help/--version to stdout and errors (prefixed "glint: ") to stderr.
-cli_action cli_parse(int argc, char **argv, cli_options *o);
+/// Parses argv into *o; prints --help/--version to stdout and errors (prefixed "NAME: ") to stderr.
+cli_action cli_parse(const cli_program *p, int argc, char **argv, cli_options *o);
 
 /// The state of the progress bar drawn on stderr.
 typedef struct cli_progress {
@@ -44,10 +57,10 @@ void cli_progress_draw(double fraction, void *user);
 /// Erases the bar, if one was drawn.
 void cli_progress_clear(cli_progress *p);
 /// Prints the one-line statistics summary of a render on stderr, naming the image (output NULL: none written).
-void cli_print_stats(const glint_render_stats *st, const char *output);
+void cli_print_stats(const cli_program *p, const glint_render_stats *st, const char *output);
 /// Share of a render's samples that may be NaN or infinite (and dropped) before the program exits 1: 1 %.
 #define CLI_MAX_DISCARDED_SHARE 0.01
 /// Warns on stderr (even with --quiet) when st dropped samples; true when more than CLI_MAX_DISCARDED_SHARE did.
-bool cli_warn_discarded(const glint_render_stats *st);
+bool cli_warn_discarded(const cli_program *p, const glint_render_stats *st);
 
 #endif

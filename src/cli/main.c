@@ -142,7 +142,7 @@ static bool output_is_scene(const char *output, const char *scene_path) {
 int main(int argc, char **argv) {
     if (argc > 1 && strcmp(argv[1], "merge") == 0) return cli_merge(argc, argv);
     cli_options opt;
-    cli_action action = cli_parse(argc, argv, &opt);
+    cli_action action = cli_parse(&CLI_GLINT, argc, argv, &opt);
     if (action != CLI_RUN) return (int)action;
 
     glint_error err;
@@ -202,9 +202,9 @@ int main(int argc, char **argv) {
         return exit_code(st);
     }
     bool interrupted = st == GLINT_ERR_INTERRUPTED;
-    if (!opt.quiet) cli_print_stats(&stats, interrupted && stats.samples == 0 ? NULL : opt.output);
+    if (!opt.quiet) cli_print_stats(&CLI_GLINT, &stats, interrupted && stats.samples == 0 ? NULL : opt.output);
     // A render that lost more than a small share of its samples is wrong, but its image is still written.
-    bool lost = cli_warn_discarded(&stats);
+    bool lost = cli_warn_discarded(&CLI_GLINT, &stats);
     if (st == GLINT_OK && stats.spp_done < stats.spp && !opt.quiet)
         fprintf(stderr, "glint: time limit of %ld s reached: %d of %d samples per pixel rendered\n", opt.time_limit,
                 stats.spp_done, stats.spp);

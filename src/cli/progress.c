@@ -96,7 +96,7 @@ static void format_rate(double v, char *buf, size_t size) {
     snprintf(buf, size, v >= 99.95 ? "%.0f" : v >= 9.995 ? "%.1f" : "%.2f", v);
 }
 
-void cli_print_stats(const glint_render_stats *st, const char *output) {
+void cli_print_stats(const cli_program *prog, const glint_render_stats *st, const char *output) {
     // Rates over the render loop alone (as the Embree yardstick counts): scene preparation, the BVH build
     // in the first place, is reported on its own.
     double wall = st->render_seconds > 1e-9 ? st->render_seconds : 1e-9;
@@ -110,8 +110,8 @@ void cli_print_stats(const glint_render_stats *st, const char *output) {
     else snprintf(bvh, sizeof bvh, "no BVH (brute force)");
     if (st->build_seconds < 1.0) snprintf(build, sizeof build, "%.1f ms", st->build_seconds * 1e3);
     else snprintf(build, sizeof build, "%.2f s", st->build_seconds);
-    fprintf(stderr, "glint: %.3f s wall, %s Msamples/s, %s Mrays/s (%d thread%s), %s, build %s", st->wall_seconds,
-            samples, rays, st->threads, st->threads == 1 ? "" : "s", bvh, build);
+    fprintf(stderr, "%s: %.3f s wall, %s Msamples/s, %s Mrays/s (%d thread%s), %s, build %s", prog->name,
+            st->wall_seconds, samples, rays, st->threads, st->threads == 1 ? "" : "s", bvh, build);
     if (st->discarded_samples > 0)
         fprintf(stderr, ", %" PRIu64 " NaN/infinite sample%s discarded", st->discarded_samples,
                 st->discarded_samples == 1 ? "" : "s");
@@ -121,11 +121,11 @@ void cli_print_stats(const glint_render_stats *st, const char *output) {
     fputc('\n', stderr);
 }
 
-bool cli_warn_discarded(const glint_render_stats *st) {
+bool cli_warn_discarded(const cli_program *prog, const glint_render_stats *st) {
     if (st->discarded_samples == 0) return false;
     // samples counts every sample taken, the dropped ones included
     double share = st->samples ? (double)st->discarded_samples / (double)st->samples : 1.0;
-    fprintf(stderr, "glint: warning: %llu of %llu samples (%.1f %%) were NaN or infinite and were dropped\n",
+    fprintf(stderr, "%s: warning: %llu of %llu samples (%.1f %%) were NaN or infinite and were dropped\n", prog->name,
             (unsigned long long)st->discarded_samples, (unsigned long long)st->samples, 100.0 * share);
     return share > CLI_MAX_DISCARDED_SHARE;
 }

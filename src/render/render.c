@@ -5,6 +5,7 @@
 #include "core/clock.h"
 #include "film/film.h"
 #include "render/frame.h"
+#include "render/tiles.h"
 
 #include <errno.h>
 #include <pthread.h>
@@ -17,9 +18,8 @@
 #include <unistd.h>
 
 enum {
-    TILE_SIZE = 16,
     MAX_THREADS = 256,
-    MAX_PASSES = 33,            // 0, 1, 2, 4, ..., 2^30, spp: enough for any int spp
+    MAX_PASSES = TILES_MAX_PASSES,
     PROGRESS_INTERVAL_MS = 200, // progress callbacks at most five times a second
     PASS_RUN = 1,
     PASS_SKIP = 2,
@@ -33,17 +33,14 @@ void render_request_stop(void) { atomic_store(&stop_requested, 1); }
 
 static bool stop_is_requested(void) { return atomic_load_explicit(&stop_requested, memory_order_relaxed) != 0; }
 
-// Work is a sequence of items, item = pass * tile_count + tile. Pass p renders samples
+// Work is a sequence of items, item = pass * tile_count + tile (render/tiles.h). Pass p renders samples
 // [pass_start[p], pass_start[p+1]) of every pixel of the tile, adding them to the running sums in sample
 // order, so the final mean is bit for bit the plain sum over samples 0..spp-1 divided by spp.
 typedef struct render_job {
     const glint_scene *scene;
     const integrator *integrator;
     film film;
-    int region[4];                 ///< the pixels rendered, X0, Y0, X1, Y1 in full-image coordinates
-    int tile_x0, tile_y0;          ///< the full image's 16x16 grid cell of the region's first tile
-    int tiles_x, tile_count, pass_count;
-    int pass_start[MAX_PASSES + 1];
+    tiles grid;                    ///< the region's tiles and the sample passes
     uint64_t total_samples;        ///< the region's pixels * spp
     atomic_int next_item;
     atomic_int *tile_passes;       ///< passes completed by each tile; pass p of a tile waits for p
@@ -76,36 +73,17 @@ typedef struct progress_state {
     pthread_cond_t wake;
 } progress_state;
 
-// Pass boundaries 0, 1, 2, 4, 8, ..., spp: a stopped render has at least doubled its samples since the last
-// complete pass, and a full render pays for log2(spp) visits of each pixel, a negligible cost.
-static int plan_passes(int spp, int start[MAX_PASSES + 1]) {
-    int n = 0;
-    start[0] = 0;
-    long next = 1;
-    while (start[n] < spp) {
-        start[n + 1] = next < spp ? (int)next : spp;
-        n++;
-        next *= 2;
-    }
-    return n;
-}
-
-static int max_int(int a, int b) { return a > b ? a : b; }
-static int min_int(int a, int b) { return a < b ? a : b; }
-
 // Renders one pass of one tile; false when stopped part-way (pixels not reached keep the previous pass's mean).
-// Tiles are the cells of the full image's 16x16 grid, clipped to the region: a region's pixels are rendered in
-// the same tiles, batches and order as in a full render.
 static bool render_tile(render_job *job, int tile, int pass, thread_stats *ts, _Atomic uint64_t *progress) {
-    const int *r = job->region;
+    int r[4];
+    tiles_rect(&job->grid, tile, r);
     tile_pass tp;
-    int cx = (job->tile_x0 + tile % job->tiles_x) * TILE_SIZE, cy = (job->tile_y0 + tile / job->tiles_x) * TILE_SIZE;
-    tp.x0 = max_int(cx, r[0]);
-    tp.y0 = max_int(cy, r[1]);
-    tp.x1 = min_int(cx + TILE_SIZE, r[2]);
-    tp.y1 = min_int(cy + TILE_SIZE, r[3]);
-    tp.k0 = job->pass_start[pass];
-    tp.k1 = job->pass_start[pass + 1];
+    tp.x0 = r[0];
+    tp.y0 = r[1];
+    tp.x1 = r[2];
+    tp.y1 = r[3];
+    tp.k0 = job->grid.pass_start[pass];
+    tp.k1 = job->grid.pass_start[pass + 1];
     tp.stop = &stop_requested;
     film_tile ft;
     film_tile_begin(&ft, &job->film, tp.x0, tp.y0, tp.x1, tp.y1, tp.k0, tp.k1, ts, progress);
@@ -152,12 +130,12 @@ static void *worker_main(void *arg) {
     worker *w = arg;
     render_job *job = w->job;
     thread_stats local = {0}; // on this thread's stack: the hot counters are never shared
-    int items = job->pass_count * job->tile_count;
+    int items = job->grid.pass_count * job->grid.tile_count;
     for (;;) {
         if (stop_is_requested()) break;
         int item = atomic_fetch_add(&job->next_item, 1);
         if (item >= items) break;
-        int pass = item / job->tile_count, tile = item % job->tile_count;
+        int pass = item / job->grid.tile_count, tile = item % job->grid.tile_count;
         if (job->deadline > 0.0 && pass > 0 && !pass_may_run(job, pass, tile)) break;
         if (!wait_for_tile(job, tile, pass)) break;
         if (!render_tile(job, tile, pass, &local, &w->samples_done)) break;
@@ -238,26 +216,21 @@ static bool job_init(render_job *job, const glint_scene *s, const integrator *it
     memset(job, 0, sizeof *job);
     job->scene = s;
     job->integrator = it;
-    memcpy(job->region, region, sizeof job->region);
-    job->tile_x0 = region[0] / TILE_SIZE;
-    job->tile_y0 = region[1] / TILE_SIZE;
-    job->tiles_x = (region[2] - 1) / TILE_SIZE - job->tile_x0 + 1;
-    job->tile_count = job->tiles_x * ((region[3] - 1) / TILE_SIZE - job->tile_y0 + 1);
-    job->pass_count = plan_passes(rs->spp, job->pass_start);
+    tiles_init(&job->grid, region, rs->spp);
     job->total_samples =
         (uint64_t)(region[2] - region[0]) * (uint64_t)(region[3] - region[1]) * (uint64_t)rs->spp;
     atomic_init(&job->next_item, 0);
     atomic_init(&job->waiters, 0);
     atomic_init(&job->stopping, 0);
     for (int p = 0; p < MAX_PASSES; p++) atomic_init(&job->pass_decision[p], 0);
-    if (!film_init(&job->film, region, rs->width, rs->height, rs->spp, job->pass_count, rs->transform))
+    if (!film_init(&job->film, region, rs->width, rs->height, rs->spp, job->grid.pass_count, rs->transform))
         return false;
-    job->tile_passes = malloc((size_t)job->tile_count * sizeof *job->tile_passes);
+    job->tile_passes = malloc((size_t)job->grid.tile_count * sizeof *job->tile_passes);
     if (!job->tile_passes) {
         film_release(&job->film);
         return false;
     }
-    for (int i = 0; i < job->tile_count; i++) atomic_init(&job->tile_passes[i], 0);
+    for (int i = 0; i < job->grid.tile_count; i++) atomic_init(&job->tile_passes[i], 0);
     pthread_mutex_init(&job->lock, NULL);
     pthread_cond_init(&job->tile_finished, NULL);
     return true;
@@ -270,38 +243,12 @@ static void job_free(render_job *job) {
     film_release(&job->film);
 }
 
-// The region to render, from the options (all zero or no options: the whole image); GLINT_ERR_INPUT unless it
-// is a non-empty rectangle inside the image.
-static glint_status resolve_region(const render_settings *rs, const render_options *opt, int region[4],
-                                   glint_error *err) {
-    const int *r = opt ? opt->region : NULL;
-    if (!r || (r[0] == 0 && r[1] == 0 && r[2] == 0 && r[3] == 0)) {
-        region[0] = region[1] = 0;
-        region[2] = rs->width;
-        region[3] = rs->height;
-        return GLINT_OK;
-    }
-    if (r[0] >= r[2] || r[1] >= r[3]) {
-        snprintf(err->message, sizeof err->message, "--region: %d,%d,%d,%d is empty, expected X0 < X1 and Y0 < Y1",
-                 r[0], r[1], r[2], r[3]);
-        return GLINT_ERR_INPUT;
-    }
-    if (r[0] < 0 || r[1] < 0 || r[2] > rs->width || r[3] > rs->height) {
-        snprintf(err->message, sizeof err->message,
-                 "--region: %d,%d,%d,%d is not inside the %dx%d image, expected 0 <= X0 < X1 <= %d and "
-                 "0 <= Y0 < Y1 <= %d", r[0], r[1], r[2], r[3], rs->width, rs->height, rs->width, rs->height);
-        return GLINT_ERR_INPUT;
-    }
-    memcpy(region, r, 4 * sizeof *region);
-    return GLINT_OK;
-}
-
 glint_status render_scene(const glint_scene *s, const render_options *opt, glint_progress_fn progress, void *user,
                           glint_image **out, glint_render_stats *stats, glint_error *err) {
     *out = NULL;
     double t0 = clock_seconds();
     int region[4];
-    glint_status st = resolve_region(&s->settings, opt, region, err);
+    glint_status st = tiles_resolve_region(&s->settings, opt ? opt->region : NULL, region, err);
     if (st != GLINT_OK) return st;
     render_frame frame;
     st = frame_build(&frame, s, opt ? &opt->integrator : NULL, &stop_requested, err);
@@ -378,17 +325,18 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
         stats->threads = started + 1;
     }
     // A time limit ends the render after a whole pass: every pixel has the samples of the passes that ran.
-    int passes_run = job.pass_count;
-    for (int p = 1; job.deadline > 0.0 && p < job.pass_count; p++)
+    int passes_run = job.grid.pass_count;
+    for (int p = 1; job.deadline > 0.0 && p < job.grid.pass_count; p++)
         if (atomic_load(&job.pass_decision[p]) == PASS_SKIP) {
             passes_run = p;
             break;
         }
     uint64_t pixels = job.total_samples / (uint64_t)s->settings.spp; // of the region rendered
-    bool timed_out = passes_run < job.pass_count && total.samples == pixels * (uint64_t)job.pass_start[passes_run];
+    bool timed_out =
+        passes_run < job.grid.pass_count && total.samples == pixels * (uint64_t)job.grid.pass_start[passes_run];
     if (stats) stats->spp = s->settings.spp;
     if (stats) stats->spp_done = total.samples == job.total_samples ? s->settings.spp
-                                 : timed_out                      ? job.pass_start[passes_run]
+                                 : timed_out                      ? job.grid.pass_start[passes_run]
                                                                   : 0;
     free(workers);
     *out = film_take_image(&job.film);
