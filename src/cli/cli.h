@@ -5,6 +5,8 @@
 #include "glint.h"
 
 #include <stdbool.h>
+#include <stddef.h>
+#include <stdint.h>
 
 /// Everything the command line asked for.
 typedef struct cli_options {
@@ -40,6 +42,14 @@ int cli_merge(int argc, char **argv);
 /// Parses argv into *o; prints --help/--version to stdout and errors (prefixed "NAME: ") to stderr.
 cli_action cli_parse(const cli_program *p, int argc, char **argv, cli_options *o);
 
+/// Reads standard input as a scene (at most GLINT_MAX_SCENE_BYTES): the text and its length, or NULL with the
+/// message in *err and the status in *st (GLINT_ERR_RENDER when memory runs out).
+char *cli_read_stdin(size_t *length, glint_status *st, glint_error *err);
+/// Loads the scene file at `path`, or from standard input for "-" (named "<stdin>" in messages).
+glint_status cli_load_scene(const char *path, glint_scene **scene, glint_error *err);
+/// Whether the output would replace the scene file (the same file by device and inode, whatever the names).
+bool cli_output_is_scene(const char *output, const char *scene_path);
+
 /// The state of the progress bar drawn on stderr.
 typedef struct cli_progress {
     double start;   ///< monotonic seconds when the render began
@@ -58,6 +68,8 @@ void cli_progress_draw(double fraction, void *user);
 void cli_progress_clear(cli_progress *p);
 /// Prints the one-line statistics summary of a render on stderr, naming the image (output NULL: none written).
 void cli_print_stats(const cli_program *p, const glint_render_stats *st, const char *output);
+/// Says on stderr that the render was interrupted and how many samples per pixel (of img's pixels) are written.
+void cli_print_interrupted(const cli_program *prog, const glint_image *img, uint64_t samples, const char *output);
 /// Share of a render's samples that may be NaN or infinite (and dropped) before the program exits 1: 1 %.
 #define CLI_MAX_DISCARDED_SHARE 0.01
 /// Warns on stderr (even with --quiet) when st dropped samples; true when more than CLI_MAX_DISCARDED_SHARE did.

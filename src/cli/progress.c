@@ -2,7 +2,9 @@
 #include "cli.h"
 
 #include <inttypes.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/ioctl.h>
 #include <time.h>
@@ -128,4 +130,21 @@ bool cli_warn_discarded(const cli_program *prog, const glint_render_stats *st) {
     fprintf(stderr, "%s: warning: %llu of %llu samples (%.1f %%) were NaN or infinite and were dropped\n", prog->name,
             (unsigned long long)st->discarded_samples, (unsigned long long)st->samples, 100.0 * share);
     return share > CLI_MAX_DISCARDED_SHARE;
+}
+
+void cli_print_interrupted(const cli_program *prog, const glint_image *img, uint64_t samples, const char *output) {
+    int w, h;
+    const float *rgb;
+    glint_image_info(img, &w, &h, &rgb);
+    // The mean to one decimal when it is a whole number; else to as many digits as it takes not to look
+    // whole (255 of 256 pixels done: 0.996, not 1.0).
+    unsigned long long pixels = (unsigned long long)w * (unsigned long long)h, done = samples;
+    double mean = (double)done / (double)pixels;
+    char shown[32];
+    int digits = 1;
+    snprintf(shown, sizeof shown, "%.1f", mean);
+    while (done % pixels && digits < 12 && fmod(strtod(shown, NULL), 1.0) == 0.0)
+        snprintf(shown, sizeof shown, "%.*f", ++digits, mean);
+    fprintf(stderr, "%s: interrupted; writing the %s samples per pixel completed so far to %s\n", prog->name, shown,
+            output);
 }
