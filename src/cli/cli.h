@@ -7,6 +7,7 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 
 /// Everything the command line asked for.
 typedef struct cli_options {
@@ -57,6 +58,7 @@ typedef struct cli_progress {
     double last_time, last_fraction; ///< the previous report (last_time 0: none yet)
     double measured; ///< seconds of rendering the rate was measured over
     double rate;     ///< smoothed fraction of the work done per second
+    FILE *stream;    ///< where the bar is drawn: NULL for stderr
 } cli_progress;
 
 /// Monotonic clock in seconds.

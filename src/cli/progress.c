@@ -1,4 +1,5 @@
-// progress.c — the progress bar (percentage, elapsed time, ETA) and the closing statistics line, on stderr.
+// progress.c — the progress bar (percentage, elapsed time, ETA) and the closing statistics line, on stderr (the
+// bar on another terminal stream if asked).
 #include "cli.h"
 
 #include <inttypes.h>
@@ -29,11 +30,11 @@ static void format_duration(double seconds, char *buf, size_t size) {
     else snprintf(buf, size, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
 }
 
-// The terminal's width in columns (TIOCGWINSZ on stderr), asked at every draw so that a resize is followed;
-// 80 when it does not say.
-static int terminal_columns(void) {
+// The terminal's width in columns (TIOCGWINSZ on the bar's stream), asked at every draw so that a resize is
+// followed; 80 when it does not say.
+static int terminal_columns(FILE *f) {
     struct winsize ws;
-    if (ioctl(STDERR_FILENO, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0) return ws.ws_col;
+    if (ioctl(fileno(f), TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0) return ws.ws_col;
     return 80;
 }
 
@@ -57,6 +58,7 @@ static void update_rate(cli_progress *p, double now, double fraction) {
 void cli_progress_draw(double fraction, void *user) {
     enum { MIN_MEASURE_SECONDS = 1 }; // no ETA before a second of rendering has been measured
     cli_progress *p = user;
+    FILE *out = p->stream ? p->stream : stderr;
     if (!(fraction > 0.0)) fraction = 0.0;
     if (fraction > 1.0) fraction = 1.0;
     double now = cli_now();
@@ -69,7 +71,7 @@ void cli_progress_draw(double fraction, void *user) {
     int percent = (int)(fraction * 100.0);
     int tail_len = snprintf(tail, sizeof tail, "] %3d%%  %s elapsed, ETA %s", percent, el, eta);
     // Never the last column: a character there makes some terminals wrap, and the bar must stay on one line.
-    int room = terminal_columns() - 1;
+    int room = terminal_columns(out) - 1;
     int width = room - 1 - tail_len; // "[" + bar + tail
     if (width > BAR_WIDTH) width = BAR_WIDTH;
     // \r returns to the line's start and ESC[K clears what a longer previous line left behind.
@@ -77,19 +79,20 @@ void cli_progress_draw(double fraction, void *user) {
         char bar[BAR_WIDTH + 1];
         int filled = (int)(fraction * width);
         for (int i = 0; i < width; i++) bar[i] = i < filled ? '#' : '-';
-        fprintf(stderr, "\r[%.*s%s\033[K", width, bar, tail);
+        fprintf(out, "\r[%.*s%s\033[K", width, bar, tail);
     } else { // too narrow for a bar: the numbers alone, cut to fit
         int n = snprintf(tail, sizeof tail, "%3d%% ETA %s", percent, eta);
-        fprintf(stderr, "\r%.*s\033[K", n < room ? n : (room > 0 ? room : 0), tail);
+        fprintf(out, "\r%.*s\033[K", n < room ? n : (room > 0 ? room : 0), tail);
     }
-    fflush(stderr);
+    fflush(out);
     p->drawn = true;
 }
 
 void cli_progress_clear(cli_progress *p) {
     if (!p->drawn) return;
-    fputs("\r\033[K", stderr);
-    fflush(stderr);
+    FILE *out = p->stream ? p->stream : stderr;
+    fputs("\r\033[K", out);
+    fflush(out);
     p->drawn = false;
 }
 

@@ -433,6 +433,7 @@ glint_status farm_master(const farm_setup *s, film *f, farm_report *r, glint_err
     while (st == GLINT_OK) {
         // Sleep only when the last round found nothing to do; a unit finished here wakes it at once.
         unit *done = crew_take(&m.crew, busy ? 0.0 : POLL_SECONDS);
+        double awake = clock_seconds();
         busy = done != NULL;
         while (done) {
             unit *u = done;
@@ -457,6 +458,7 @@ glint_status farm_master(const farm_setup *s, film *f, farm_report *r, glint_err
             s->progress((double)r->total.samples / (double)total, s->user);
             next_progress = clock_seconds() + PROGRESS_SECONDS;
         }
+        r->busy_seconds += clock_seconds() - awake;
     }
     if (st != GLINT_OK) atomic_store(s->stop, 1); // a stop or a failure: this rank's units in progress end now
 

@@ -46,6 +46,7 @@ typedef struct farm_report {
     uint64_t units_remote;     ///< units rendered by ranks other than 0
     uint64_t messages_sent, messages_received; ///< by rank 0, to and from the other ranks
     uint64_t bytes_sent, bytes_received;
+    double busy_seconds;       ///< time rank 0's main thread spent handling units and messages (not waiting)
     struct farm_link *link;    ///< the messages still in flight, for farm_master_finish
 } farm_report;
 

@@ -1,6 +1,8 @@
 // main.c — glint-mpi: glint's render on every process of an MPI job. Every rank reads the scene and builds
 // its own render frame; rank 0 hands out tile passes (farm.c), renders its share, writes the image and prints
 // what glint prints; the image is glint's, byte for byte, for any number of ranks and threads.
+// sched_getaffinity and CPU_COUNT are Linux's: <sched.h> declares them only for _GNU_SOURCE.
+#define _GNU_SOURCE
 #include "accel/accel.h"
 #include "cli/cli.h"
 #include "core/clock.h"
@@ -12,6 +14,7 @@
 
 #include <inttypes.h>
 #include <mpi.h>
+#include <sched.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -31,7 +34,8 @@ static const cli_program CLI_MPI = {
              "too, and prints the progress and statistics. Every rank reads SCENE and the files it names\n"
              "itself, at the same path (a shared file system); - reads the scene from rank 0's standard\n"
              "input and sends it to the others. Options are glint's and apply to every rank; --threads\n"
-             "counts the threads of each rank (0, the default: all of its node's CPUs).\n",
+             "counts the threads of each rank (0, the default: the CPUs the rank may run on, which\n"
+             "mpirun may restrict: use mpirun --bind-to none or --map-by node:PE=N).\n",
     .stopping = "Ctrl-C to mpirun (Open MPI then sends SIGTERM to every rank, and SIGKILL a second later), or\n"
                 "SIGINT, SIGTERM or SIGHUP to any rank, stops the render on every rank: rank 0 writes the\n"
                 "image of the tile passes completed so far. A rank that cannot read the scene ends the job\n"
@@ -170,7 +174,11 @@ static glint_status check_output(const cli_options *opt, glint_format format, gl
     return GLINT_OK;
 }
 
-static int online_cpus(void) {
+// The CPUs this rank may run on: the launcher may bind a rank to a core or a socket (Open MPI does by
+// default), and threads beyond its CPUs would only take turns. All online CPUs where that is unknown.
+static int usable_cpus(void) {
+    cpu_set_t set;
+    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
     long n = sysconf(_SC_NPROCESSORS_ONLN);
     return n > 0 ? (int)n : 1;
 }
@@ -189,11 +197,13 @@ static void print_shares(const farm_report *r, int size, double seconds) {
     fputc('\n', stderr);
     uint64_t messages = r->messages_sent + r->messages_received, bytes = r->bytes_sent + r->bytes_received;
     double per_unit = r->units_remote ? (double)bytes / (double)r->units_remote : 0.0;
+    // What a model of more ranks needs: bytes per unit, messages per second, rank 0's time per unit.
     fprintf(stderr,
             "glint-mpi: traffic of rank 0: %" PRIu64 " messages (%.0f/s), %" PRIu64 " bytes sent, %" PRIu64
-            " received, %.0f bytes per unit rendered elsewhere (%" PRIu64 " of %" PRIu64 ")\n",
+            " received, %.0f bytes per unit rendered elsewhere (%" PRIu64 " of %" PRIu64 "); busy %.1f ms, "
+            "%.1f us per unit\n",
             messages, seconds > 0 ? (double)messages / seconds : 0.0, r->bytes_sent, r->bytes_received, per_unit,
-            r->units_remote, units);
+            r->units_remote, units, r->busy_seconds * 1e3, units ? r->busy_seconds * 1e6 / (double)units : 0.0);
 }
 
 int main(int argc, char **argv) {
@@ -222,7 +232,6 @@ int main(int argc, char **argv) {
     speaks = rank == 0 && !opt.quiet;
     glint_format format = opt.ascii_ppm ? GLINT_FORMAT_PPM_ASCII : opt.half ? GLINT_FORMAT_EXR_HALF : GLINT_FORMAT_AUTO;
 
-    double t0 = clock_seconds();
     glint_error err;
     glint_status st = rank == 0 ? check_output(&opt, format, &err) : GLINT_OK;
     atomic_store(&loading, 1);
@@ -244,6 +253,7 @@ int main(int argc, char **argv) {
     int region[4];
     if (st == GLINT_OK) st = tiles_resolve_region(&scene->settings, opt.region, region, &err);
     render_frame frame = {0};
+    double t0 = clock_seconds(); // glint's wall time starts here too: the frame build and the render
     if (st == GLINT_OK) st = frame_build(&frame, scene, NULL, &stopping, &err);
     int code = 0;
     if (!all_ready(st, &err, rank, size, opt.quiet, &code)) {
@@ -257,7 +267,7 @@ int main(int argc, char **argv) {
     const render_settings *rs = &scene->settings;
     tiles grid;
     tiles_init(&grid, region, rs->spp);
-    int threads = opt.threads > 0 ? opt.threads : online_cpus();
+    int threads = opt.threads > 0 ? opt.threads : usable_cpus();
     if (threads > 256) threads = 256;
     int *rank_threads = rank == 0 ? malloc((size_t)size * sizeof *rank_threads) : NULL;
     int all_threads = threads;
@@ -268,12 +278,16 @@ int main(int argc, char **argv) {
                 region[2] - region[0], region[3] - region[1], rs->spp, size, size == 1 ? "" : "s", all_threads);
 
     double t_built = clock_seconds();
+    // mpirun hands rank 0 a pseudo-terminal for its standard output but a pipe for its standard error: the bar
+    // goes where a terminal is (standard output, unless the image goes there).
     cli_progress bar = {.start = cli_now(), .drawn = false};
+    bool bar_on_stderr = isatty(STDERR_FILENO);
+    if (!bar_on_stderr && isatty(STDOUT_FILENO) && strcmp(opt.output, "-") != 0) bar.stream = stdout;
     farm_setup setup = {.rank = rank, .size = size, .grid = &grid, .integrator = frame.integrator,
                         .stop = &stopping, .signal = &first_signal, .threads = threads,
                         .rank_threads = rank_threads,
                         .deadline = opt.time_limit > 0 ? t_built + (double)opt.time_limit : 0.0,
-                        .progress = speaks && isatty(STDERR_FILENO) ? cli_progress_draw : NULL, .user = &bar};
+                        .progress = speaks && (bar_on_stderr || bar.stream) ? cli_progress_draw : NULL, .user = &bar};
     if (rank != 0) {
         bool ok = farm_worker(&setup);
         frame_release(&frame);
