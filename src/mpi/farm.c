@@ -169,7 +169,8 @@ typedef struct master {
 // The tile's sums (row by row) from the film, or its sums and means into it.
 static void film_get_sums(const film *f, const int r[4], double *sums) {
     size_t w = (size_t)(r[2] - r[0]) * 3;
-    for (int y = r[1]; y < r[3]; y++, sums += w) memcpy(sums, &f->sums[film_pixel_index(f, r[0], y) * 3], w * sizeof *sums);
+    for (int y = r[1]; y < r[3]; y++, sums += w)
+        memcpy(sums, &f->sums[film_pixel_index(f, r[0], y) * 3], w * sizeof *sums);
 }
 
 static void film_put(film *f, const int r[4], const double *sums, const float *means) {
@@ -589,13 +590,15 @@ bool farm_worker(const farm_setup *s) {
             if (u) {
                 u->tile = h.tile;
                 u->pass = h.pass;
-                if (sums_in(h.pass)) memcpy(u->sums, in + sizeof h, (size_t)tile_pixels(g, h.tile) * 3 * sizeof *u->sums);
+                if (sums_in(h.pass))
+                    memcpy(u->sums, in + sizeof h, (size_t)tile_pixels(g, h.tile) * 3 * sizeof *u->sums);
                 crew_give(&c, u);
             } else if (status.MPI_TAG == TAG_UNIT) {
                 snprintf(err.message, sizeof err.message, "out of memory for a tile");
                 ok = false;
             }
-            if (ok && MPI_Irecv(in, (int)MESSAGE_MAX, MPI_BYTE, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &receive) != MPI_SUCCESS) {
+            if (ok &&
+                MPI_Irecv(in, (int)MESSAGE_MAX, MPI_BYTE, 0, MPI_ANY_TAG, MPI_COMM_WORLD, &receive) != MPI_SUCCESS) {
                 snprintf(err.message, sizeof err.message, "MPI cannot receive from rank 0");
                 ok = false;
             }
