@@ -92,6 +92,19 @@ static void block_stop_signals(void) {
     pthread_sigmask(SIG_BLOCK, &set, NULL);
 }
 
+// Whether the launcher that started this process (mpirun, when rank 0 runs on its node) writes its standard
+// output to a terminal. mpirun gives a rank a pseudo-terminal for standard output even when its own output
+// goes to a file, and a pipe for standard error; so rank 0 draws the bar on standard output, which mpirun
+// forwards, only when that ends on a terminal, and a batch job's log gets no bar.
+static bool launcher_on_terminal(void) {
+    char link[64], target[64];
+    snprintf(link, sizeof link, "/proc/%ld/fd/1", (long)getppid());
+    ssize_t n = readlink(link, target, sizeof target - 1);
+    if (n <= 0) return false;
+    target[n] = '\0';
+    return isatty(STDOUT_FILENO) && (strncmp(target, "/dev/pts/", 9) == 0 || strncmp(target, "/dev/tty", 8) == 0);
+}
+
 static int exit_code(glint_status st) { return st == GLINT_ERR_INPUT ? 2 : 1; }
 
 // Ends the MPI job of this rank and returns its exit status.
@@ -107,7 +120,10 @@ static glint_status load_scene(const char *path, int rank, glint_scene **scene, 
     size_t n = 0;
     glint_status st = GLINT_OK;
     char *text = rank == 0 ? cli_read_stdin(&n, &st, err) : NULL;
-    if (text) length = (long long)n;
+    if (text) {
+        length = (long long)n;
+        st = GLINT_OK;
+    }
     MPI_Bcast(&length, 1, MPI_LONG_LONG, 0, MPI_COMM_WORLD);
     if (length < 0) {
         if (rank != 0) snprintf(err->message, sizeof err->message, "rank 0 could not read the scene");
@@ -278,11 +294,9 @@ int main(int argc, char **argv) {
                 region[2] - region[0], region[3] - region[1], rs->spp, size, size == 1 ? "" : "s", all_threads);
 
     double t_built = clock_seconds();
-    // mpirun hands rank 0 a pseudo-terminal for its standard output but a pipe for its standard error: the bar
-    // goes where a terminal is (standard output, unless the image goes there).
     cli_progress bar = {.start = cli_now(), .drawn = false};
     bool bar_on_stderr = isatty(STDERR_FILENO);
-    if (!bar_on_stderr && isatty(STDOUT_FILENO) && strcmp(opt.output, "-") != 0) bar.stream = stdout;
+    if (!bar_on_stderr && launcher_on_terminal() && strcmp(opt.output, "-") != 0) bar.stream = stdout;
     farm_setup setup = {.rank = rank, .size = size, .grid = &grid, .integrator = frame.integrator,
                         .stop = &stopping, .signal = &first_signal, .threads = threads,
                         .rank_threads = rank_threads,

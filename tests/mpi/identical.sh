@@ -18,6 +18,21 @@ for scene in "$SRC"/scenes/*.json; do
     i=$((i + 1))
 done
 
+# A scene on standard input: rank 0 reads it and sends it to the others.
+"$GLINT" -q "${SIZE[@]}" - <"$DATA/tiny-path.json" -o "$TMP/stdin.pfm"
+"${MPIRUN[@]}" -np 3 "$GLINT_MPI" -q "${SIZE[@]}" --threads 1 - <"$DATA/tiny-path.json" -o "$TMP/stdin-3.pfm"
+check "a scene on standard input, 3 ranks: exit 0" test $? -eq 0
+check "a scene on standard input, 3 ranks: glint's PFM" cmp -s "$TMP/stdin.pfm" "$TMP/stdin-3.pfm"
+
+# A time limit ends the render after a whole pass: the image of the samples per pixel reached, exactly.
+"${MPIRUN[@]}" -np 2 "$GLINT_MPI" --threads 1 --spp 1000000 --time-limit 1 "$DATA/tiny-path.json" \
+    -o "$TMP/limited.pfm" 2>"$TMP/err"
+check "--time-limit 1: exit 0" test $? -eq 0
+spp=$(sed -n 's/^glint-mpi: time limit of 1 s reached: \([0-9]*\) of 1000000 samples per pixel rendered$/\1/p' "$TMP/err")
+check "--time-limit 1: says how many samples per pixel ($spp)" test -n "$spp"
+"$GLINT" -q --spp "${spp:-1}" "$DATA/tiny-path.json" -o "$TMP/limited-glint.pfm"
+check "--time-limit 1: glint's image at $spp samples per pixel" cmp -s "$TMP/limited.pfm" "$TMP/limited-glint.pfm"
+
 # A region of a PNG (its glint:region chunk included), with the statistics lines.
 ARGS=(--width 64 --height 40 --spp 3 --region 5,3,37,29 "$SRC/scenes/cornell-box.json")
 "$GLINT" -q "${ARGS[@]}" -o "$TMP/region.png"
