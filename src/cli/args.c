@@ -2,6 +2,7 @@
 #include "cli.h"
 
 #include <errno.h>
+#include <stdarg.h>
 #include <getopt.h>
 #include <limits.h>
 #include <stdio.h>
@@ -49,17 +50,37 @@ static const option_spec OPTIONS[] = {
 };
 enum { OPTION_COUNT = sizeof OPTIONS / sizeof OPTIONS[0] };
 
-static void print_usage(FILE *f) {
+const cli_program CLI_GLINT = {
+    .name = "glint",
+    .usage = "usage: glint [options] SCENE\n"
+             "       glint merge OUT PART...\n"
+             "\n"
+             "Renders the JSON scene file SCENE (- reads it from standard input) and writes the image.\n"
+             "Options override the scene file's \"render\" settings.\n"
+             "glint merge assembles the PNG files of regions (--region) into the full image OUT (.png or\n"
+             ".ppm), with the parts' pixels unchanged; they must tile it exactly: no overlap, no gap.\n"
+             "(To render a scene file named merge, write ./merge.)\n",
+    .stopping = "Ctrl-C (SIGINT), SIGTERM or SIGHUP stops the render within a second and writes the image\n"
+                "rendered so far (each pixel the mean of its completed samples; nothing if no sample was\n"
+                "completed); a second Ctrl-C aborts at once. While the scene is read, it stops at once.\n",
+    .notes = "",
+};
+
+// The program's messages: "NAME: what went wrong", unless it parses silently (glint-mpi's ranks but 0).
+__attribute__((format(printf, 2, 3))) static void say(const cli_program *prog, const char *format, ...) {
+    if (prog->silent) return;
+    va_list ap;
+    va_start(ap, format);
+    fprintf(stderr, "%s: ", prog->name);
+    vfprintf(stderr, format, ap);
+    va_end(ap);
+}
+
+static void print_usage(const cli_program *prog, FILE *f) {
+    if (prog->silent) return;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    fputs(prog->usage, f);
     fprintf(f,
-            "usage: glint [options] SCENE\n"
-            "       glint merge OUT PART...\n"
-            "\n"
-            "Renders the JSON scene file SCENE (- reads it from standard input) and writes the image.\n"
-            "Options override the scene file's \"render\" settings.\n"
-            "glint merge assembles the PNG files of regions (--region) into the full image OUT (.png or\n"
-            ".ppm), with the parts' pixels unchanged; they must tile it exactly: no overlap, no gap.\n"
-            "(To render a scene file named merge, write ./merge.)\n"
             "\n"
             "options:\n"
             "  -o, --output FILE  the image to write; its extension chooses the format:\n"
@@ -120,9 +141,7 @@ static void print_usage(FILE *f) {
             "ETA) is drawn on stderr when stderr is a terminal, and at the end, terminal or not, one\n"
             "statistics line: wall time, samples/s, rays/s, threads, BVH size, build time and the image.\n"
             "\n"
-            "Ctrl-C (SIGINT), SIGTERM or SIGHUP stops the render within a second and writes the image\n"
-            "rendered so far (each pixel the mean of its completed samples; nothing if no sample was\n"
-            "completed); a second Ctrl-C aborts at once. While the scene is read, it stops at once.\n"
+            "%s"
             "\n"
             "Samples that come out NaN or infinite are dropped, with a warning on stderr (even with\n"
             "--quiet); when more than 1 %% of them were dropped the image is written and the exit status is 1.\n"
@@ -133,27 +152,31 @@ static void print_usage(FILE *f) {
             "exit status: 0 success; 1 render, I/O or out-of-memory failure (a read-only output too), or\n"
             "             more than 1 %% of samples dropped; 2 usage or scene error (an output that is one of\n"
             "             the scene's files too); 128 + the signal when stopped by one: 130 SIGINT,\n"
-            "             143 SIGTERM, 129 SIGHUP; 130 too when the --preview window stopped it\n");
+            "             143 SIGTERM, 129 SIGHUP; 130 too when the --preview window stopped it\n"
+            "%s",
+            prog->stopping, prog->notes);
 }
 
-static void usage_hint(void) { fputs("Try 'glint --help' for more information.\n", stderr); }
+static void usage_hint(const cli_program *prog) {
+    if (!prog->silent) fprintf(stderr, "Try '%s --help' for more information.\n", prog->name);
+}
 
 // Strict decimal integer: optional sign, digits only, no spaces, in [spec->min, spec->max].
-static bool parse_integer(const option_spec *spec, const char *text, long long *out) {
+static bool parse_integer(const cli_program *prog, const option_spec *spec, const char *text, long long *out) {
     const char *p = text;
     if (*p == '+' || *p == '-') p++;
     bool digits = *p >= '0' && *p <= '9';
     for (; *p >= '0' && *p <= '9'; p++) {}
     if (!digits || *p != '\0') {
-        fprintf(stderr, "glint: --%s: '%s' is not an integer, expected an integer in [%lld, %lld]\n",
-                spec->long_name, text, spec->min, spec->max);
+        say(prog, "--%s: '%s' is not an integer, expected an integer in [%lld, %lld]\n", spec->long_name, text,
+            spec->min, spec->max);
         return false;
     }
     errno = 0;
     long long v = strtoll(text, NULL, 10);
     if (errno == ERANGE || v < spec->min || v > spec->max) {
-        fprintf(stderr, "glint: --%s: %s is out of range, expected an integer in [%lld, %lld]\n", spec->long_name,
-                text, spec->min, spec->max);
+        say(prog, "--%s: %s is out of range, expected an integer in [%lld, %lld]\n", spec->long_name, text,
+            spec->min, spec->max);
         return false;
     }
     *out = v;
@@ -218,13 +241,13 @@ static bool is_ppm_path(const char *path) {
 }
 
 // Applies one option with its value (NULL for flags); returns CLI_RUN to go on.
-static cli_action apply_option(const option_spec *spec, const char *value, cli_options *o) {
+static cli_action apply_option(const cli_program *prog, const option_spec *spec, const char *value, cli_options *o) {
     long long v = 0;
-    if (spec->min <= spec->max && !parse_integer(spec, value, &v)) return CLI_EXIT_USAGE;
+    if (spec->min <= spec->max && !parse_integer(prog, spec, value, &v)) return CLI_EXIT_USAGE;
     switch (spec->id) {
     case OPT_OUTPUT:
         if (value[0] == '\0') {
-            fprintf(stderr, "glint: --output: empty file name, expected an image file name or -\n");
+            say(prog, "--output: empty file name, expected an image file name or -\n");
             return CLI_EXIT_USAGE;
         }
         o->output = value;
@@ -240,26 +263,26 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
     case OPT_TIME_LIMIT: o->time_limit = (long)v; break;
     case OPT_ACCEL:
         if (strcmp(value, "bvh") != 0 && strcmp(value, "bvh2") != 0 && strcmp(value, "none") != 0) {
-            fprintf(stderr, "glint: --accel: unknown structure '%s', expected bvh, bvh2 or none\n", value);
+            say(prog, "--accel: unknown structure '%s', expected bvh, bvh2 or none\n", value);
             return CLI_EXIT_USAGE;
         }
         o->overrides.accel = value;
         break;
     case OPT_OUTPUT_ENCODING:
         if (strcmp(value, "linear") != 0 && strcmp(value, "gamma2") != 0 && strcmp(value, "srgb") != 0) {
-            fprintf(stderr, "glint: --output-encoding: unknown encoding '%s', expected linear, gamma2 or srgb\n", value);
+            say(prog, "--output-encoding: unknown encoding '%s', expected linear, gamma2 or srgb\n", value);
             return CLI_EXIT_USAGE;
         }
         o->overrides.output_encoding = value;
         break;
     case OPT_REGION:
         if (!parse_region(value, o->region)) {
-            fprintf(stderr, "glint: --region: '%s' is not X0,Y0,X1,Y1, expected four non-negative integers "
-                            "separated by commas\n", value);
+            say(prog, "--region: '%s' is not X0,Y0,X1,Y1, expected four non-negative integers separated by "
+                      "commas\n", value);
             return CLI_EXIT_USAGE;
         }
         if (o->region[0] >= o->region[2] || o->region[1] >= o->region[3]) {
-            fprintf(stderr, "glint: --region: %s is empty, expected X0 < X1 and Y0 < Y1\n", value);
+            say(prog, "--region: %s is empty, expected X0 < X1 and Y0 < Y1\n", value);
             return CLI_EXIT_USAGE;
         }
         break;
@@ -278,8 +301,10 @@ static cli_action apply_option(const option_spec *spec, const char *value, cli_o
         else o->resume = value;
         break;
     case OPT_QUIET: o->quiet = true; break;
-    case OPT_HELP: print_usage(stdout); return CLI_EXIT_OK;
-    case OPT_VERSION: printf("glint %s\n", glint_version()); return CLI_EXIT_OK;
+    case OPT_HELP: print_usage(prog, stdout); return CLI_EXIT_OK;
+    case OPT_VERSION:
+        if (!prog->silent) printf("%s %s\n", prog->name, glint_version());
+        return CLI_EXIT_OK;
     }
     return CLI_RUN;
 }
@@ -297,7 +322,7 @@ static const option_spec *spec_of_value(int v) { return v >= 256 ? &OPTIONS[v - 
 
 // getopt_long does the GNU syntax (bundled flags "-qo x.png", "-ox.png", "--name=value", "--", options after
 // the scene); its messages are silenced (opterr = 0) so that glint's own, unchanged, are printed instead.
-cli_action cli_parse(int argc, char **argv, cli_options *o) {
+cli_action cli_parse(const cli_program *prog, int argc, char **argv, cli_options *o) {
     memset(o, 0, sizeof *o);
     glint_overrides_init(&o->overrides);
     struct option longopts[OPTION_COUNT + 1];
@@ -318,44 +343,44 @@ cli_action cli_parse(int argc, char **argv, cli_options *o) {
         const char *typed = argv[optind - 1]; // the argument that held the option
         const option_spec *spec = c == '?' || c == ':' ? (optopt ? spec_of_value(optopt) : NULL) : spec_of_value(c);
         if (c == '?' && spec) { // "--quiet=yes": only a long option given a value makes a known option fail
-            fprintf(stderr, "glint: option '--%s' takes no value\n", spec->long_name);
+            say(prog, "option '--%s' takes no value\n", spec->long_name);
         } else if (c == '?' && optopt && !spec) {
-            fprintf(stderr, "glint: unknown option '-%c'\n", optopt);
+            say(prog, "unknown option '-%c'\n", optopt);
         } else if (c == '?') { // an unknown or ambiguous long option
-            fprintf(stderr, "glint: unknown option '%s'\n", typed);
+            say(prog, "unknown option '%s'\n", typed);
         } else if (c == ':') {
-            if (strncmp(typed, "--", 2) == 0) fprintf(stderr, "glint: option '%s' needs a value\n", typed);
-            else fprintf(stderr, "glint: option '-%c' needs a value\n", optopt);
+            if (strncmp(typed, "--", 2) == 0) say(prog, "option '%s' needs a value\n", typed);
+            else say(prog, "option '-%c' needs a value\n", optopt);
         } else {
-            cli_action a = apply_option(spec, optarg, o);
+            cli_action a = apply_option(prog, spec, optarg, o);
             if (a != CLI_RUN) return a;
             continue;
         }
-        usage_hint();
+        usage_hint(prog);
         return CLI_EXIT_USAGE;
     }
     for (int i = optind; i < argc; i++) {
         if (o->scene_path) {
-            fprintf(stderr, "glint: unexpected argument '%s': only one scene file can be given\n", argv[i]);
-            usage_hint();
+            say(prog, "unexpected argument '%s': only one scene file can be given\n", argv[i]);
+            usage_hint(prog);
             return CLI_EXIT_USAGE;
         }
         o->scene_path = argv[i];
     }
     if (!o->scene_path) {
-        fprintf(stderr, "glint: no scene file given\n");
-        usage_hint();
+        say(prog, "no scene file given\n");
+        usage_hint(prog);
         return CLI_EXIT_USAGE;
     }
     if (!o->output) set_default_output(o);
     if (o->resume && !o->checkpoint) o->checkpoint = o->resume; // a resumed render stays resumable
     if (o->ascii_ppm && !is_ppm_path(o->output)) {
-        fprintf(stderr, "glint: --ascii-ppm: the output '%s' is not a .ppm file (or -)\n", o->output);
+        say(prog, "--ascii-ppm: the output '%s' is not a .ppm file (or -)\n", o->output);
         return CLI_EXIT_USAGE;
     }
     size_t out_len = strlen(o->output);
     if (o->half && !(out_len > 4 && strcasecmp(o->output + out_len - 4, ".exr") == 0)) {
-        fprintf(stderr, "glint: --half: the output '%s' is not an .exr file\n", o->output);
+        say(prog, "--half: the output '%s' is not an .exr file\n", o->output);
         return CLI_EXIT_USAGE;
     }
     bool exr = out_len > 4 && strcasecmp(o->output + out_len - 4, ".exr") == 0;
@@ -380,14 +405,15 @@ cli_action cli_parse(int argc, char **argv, cli_options *o) {
 }
 
 int cli_merge(int argc, char **argv) {
+    const cli_program *prog = &CLI_GLINT;
     if (argc < 4) {
-        fprintf(stderr, "glint: merge: expected OUT and at least one PART: glint merge OUT PART...\n");
-        usage_hint();
+        say(prog, "merge: expected OUT and at least one PART: glint merge OUT PART...\n");
+        usage_hint(prog);
         return CLI_EXIT_USAGE;
     }
     glint_error err;
     glint_status st = glint_merge(argv[2], (const char *const *)(argv + 3), (size_t)(argc - 3), &err);
     if (st == GLINT_OK) return 0;
-    fprintf(stderr, "glint: %s\n", err.message);
+    say(prog, "%s\n", err.message);
     return st == GLINT_ERR_INPUT ? 2 : 1;
 }

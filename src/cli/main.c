@@ -4,8 +4,6 @@
 #include "glint.h"
 #include "preview.h"
 
-#include <errno.h>
-#include <math.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -94,63 +92,6 @@ static const char NOTHING_RENDERED[] = "glint: interrupted before any sample was
 
 static int exit_code(glint_status st) { return st == GLINT_ERR_INPUT ? 2 : 1; }
 
-// Reads standard input as a scene: at most GLINT_MAX_SCENE_BYTES + 1 bytes, one more than a scene may have,
-// so that a larger input (even an endless one) is refused without reading or holding the rest. NULL on
-// failure, with the message in *err and the status in *st (GLINT_ERR_RENDER when memory runs out).
-static char *read_stdin(size_t *length, glint_status *st, glint_error *err) {
-    const size_t most = GLINT_MAX_SCENE_BYTES + 1;
-    size_t cap = 1 << 16, n = 0;
-    char *buf = malloc(cap);
-    while (buf) {
-        n += fread(buf + n, 1, cap - n, stdin);
-        if (n < cap || cap == most) break;
-        size_t bigger = cap > most / 2 ? most : cap * 2;
-        char *grown = realloc(buf, bigger);
-        if (!grown) {
-            free(buf);
-            buf = NULL;
-            break;
-        }
-        buf = grown;
-        cap = bigger;
-    }
-    *st = GLINT_ERR_INPUT;
-    if (!buf || (ferror(stdin) && errno == ENOMEM)) {
-        snprintf(err->message, sizeof err->message, "standard input: out of memory while reading the scene");
-        *st = GLINT_ERR_RENDER;
-    } else if (ferror(stdin)) {
-        snprintf(err->message, sizeof err->message, "standard input: cannot read the scene");
-    } else if (n > GLINT_MAX_SCENE_BYTES) {
-        snprintf(err->message, sizeof err->message, "standard input: the scene is larger than %zu bytes (%zu MiB)",
-                 GLINT_MAX_SCENE_BYTES, GLINT_MAX_SCENE_BYTES >> 20);
-    } else {
-        *length = n;
-        return buf;
-    }
-    free(buf);
-    return NULL;
-}
-
-static glint_status load_scene(const char *path, glint_scene **scene, glint_error *err) {
-    if (strcmp(path, "-") != 0) return glint_scene_load(path, scene, err);
-    size_t length = 0;
-    glint_status st;
-    char *text = read_stdin(&length, &st, err);
-    if (!text) return st;
-    st = glint_scene_parse("<stdin>", text, length, scene, err);
-    free(text);
-    return st;
-}
-
-// Whether the output would replace the scene file (the same file by device and inode, whatever the names and
-// links: `glint a.png -o ./a.png`, or a scene on standard input redirected from the output).
-static bool output_is_scene(const char *output, const char *scene_path) {
-    struct stat out, in;
-    if (strcmp(output, "-") == 0 || stat(output, &out) != 0) return false;
-    int found = strcmp(scene_path, "-") == 0 ? fstat(STDIN_FILENO, &in) : stat(scene_path, &in);
-    return found == 0 && S_ISREG(in.st_mode) && in.st_dev == out.st_dev && in.st_ino == out.st_ino;
-}
-
 // One call of glint_render: on the main thread, or on a thread of its own while a preview window has the main one.
 typedef struct render_call {
     const glint_scene *scene;
@@ -194,7 +135,7 @@ static bool same_file(const char *a, const char *b) {
 int main(int argc, char **argv) {
     if (argc > 1 && strcmp(argv[1], "merge") == 0) return cli_merge(argc, argv);
     cli_options opt;
-    cli_action action = cli_parse(argc, argv, &opt);
+    cli_action action = cli_parse(&CLI_GLINT, argc, argv, &opt);
     if (action != CLI_RUN) return (int)action;
 
     glint_error err;
@@ -211,12 +152,12 @@ int main(int argc, char **argv) {
             fprintf(stderr, "glint: %s\n", err.message);
             return exit_code(st);
         }
-        if (output_is_scene(outputs[i], opt.scene_path)) {
+        if (cli_output_is_scene(outputs[i], opt.scene_path)) {
             fprintf(stderr, "glint: %s: cannot write: it is the scene file, which would be lost\n", outputs[i]);
             return exit_code(GLINT_ERR_INPUT);
         }
     }
-    if (opt.checkpoint && (same_file(opt.checkpoint, opt.output) || output_is_scene(opt.checkpoint, opt.scene_path))) {
+    if (opt.checkpoint && (same_file(opt.checkpoint, opt.output) || cli_output_is_scene(opt.checkpoint, opt.scene_path))) {
         fprintf(stderr, "glint: --checkpoint: %s: cannot write: it is the %s, which would be lost\n", opt.checkpoint,
                 same_file(opt.checkpoint, opt.output) ? "output image" : "scene file");
         return exit_code(GLINT_ERR_INPUT);
@@ -227,7 +168,7 @@ int main(int argc, char **argv) {
     atomic_store(&loading, 1);
     install_signal_handlers();
     glint_scene *scene = NULL;
-    st = load_scene(opt.scene_path, &scene, &err);
+    st = cli_load_scene(opt.scene_path, &scene, &err);
     atomic_store(&loading, 0);
     if (st == GLINT_OK) st = glint_scene_override(scene, &opt.overrides, &err);
     if (st != GLINT_OK) {
@@ -292,9 +233,9 @@ int main(int argc, char **argv) {
     }
     bool interrupted = st == GLINT_ERR_INTERRUPTED;
     uint64_t samples_kept = stats.samples + stats.samples_resumed; // a resumed render keeps what it resumed
-    if (!opt.quiet) cli_print_stats(&stats, interrupted && samples_kept == 0 ? NULL : opt.output);
+    if (!opt.quiet) cli_print_stats(&CLI_GLINT, &stats, interrupted && samples_kept == 0 ? NULL : opt.output);
     // A render that lost more than a small share of its samples is wrong, but its image is still written.
-    bool lost = cli_warn_discarded(&stats);
+    bool lost = cli_warn_discarded(&CLI_GLINT, &stats);
     if (st == GLINT_OK && stats.spp_done < stats.spp && !opt.quiet)
         fprintf(stderr, "glint: time limit of %ld s reached: %d of %d samples per pixel rendered\n", opt.time_limit,
                 stats.spp_done, stats.spp);
@@ -304,21 +245,7 @@ int main(int argc, char **argv) {
         glint_image_free(img);
         return interrupted_status();
     }
-    if (interrupted && !opt.quiet) {
-        int w, h;
-        const float *rgb;
-        glint_image_info(img, &w, &h, &rgb);
-        // The mean to one decimal when it is a whole number; else to as many digits as it takes not to look
-        // whole (255 of 256 pixels done: 0.996, not 1.0).
-        unsigned long long pixels = (unsigned long long)w * (unsigned long long)h, done = samples_kept;
-        double mean = (double)done / (double)pixels;
-        char shown[32];
-        int digits = 1;
-        snprintf(shown, sizeof shown, "%.1f", mean);
-        while (done % pixels && digits < 12 && fmod(strtod(shown, NULL), 1.0) == 0.0)
-            snprintf(shown, sizeof shown, "%.*f", ++digits, mean);
-        fprintf(stderr, "glint: interrupted; writing the %s samples per pixel completed so far to %s\n", shown, opt.output);
-    }
+    if (interrupted && !opt.quiet) cli_print_interrupted(&CLI_GLINT, img, samples_kept, opt.output);
 
     if (strcmp(opt.output, "-") != 0) block_stop_signals();
     st = glint_image_write(img, opt.output, format, &err);

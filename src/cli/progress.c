@@ -1,8 +1,11 @@
-// progress.c — the progress bar (percentage, elapsed time, ETA) and the closing statistics line, on stderr.
+// progress.c — the progress bar (percentage, elapsed time, ETA) and the closing statistics line, on stderr (the
+// bar on another terminal stream if asked).
 #include "cli.h"
 
 #include <inttypes.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 #include <sys/ioctl.h>
 #include <time.h>
@@ -27,11 +30,11 @@ static void format_duration(double seconds, char *buf, size_t size) {
     else snprintf(buf, size, "%ld:%02ld:%02ld", t / 3600, t / 60 % 60, t % 60);
 }
 
-// The terminal's width in columns (TIOCGWINSZ on stderr), asked at every draw so that a resize is followed;
-// 80 when it does not say.
-static int terminal_columns(void) {
+// The terminal's width in columns (TIOCGWINSZ on the bar's stream), asked at every draw so that a resize is
+// followed; 80 when it does not say.
+static int terminal_columns(FILE *f) {
     struct winsize ws;
-    if (ioctl(STDERR_FILENO, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0) return ws.ws_col;
+    if (ioctl(fileno(f), TIOCGWINSZ, &ws) == 0 && ws.ws_col > 0) return ws.ws_col;
     return 80;
 }
 
@@ -55,6 +58,7 @@ static void update_rate(cli_progress *p, double now, double fraction) {
 void cli_progress_draw(double fraction, void *user) {
     enum { MIN_MEASURE_SECONDS = 1 }; // no ETA before a second of rendering has been measured
     cli_progress *p = user;
+    FILE *out = p->stream ? p->stream : stderr;
     if (!(fraction > 0.0)) fraction = 0.0;
     if (fraction > 1.0) fraction = 1.0;
     double now = cli_now();
@@ -67,7 +71,7 @@ void cli_progress_draw(double fraction, void *user) {
     int percent = (int)(fraction * 100.0);
     int tail_len = snprintf(tail, sizeof tail, "] %3d%%  %s elapsed, ETA %s", percent, el, eta);
     // Never the last column: a character there makes some terminals wrap, and the bar must stay on one line.
-    int room = terminal_columns() - 1;
+    int room = terminal_columns(out) - 1;
     int width = room - 1 - tail_len; // "[" + bar + tail
     if (width > BAR_WIDTH) width = BAR_WIDTH;
     // \r returns to the line's start and ESC[K clears what a longer previous line left behind.
@@ -75,19 +79,20 @@ void cli_progress_draw(double fraction, void *user) {
         char bar[BAR_WIDTH + 1];
         int filled = (int)(fraction * width);
         for (int i = 0; i < width; i++) bar[i] = i < filled ? '#' : '-';
-        fprintf(stderr, "\r[%.*s%s\033[K", width, bar, tail);
+        fprintf(out, "\r[%.*s%s\033[K", width, bar, tail);
     } else { // too narrow for a bar: the numbers alone, cut to fit
         int n = snprintf(tail, sizeof tail, "%3d%% ETA %s", percent, eta);
-        fprintf(stderr, "\r%.*s\033[K", n < room ? n : (room > 0 ? room : 0), tail);
+        fprintf(out, "\r%.*s\033[K", n < room ? n : (room > 0 ? room : 0), tail);
     }
-    fflush(stderr);
+    fflush(out);
     p->drawn = true;
 }
 
 void cli_progress_clear(cli_progress *p) {
     if (!p->drawn) return;
-    fputs("\r\033[K", stderr);
-    fflush(stderr);
+    FILE *out = p->stream ? p->stream : stderr;
+    fputs("\r\033[K", out);
+    fflush(out);
     p->drawn = false;
 }
 
@@ -96,7 +101,7 @@ static void format_rate(double v, char *buf, size_t size) {
     snprintf(buf, size, v >= 99.95 ? "%.0f" : v >= 9.995 ? "%.1f" : "%.2f", v);
 }
 
-void cli_print_stats(const glint_render_stats *st, const char *output) {
+void cli_print_stats(const cli_program *prog, const glint_render_stats *st, const char *output) {
     // Rates over the render loop alone (as the Embree yardstick counts): scene preparation, the BVH build
     // in the first place, is reported on its own.
     double wall = st->render_seconds > 1e-9 ? st->render_seconds : 1e-9;
@@ -110,8 +115,8 @@ void cli_print_stats(const glint_render_stats *st, const char *output) {
     else snprintf(bvh, sizeof bvh, "no BVH (brute force)");
     if (st->build_seconds < 1.0) snprintf(build, sizeof build, "%.1f ms", st->build_seconds * 1e3);
     else snprintf(build, sizeof build, "%.2f s", st->build_seconds);
-    fprintf(stderr, "glint: %.3f s wall, %s Msamples/s, %s Mrays/s (%d thread%s), %s, build %s", st->wall_seconds,
-            samples, rays, st->threads, st->threads == 1 ? "" : "s", bvh, build);
+    fprintf(stderr, "%s: %.3f s wall, %s Msamples/s, %s Mrays/s (%d thread%s), %s, build %s", prog->name,
+            st->wall_seconds, samples, rays, st->threads, st->threads == 1 ? "" : "s", bvh, build);
     if (st->discarded_samples > 0)
         fprintf(stderr, ", %" PRIu64 " NaN/infinite sample%s discarded", st->discarded_samples,
                 st->discarded_samples == 1 ? "" : "s");
@@ -121,11 +126,28 @@ void cli_print_stats(const glint_render_stats *st, const char *output) {
     fputc('\n', stderr);
 }
 
-bool cli_warn_discarded(const glint_render_stats *st) {
+bool cli_warn_discarded(const cli_program *prog, const glint_render_stats *st) {
     if (st->discarded_samples == 0) return false;
     // samples counts every sample taken, the dropped ones included
     double share = st->samples ? (double)st->discarded_samples / (double)st->samples : 1.0;
-    fprintf(stderr, "glint: warning: %llu of %llu samples (%.1f %%) were NaN or infinite and were dropped\n",
+    fprintf(stderr, "%s: warning: %llu of %llu samples (%.1f %%) were NaN or infinite and were dropped\n", prog->name,
             (unsigned long long)st->discarded_samples, (unsigned long long)st->samples, 100.0 * share);
     return share > CLI_MAX_DISCARDED_SHARE;
+}
+
+void cli_print_interrupted(const cli_program *prog, const glint_image *img, uint64_t samples, const char *output) {
+    int w, h;
+    const float *rgb;
+    glint_image_info(img, &w, &h, &rgb);
+    // The mean to one decimal when it is a whole number; else to as many digits as it takes not to look
+    // whole (255 of 256 pixels done: 0.996, not 1.0).
+    unsigned long long pixels = (unsigned long long)w * (unsigned long long)h, done = samples;
+    double mean = (double)done / (double)pixels;
+    char shown[32];
+    int digits = 1;
+    snprintf(shown, sizeof shown, "%.1f", mean);
+    while (done % pixels && digits < 12 && fmod(strtod(shown, NULL), 1.0) == 0.0)
+        snprintf(shown, sizeof shown, "%.*f", ++digits, mean);
+    fprintf(stderr, "%s: interrupted; writing the %s samples per pixel completed so far to %s\n", prog->name, shown,
+            output);
 }

@@ -7,6 +7,7 @@
 #include "io/image_write.h"
 #include "render/checkpoint.h"
 #include "render/frame.h"
+#include "render/tiles.h"
 
 #include <errno.h>
 #include <pthread.h>
@@ -18,9 +19,8 @@
 #include <unistd.h>
 
 enum {
-    TILE_SIZE = 16,
     MAX_THREADS = 256,
-    MAX_PASSES = 33,            // 0, 1, 2, 4, ..., 2^30, spp: enough for any int spp
+    MAX_PASSES = TILES_MAX_PASSES,
     PROGRESS_INTERVAL_MS = 200, // progress callbacks at most five times a second
     PASS_RUN = 1,
     PASS_SKIP = 2,
@@ -42,9 +42,7 @@ typedef struct render_job {
     const integrator *integrator;
     film film;
     int region[4];                 ///< the pixels rendered, X0, Y0, X1, Y1 in full-image coordinates
-    int tile_x0, tile_y0;          ///< the full image's 16x16 grid cell of the region's first tile
-    int tiles_x, tile_count, pass_count;
-    int pass_start[MAX_PASSES + 1];
+    tiles grid;                    ///< the region's tiles and the sample passes (render/tiles.h, shared with glint-mpi)
     uint64_t total_samples;        ///< the region's pixels * spp
     atomic_int next_item;
     atomic_int *tile_passes;       ///< passes completed by each tile; pass p of a tile waits for p
@@ -88,23 +86,6 @@ typedef struct progress_state {
     pthread_cond_t wake;
 } progress_state;
 
-// Pass boundaries 0, 1, 2, 4, 8, ..., spp: a stopped render has at least doubled its samples since the last
-// complete pass, and a full render pays for log2(spp) visits of each pixel, a negligible cost.
-static int plan_passes(int spp, int start[MAX_PASSES + 1]) {
-    int n = 0;
-    start[0] = 0;
-    long next = 1;
-    while (start[n] < spp) {
-        start[n + 1] = next < spp ? (int)next : spp;
-        n++;
-        next *= 2;
-    }
-    return n;
-}
-
-static int max_int(int a, int b) { return a > b ? a : b; }
-static int min_int(int a, int b) { return a < b ? a : b; }
-
 // Samples [k0, k1) of the pixels [x0, x1) x [y0, y1) (rect, full-image coordinates) into the film; false when
 // stopped part-way (ft then says where: pixels not reached keep the previous pass's mean).
 static bool render_rect(render_job *job, const int rect[4], int k0, int k1, thread_stats *ts,
@@ -120,7 +101,7 @@ static bool render_rect(render_job *job, const int rect[4], int k0, int k1, thre
 // sum after k samples does not depend on where the passes split them, so the image is an uninterrupted one's.
 static bool render_tile_counted(render_job *job, const int r[4], int pass, thread_stats *ts,
                                 _Atomic uint64_t *progress) {
-    const uint32_t k1 = (uint32_t)job->pass_start[pass + 1];
+    const uint32_t k1 = (uint32_t)job->grid.pass_start[pass + 1];
     film *f = &job->film;
     uint32_t *counts = job->counts, lo = UINT32_MAX, hi = 0;
     for (int y = r[1]; y < r[3]; y++)
@@ -158,12 +139,11 @@ static bool render_tile_counted(render_job *job, const int r[4], int pass, threa
 // Tiles are the cells of the full image's 16x16 grid, clipped to the region: a region's pixels are rendered in
 // the same tiles, batches and order as in a full render.
 static bool render_tile(render_job *job, int tile, int pass, thread_stats *ts, _Atomic uint64_t *progress) {
-    const int *r = job->region;
-    int cx = (job->tile_x0 + tile % job->tiles_x) * TILE_SIZE, cy = (job->tile_y0 + tile / job->tiles_x) * TILE_SIZE;
-    int rect[4] = {max_int(cx, r[0]), max_int(cy, r[1]), min_int(cx + TILE_SIZE, r[2]), min_int(cy + TILE_SIZE, r[3])};
+    int rect[4];
+    tiles_rect(&job->grid, tile, rect);
     if (job->counts) return render_tile_counted(job, rect, pass, ts, progress);
     film_tile ft;
-    return render_rect(job, rect, job->pass_start[pass], job->pass_start[pass + 1], ts, progress, &ft);
+    return render_rect(job, rect, job->grid.pass_start[pass], job->grid.pass_start[pass + 1], ts, progress, &ft);
 }
 
 // Wakes the workers waiting for a tile; the waiters count (sequentially consistent, as is the tile store
@@ -208,11 +188,11 @@ static bool job_write_checkpoint(render_job *job) {
 static bool wait_for_pass(render_job *job, int pass) {
     pthread_mutex_lock(&job->lock);
     atomic_fetch_add(&job->waiters, 1);
-    while (atomic_load(&job->tiles_done[pass]) < job->tile_count && !atomic_load(&job->stopping))
+    while (atomic_load(&job->tiles_done[pass]) < job->grid.tile_count && !atomic_load(&job->stopping))
         pthread_cond_wait(&job->tile_finished, &job->lock);
     atomic_fetch_sub(&job->waiters, 1);
     pthread_mutex_unlock(&job->lock);
-    return atomic_load(&job->tiles_done[pass]) >= job->tile_count;
+    return atomic_load(&job->tiles_done[pass]) >= job->grid.tile_count;
 }
 
 // Whether pass `pass` runs, under a time limit or with checkpoints: the worker that takes its first tile decides
@@ -250,12 +230,12 @@ static void *worker_main(void *arg) {
     worker *w = arg;
     render_job *job = w->job;
     thread_stats local = {0}; // on this thread's stack: the hot counters are never shared
-    int items = job->pass_count * job->tile_count;
+    int items = job->grid.pass_count * job->grid.tile_count;
     for (;;) {
         if (stop_is_requested()) break;
         int item = atomic_fetch_add(&job->next_item, 1);
         if (item >= items) break;
-        int pass = item / job->tile_count, tile = item % job->tile_count;
+        int pass = item / job->grid.tile_count, tile = item % job->grid.tile_count;
         if (job->gated && pass > 0 && !pass_may_run(job, pass, tile)) break;
         if (!wait_for_tile(job, tile, pass)) break;
         if (!render_tile(job, tile, pass, &local, &w->samples_done)) break;
@@ -283,12 +263,12 @@ static uint64_t samples_so_far(const progress_state *p) {
 
 // Samples per pixel that every pixel has completed: those of the passes every tile has finished.
 static int spp_completed(const render_job *job) {
-    int passes = job->pass_count;
-    for (int i = 0; i < job->tile_count && passes > 0; i++) {
+    int passes = job->grid.pass_count;
+    for (int i = 0; i < job->grid.tile_count && passes > 0; i++) {
         int p = atomic_load_explicit(&job->tile_passes[i], memory_order_relaxed);
         if (p < passes) passes = p;
     }
-    return job->pass_start[passes];
+    return job->grid.pass_start[passes];
 }
 
 // The share of the render's samples done, those a resumed checkpoint brought included.
@@ -355,11 +335,7 @@ static bool job_init(render_job *job, const glint_scene *s, const integrator *it
     job->scene = s;
     job->integrator = it;
     memcpy(job->region, region, sizeof job->region);
-    job->tile_x0 = region[0] / TILE_SIZE;
-    job->tile_y0 = region[1] / TILE_SIZE;
-    job->tiles_x = (region[2] - 1) / TILE_SIZE - job->tile_x0 + 1;
-    job->tile_count = job->tiles_x * ((region[3] - 1) / TILE_SIZE - job->tile_y0 + 1);
-    job->pass_count = plan_passes(rs->spp, job->pass_start);
+    tiles_init(&job->grid, region, rs->spp);
     job->total_samples =
         (uint64_t)(region[2] - region[0]) * (uint64_t)(region[3] - region[1]) * (uint64_t)rs->spp;
     atomic_init(&job->next_item, 0);
@@ -370,14 +346,14 @@ static bool job_init(render_job *job, const glint_scene *s, const integrator *it
         atomic_init(&job->pass_decision[p], 0);
         atomic_init(&job->tiles_done[p], 0);
     }
-    if (!film_init(&job->film, region, rs->width, rs->height, rs->spp, job->pass_count, rs->transform, aovs))
+    if (!film_init(&job->film, region, rs->width, rs->height, rs->spp, job->grid.pass_count, rs->transform, aovs))
         return false;
-    job->tile_passes = malloc((size_t)job->tile_count * sizeof *job->tile_passes);
+    job->tile_passes = malloc((size_t)job->grid.tile_count * sizeof *job->tile_passes);
     if (!job->tile_passes) {
         film_release(&job->film);
         return false;
     }
-    for (int i = 0; i < job->tile_count; i++) atomic_init(&job->tile_passes[i], 0);
+    for (int i = 0; i < job->grid.tile_count; i++) atomic_init(&job->tile_passes[i], 0);
     pthread_mutex_init(&job->lock, NULL);
     pthread_cond_init(&job->tile_finished, NULL);
     return true;
@@ -389,32 +365,6 @@ static void job_free(render_job *job) {
     free(job->tile_passes);
     free(job->counts);
     film_release(&job->film);
-}
-
-// The region to render, from the options (all zero or no options: the whole image); GLINT_ERR_INPUT unless it
-// is a non-empty rectangle inside the image.
-static glint_status resolve_region(const render_settings *rs, const render_options *opt, int region[4],
-                                   glint_error *err) {
-    const int *r = opt ? opt->region : NULL;
-    if (!r || (r[0] == 0 && r[1] == 0 && r[2] == 0 && r[3] == 0)) {
-        region[0] = region[1] = 0;
-        region[2] = rs->width;
-        region[3] = rs->height;
-        return GLINT_OK;
-    }
-    if (r[0] >= r[2] || r[1] >= r[3]) {
-        snprintf(err->message, sizeof err->message, "--region: %d,%d,%d,%d is empty, expected X0 < X1 and Y0 < Y1",
-                 r[0], r[1], r[2], r[3]);
-        return GLINT_ERR_INPUT;
-    }
-    if (r[0] < 0 || r[1] < 0 || r[2] > rs->width || r[3] > rs->height) {
-        snprintf(err->message, sizeof err->message,
-                 "--region: %d,%d,%d,%d is not inside the %dx%d image, expected 0 <= X0 < X1 <= %d and "
-                 "0 <= Y0 < Y1 <= %d", r[0], r[1], r[2], r[3], rs->width, rs->height, rs->width, rs->height);
-        return GLINT_ERR_INPUT;
-    }
-    memcpy(region, r, 4 * sizeof *region);
-    return GLINT_OK;
 }
 
 // Prepares the job's checkpoints and resume (opt->checkpoint, opt->resume): the render's identity, every
@@ -464,7 +414,7 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
     *out = NULL;
     double t0 = clock_seconds();
     int region[4];
-    glint_status st = resolve_region(&s->settings, opt, region, err);
+    glint_status st = tiles_resolve_region(&s->settings, opt ? opt->region : NULL, region, err);
     if (st != GLINT_OK) return st;
     unsigned aovs = opt ? opt->aovs : 0u;
     if (aovs & ~(unsigned)GLINT_AOV_ALL) {
@@ -579,8 +529,8 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
         stats->threads = started + 1;
     }
     // A time limit ends the render after a whole pass: every pixel has the samples of the passes that ran.
-    int passes_run = job.pass_count;
-    for (int p = 1; job.deadline > 0.0 && p < job.pass_count; p++)
+    int passes_run = job.grid.pass_count;
+    for (int p = 1; job.deadline > 0.0 && p < job.grid.pass_count; p++)
         if (atomic_load(&job.pass_decision[p]) == PASS_SKIP) {
             passes_run = p;
             break;
@@ -588,14 +538,14 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
     uint64_t pixels = job.total_samples / (uint64_t)s->settings.spp; // of the region rendered
     uint64_t done = job.resumed_samples + total.samples;
     // Every pixel at the same count: with counts kept (a resumed render may start from any), that count.
-    int uniform = job.pass_start[passes_run];
+    int uniform = job.grid.pass_start[passes_run];
     bool same = done == pixels * (uint64_t)uniform;
     if (job.counts) {
         same = true;
         for (uint64_t i = 1; i < pixels && same; i++) same = job.counts[i] == job.counts[0];
         uniform = (int)job.counts[0];
     }
-    bool timed_out = passes_run < job.pass_count && same;
+    bool timed_out = passes_run < job.grid.pass_count && same;
     if (stats) stats->spp = s->settings.spp;
     if (stats) stats->spp_done = done == job.total_samples ? s->settings.spp : timed_out ? uniform : 0;
     free(workers);
