@@ -166,6 +166,48 @@ static void test_plane_under_envmap(void) {
     CHECK(se[1] * sqrt(16.0) < 0.5 * se[0] * sqrt(128.0)); // per sample, light sampling is far less noisy
 }
 
+// The sampler's directions land in each texel as often as its density says: a chi-square test of the counts per
+// texel against the texel's probability, envmap_pdf at its centre times the solid angle per unit (u, v) area
+// there, 2 pi^2 sin(theta) / (W H) (directions are uniform in (u, v) within a texel, as in pbrt).
+static void test_sampling_chi_square(void) {
+    enum { W = 16, H = 8, N = 400000 };
+    image_rgb img = index_image(W, H, 0.25f);
+    img.pixels[(3 * W + 11) * 3 + 2] = 40.0f; // a bright texel (blue: red and green still say where it is)
+    envmap e = envmap_make(img, 1.0f, 0.0f);
+    envmap_sampler s;
+    CHECK(envmap_sampler_build(&s, &e));
+    static double count[H][W];
+    memset(count, 0, sizeof count);
+    rng g = rng_for_sample(11, 2, 5);
+    for (int i = 0; i < N; i++) {
+        vec3 wi, le;
+        float pdf;
+        if (!envmap_sample(&s, &e, rng_float(&g), rng_float(&g), &wi, &pdf, &le)) continue;
+        vec3 l = envmap_radiance(&e, wi); // the index image says which texel the direction lies in
+        int c = (int)lrintf(l.x - 0.25f), r = (int)lrintf(l.y - 0.25f);
+        if (c >= 0 && c < W && r >= 0 && r < H) count[r][c] += 1.0;
+    }
+    double chi2 = 0.0, total = 0.0;
+    int wrong_centre = 0;
+    for (int r = 0; r < H; r++)
+        for (int c = 0; c < W; c++) {
+            double theta = PI * (r + 0.5) / H, phi = 2.0 * PI * ((c + 0.5) / W - 0.5);
+            vec3 d = v3((float)(sin(theta) * sin(phi)), (float)cos(theta), (float)(-sin(theta) * cos(phi)));
+            vec3 at = envmap_radiance(&e, d);
+            wrong_centre += at.x != (float)c + 0.25f || at.y != (float)r + 0.25f;
+            double expect = N * envmap_pdf(&s, &e, d) * 2.0 * PI * PI * sin(theta) / (W * H);
+            total += expect;
+            chi2 += (count[r][c] - expect) * (count[r][c] - expect) / expect;
+        }
+    printf("envmap sampling: chi-square %.1f over %d texels (%d dof), expected counts sum to %.0f of %d\n", chi2, W * H,
+           W * H - 1, total, N);
+    CHECK(wrong_centre == 0);
+    CHECK_NEAR(total, N, 1e-3 * N);
+    CHECK(chi2 < 200.0); // p < 1e-4 at 127 degrees of freedom is about 190
+    envmap_sampler_release(&s);
+    envmap_free(&e);
+}
+
 // A scene file names an .hdr file (read through stb_image) with its scale and rotation; bad files and
 // values are errors with file:line:col.
 static void test_scene_file(void) {
@@ -217,6 +259,7 @@ int main(void) {
     test_orientation();
     test_sampling(0.0f);
     test_sampling(-70.0f);
+    test_sampling_chi_square();
     test_plane_under_envmap();
     test_scene_file();
     tmpdir_remove();
