@@ -591,15 +591,9 @@ static glint_scene *tiny_cornell(int spp, bool nee, uint64_t seed) {
     return s;
 }
 
-// The tiny box rendered twice with independent seeds: the mean of the green channel over both, and its
-// standard error from the pixels' differences (each pixel's variance is about (a - b)^2 / 2).
-static void cornell_mean(int spp, bool nee, double *mean, double *se) {
-    glint_image *img[2];
-    for (int k = 0; k < 2; k++) {
-        glint_scene *s = tiny_cornell(spp, nee, 100 + (uint64_t)k);
-        img[k] = render(s, 0, NULL);
-        glint_scene_free(s);
-    }
+// The green channel's mean over two renders of one scene with different seeds (freed here), and the standard
+// error of that mean from the two renders' pixel differences.
+static void green_mean_se(glint_image *img[2], double *mean, double *se) {
     int w, h;
     const float *a = pixels(img[0], &w, &h), *b = pixels(img[1], &w, &h);
     double sum = 0.0, diff2 = 0.0;
@@ -610,6 +604,18 @@ static void cornell_mean(int spp, bool nee, double *mean, double *se) {
     *mean = sum / (2.0 * w * h);
     *se = sqrt(diff2) / (2.0 * w * h);
     for (int k = 0; k < 2; k++) glint_image_free(img[k]);
+}
+
+// The tiny box rendered twice with independent seeds: the mean of the green channel over both, and its
+// standard error from the pixels' differences (each pixel's variance is about (a - b)^2 / 2).
+static void cornell_mean(int spp, bool nee, double *mean, double *se) {
+    glint_image *img[2];
+    for (int k = 0; k < 2; k++) {
+        glint_scene *s = tiny_cornell(spp, nee, 100 + (uint64_t)k);
+        img[k] = render(s, 0, NULL);
+        glint_scene_free(s);
+    }
+    green_mean_se(img, mean, se);
 }
 
 static void test_cornell_estimators_agree(void) {
@@ -657,16 +663,7 @@ static void glass_cornell_mean(bool importance, double *mean, double *se) {
         img[k] = render(sc, 0, NULL);
         glint_scene_free(sc);
     }
-    int w, h;
-    const float *a = pixels(img[0], &w, &h), *b = pixels(img[1], &w, &h);
-    double sum = 0.0, diff2 = 0.0;
-    for (int i = 0; i < w * h; i++) {
-        sum += (double)a[i * 3 + 1] + b[i * 3 + 1];
-        diff2 += ((double)a[i * 3 + 1] - b[i * 3 + 1]) * ((double)a[i * 3 + 1] - b[i * 3 + 1]);
-    }
-    *mean = sum / (2.0 * w * h);
-    *se = sqrt(diff2) / (2.0 * w * h);
-    for (int k = 0; k < 2; k++) glint_image_free(img[k]);
+    green_mean_se(img, mean, se);
 }
 
 // Book 3's glass sphere "sampled as a light": diffuse bounces draw half their directions towards it, weighted

@@ -4,21 +4,6 @@
 # file is refused with exit 2 and no image; a checkpoint never replaces the image or the scene.
 source "$2/tests/cli/common.bash"
 
-# wait_for PID: its exit status, or 255 (and a kill) if it still runs after 30 s.
-wait_for() {
-    local pid=$1
-    for _ in $(seq 300); do
-        kill -0 "$pid" 2>/dev/null || break
-        sleep 0.1
-    done
-    if kill -0 "$pid" 2>/dev/null; then
-        kill -KILL "$pid"
-        wait "$pid" 2>/dev/null
-        return 255
-    fi
-    wait "$pid"
-}
-
 SCENE=$DATA/tiny-path.json
 SIZE=(--width 96 --height 64 --spp 1024)
 CKP=$TMP/render.ckp

@@ -12,13 +12,6 @@ trap 'rm -rf "$TMP"' EXIT
 # shellcheck source=../counts.bash
 source "$SRC/tests/counts.bash"
 
-# check DESCRIPTION COMMAND...: passes when the command succeeds.
-check() {
-    local what=$1
-    shift
-    if "$@"; then pass; else fail "$what"; fi
-}
-
 # run ARGS...: runs glint; exit status in $rc, standard output in $TMP/out, standard error in $TMP/err.
 run() {
     "$GLINT" "$@" >"$TMP/out" 2>"$TMP/err" </dev/null

@@ -4,21 +4,6 @@
 source "$2/tests/cli/common.bash"
 
 # A render far too long to finish (16x16 pixels, a million samples each), stopped after half a second.
-# wait_for PID [TENTHS]: its exit status, or 255 (and a kill) if it is still running after TENTHS/10 s (20 s).
-wait_for() {
-    local pid=$1
-    for _ in $(seq "${2:-200}"); do
-        kill -0 "$pid" 2>/dev/null || break
-        sleep 0.1
-    done
-    if kill -0 "$pid" 2>/dev/null; then
-        kill -KILL "$pid"
-        wait "$pid" 2>/dev/null
-        return 255
-    fi
-    wait "$pid"
-}
-
 LONG=(--width 16 --height 16 --spp 1000000 "$DATA/tiny.json")
 
 for sig in INT TERM HUP; do

@@ -11,21 +11,6 @@ export LSAN_OPTIONS="suppressions=$SRC/tests/lsan-sdl.supp:print_suppressions=0$
 PAPER=$SRC/scenes/paper.json
 LONG=(--width 64 --height 48 --spp 1000000 "$DATA/tiny.json")
 
-# wait_for PID [TENTHS]: its exit status, or 255 (and a kill) if it still runs after TENTHS/10 s (60 s).
-wait_for() {
-    local pid=$1
-    for _ in $(seq "${2:-600}"); do
-        kill -0 "$pid" 2>/dev/null || break
-        sleep 0.1
-    done
-    if kill -0 "$pid" 2>/dev/null; then
-        kill -KILL "$pid"
-        wait "$pid" 2>/dev/null
-        return 255
-    fi
-    wait "$pid"
-}
-
 # The same image without a window: the reference for every file written here.
 "$GLINT" -q "$PAPER" -o "$TMP/paper-plain.png" || fail "plain render of the paper scene"
 "$GLINT" -q --width 64 --height 64 "$PAPER" -o "$TMP/small-plain.png" || fail "plain render of the small paper scene"

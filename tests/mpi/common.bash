@@ -23,24 +23,3 @@ if [[ -n ${GLINT_SANITIZE:-} ]]; then
     export LSAN_OPTIONS="suppressions=$SRC/tests/mpi/lsan.supp:print_suppressions=0:fast_unwind_on_malloc=0${LSAN_OPTIONS:+:$LSAN_OPTIONS}"
 fi
 
-# check DESCRIPTION COMMAND...: passes when the command succeeds.
-check() {
-    local what=$1
-    shift
-    if "$@"; then pass; else fail "$what"; fi
-}
-
-# wait_for PID TENTHS: its exit status, or 255 (after a kill) if it still runs after TENTHS/10 s.
-wait_for() {
-    local pid=$1
-    for _ in $(seq "$2"); do
-        kill -0 "$pid" 2>/dev/null || break
-        sleep 0.1
-    done
-    if kill -0 "$pid" 2>/dev/null; then
-        kill -KILL "$pid"
-        wait "$pid" 2>/dev/null
-        return 255
-    fi
-    wait "$pid"
-}
