@@ -72,7 +72,10 @@ static inline void batch_sincos_turn(const float u[CAMERA_BATCH], float c[CAMERA
 
 /// Fills b->r, b->o, b->d and b->time from the inputs: lane i is rng_for_key(stream, key[i], sample[i]) followed
 /// by camera_sample_ray(c, x[i], y[i], &r).
-static inline void camera_batch_make(const camera *c, uint64_t stream, camera_batch *b) {
+// Always inlined into the tile loops: a call passes the whole batch through memory (gcc stopped inlining it once
+// the path tracer grew).
+static inline __attribute__((always_inline)) void camera_batch_make(const camera *c, uint64_t stream,
+                                                                   camera_batch *b) {
     uint64_t st[CAMERA_BATCH];
     for (int i = 0; i < CAMERA_BATCH; i++) {
         // rng_for_key: state 0 stepped (to the stream), plus the mixed key, stepped again.

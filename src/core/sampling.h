@@ -30,7 +30,7 @@ static inline float sampling_mad(float a, float b, float c) {
 /// or a library call: the nearest quarter turn q is split off exactly (4u - q is exact for any float u in
 /// [0, 1)), the remaining angle in [-pi/4, pi/4] goes through the minimax polynomials of Cephes' sinf and
 /// cosf, and the quarter turns rotate the result.
-static inline void sincos_turn(float u, float *c, float *s) {
+static inline __attribute__((always_inline)) void sincos_turn(float u, float *c, float *s) {
     float x = 4.0f * u;
     float q = floorf(x + 0.5f);
     float t = (x - q) * 1.57079632679490f, z = t * t;
@@ -65,7 +65,9 @@ static inline void sample_unit_disk(rng *r, float *x, float *y) {
 /// Uniform direction on the unit sphere from exactly two random numbers, without rejection: z = 1 - 2 u1 is
 /// uniform in (-1, 1] (Archimedes: so is the height of a uniform point on the sphere), the azimuth is 2 pi u2,
 /// and the radius of the circle at height z is sqrt(1 - z^2) = 2 sqrt(u1 (1 - u1)), free of cancellation.
-static inline vec3 sample_sphere_uniform(rng *r) {
+// Always inlined: in the path tracer's lean bounce a call costs more than the sampling (gcc stopped inlining it
+// once the path tracer grew).
+static inline __attribute__((always_inline)) vec3 sample_sphere_uniform(rng *r) {
     float u1 = rng_float(r), u2 = rng_float(r);
     float c, s;
     sincos_turn(u2, &c, &s);

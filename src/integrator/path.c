@@ -267,11 +267,11 @@ static inline bool path_aov_surface(film_aov_sample *aov, vec3 throughput, vec3 
 
 // The radiance a path starting with the primary ray (origin o, direction d, all t > 0, at `time`) carries, and its AOVs
 // when aov is not NULL. The ray comes by its parts, in registers: a whole ray passed by value is copied with
-// wide loads that cannot be forwarded from the stores that just made it. d need not have unit length. Always
-// inlined into path_trace (aov NULL: every AOV branch folds away) and path_trace_aov.
-static inline __attribute__((always_inline)) vec3 path_trace_with(const path_integrator *pi, vec3 o, vec3 d,
-                                                                  float time, rng *r, thread_stats *ts,
-                                                                  film_aov_sample *aov) {
+// wide loads that cannot be forwarded from the stores that just made it. d need not have unit length. One
+// copy: the AOV tests are predictable branches on a NULL pointer (a second, specialised copy cost the sphere
+// scenes 12 % through gcc's inlining budget).
+static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts,
+                       film_aov_sample *aov) {
     const integrator *it = &pi->base;
     const glint_scene *s = it->scene;
     ray cur = {o, d, 0.0f, INFINITY, time};
@@ -436,31 +436,20 @@ static inline __attribute__((always_inline)) vec3 path_trace_with(const path_int
     return radiance;
 }
 
-// A path's radiance, nothing else: the render's hot loop when no AOV is asked for.
-static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts) {
-    return path_trace_with(pi, o, d, time, r, ts, NULL);
-}
-
-// A path's radiance and its AOVs (the same radiance, from the same random numbers).
-static vec3 path_trace_aov(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts,
-                           film_aov_sample *aov) {
-    return path_trace_with(pi, o, d, time, r, ts, aov);
-}
-
 // One sample of pixel (x, y): its camera ray, then its path (what path_render_tile does eight at a time).
 static vec3 path_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts,
                         film_aov_sample *aov) {
     (void)sample;
     ray primary = camera_sample_ray(&it->camera, x, y, r);
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    return aov ? path_trace_aov(pi, primary.o, primary.d, primary.time, r, ts, aov)
-               : path_trace(pi, primary.o, primary.d, primary.time, r, ts);
+    return path_trace(pi, primary.o, primary.d, primary.time, r, ts, aov);
 }
 
 // One tile pass: the samples' camera rays (and generators) are made CAMERA_BATCH at a time, in vector
 // instructions (camera_batch.h), before their paths are traced one by one. Same samples, same order, same
 // sums as path_sample one at a time: the same bytes.
-static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
+static inline __attribute__((always_inline)) bool path_render_tile_with(const integrator *it, const tile_pass *tp,
+                                                                       film_tile *ft, thread_stats *ts, bool aovs) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
     const render_settings *rs = &it->scene->settings;
     int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
@@ -470,7 +459,6 @@ static bool path_render_tile(const integrator *it, const tile_pass *tp, film_til
     uint64_t gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
     camera_batch cb;
     film_tile t = *ft; // a local copy whose address does not escape: its fields can live in registers
-    bool aovs = t.film->aovs != 0;
     for (int j = 0; j < items; j += CAMERA_BATCH) {
         int n = items - j < CAMERA_BATCH ? items - j : CAMERA_BATCH;
         for (int i = 0; i < CAMERA_BATCH; i++) {
@@ -499,10 +487,10 @@ static bool path_render_tile(const integrator *it, const tile_pass *tp, film_til
             bool more;
             if (aovs) {
                 film_aov_sample a;
-                vec3 c = path_trace_aov(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, &a);
+                vec3 c = path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, &a);
                 more = film_tile_add_aov(&t, c, &a);
             } else {
-                more = film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts));
+                more = film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, NULL));
             }
             if (!more) {
                 *ft = t;
@@ -512,6 +500,20 @@ static bool path_render_tile(const integrator *it, const tile_pass *tp, film_til
     }
     *ft = t;
     return true;
+}
+
+// The tile loop without AOVs is kept free of the AOV bookkeeping (film_tile_add alone).
+static bool path_render_tile_plain(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
+    return path_render_tile_with(it, tp, ft, ts, false);
+}
+
+static __attribute__((noinline)) bool path_render_tile_aov(const integrator *it, const tile_pass *tp, film_tile *ft,
+                                                          thread_stats *ts) {
+    return path_render_tile_with(it, tp, ft, ts, true);
+}
+
+static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
+    return ft->film->aovs ? path_render_tile_aov(it, tp, ft, ts) : path_render_tile_plain(it, tp, ft, ts);
 }
 
 static void path_release(integrator *it) {
