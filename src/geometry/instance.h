@@ -18,8 +18,8 @@ typedef struct instance {
     uint32_t index;   ///< the mesh (index into the mesh list) or the object-space sphere it places
     transform xf;     ///< xf.m: object to world; xf.inv: world to object
     int32_t material; ///< overrides every triangle's material, or -1: the mesh's own materials
-    uint32_t motion;  ///< 0: xf places it at every time; k > 0: it moves by the scene's motions[k - 1] (xf is its
-                      ///< pose at the shutter's opening)
+    uint32_t motion;  ///< 0: xf places it at every time; k > 0: it moves by the scene's motions[k - 1] (xf is then
+                      ///< its pose at time 0, and everything that places it asks motion_at for the ray's time)
 } instance;
 
 #endif
