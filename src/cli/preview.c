@@ -10,6 +10,9 @@
 
 #ifdef GLINT_HAVE_SDL2
 #include <SDL.h>
+#if defined(GLINT_HAVE_X11)
+#include <X11/Xlib.h>
+#endif
 #include <math.h>
 #include <pthread.h>
 
@@ -58,6 +61,24 @@ static bool has_display(void) { return env_set("DISPLAY") || env_set("WAYLAND_DI
 // Starts SDL's video on the display the environment names: X11 for DISPLAY, else Wayland. SDL left to itself
 // would fall back to a window nobody sees (its offscreen driver) when the display cannot be reached. The user's
 // SDL_VIDEODRIVER, when set, is obeyed instead.
+#if defined(GLINT_HAVE_X11)
+// Xlib's default error handler ends the program with status 1, and SDL hands its errors on to it: a request SDL
+// makes to a window the server has just destroyed (around a close) must not end a render that went well.
+static int ignore_x_error(Display *d, XErrorEvent *e) {
+    (void)d;
+    (void)e;
+    return 0;
+}
+#endif
+
+// After SDL has started X11 (which installs its own handler first): X errors no longer end the program.
+static void keep_x_errors_quiet(void) {
+#if defined(GLINT_HAVE_X11)
+    const char *driver = SDL_GetCurrentVideoDriver();
+    if (driver && strcmp(driver, "x11") == 0) XSetErrorHandler(ignore_x_error);
+#endif
+}
+
 static bool start_video(const char **why) {
     if (env_set("SDL_VIDEODRIVER")) {
         if (SDL_Init(SDL_INIT_VIDEO) == 0) return true;
@@ -115,6 +136,7 @@ static bool open_window(cli_preview *p, const char **why) {
     SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
     SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0"); // the window's pixels straight to X, not through OpenGL
     if (!start_video(why)) return false;
+    keep_x_errors_quiet();
     int w, h;
     window_size(p->width, p->height, &w, &h);
     p->window = SDL_CreateWindow("glint", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, w, h,
