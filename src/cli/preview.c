@@ -35,6 +35,8 @@ struct cli_preview {
     uint8_t *spare, *ready, *shown;
     bool fresh;         ///< ready holds a frame not shown yet (under lock)
     bool news;          ///< spp_done and fraction changed (under lock)
+    bool wakeable;      ///< the window exists: the progress thread may wake its event loop (under lock)
+    bool stopping;      ///< the user closed the window during the render: it is hidden until the render ends
     int spp_done;       ///< under lock
     double fraction;    ///< under lock
     double next_convert; ///< the progress thread's: monotonic time before which live frames are skipped
@@ -179,6 +181,7 @@ cli_preview *cli_preview_open(const char *name, int width, int height, bool quie
         if (opened) {
             pthread_mutex_init(&p->lock, NULL);
             atomic_init(&p->render_done, 0);
+            p->wakeable = true;
             return p;
         }
     }
@@ -265,13 +268,23 @@ void cli_preview_live_image(const glint_image *img, int spp_done, double fractio
     p->spp_done = spp_done;
     p->fraction = fraction_done;
     p->news = true;
-    pthread_mutex_unlock(&p->lock);
-    if (p->wake_event != (Uint32)-1) {
+    // Under the lock: SDL wakes a waiting event loop by sending an X event to its window, which must not be
+    // one the main thread has just destroyed.
+    if (p->wakeable && p->wake_event != (Uint32)-1) {
         SDL_Event ev;
         memset(&ev, 0, sizeof ev);
         ev.type = p->wake_event;
         SDL_PushEvent(&ev);
     }
+    pthread_mutex_unlock(&p->lock);
+}
+
+// Closes the window of an opened preview: first the progress thread stops waking it.
+static void close_window(cli_preview *p) {
+    pthread_mutex_lock(&p->lock);
+    p->wakeable = false;
+    pthread_mutex_unlock(&p->lock);
+    destroy_window(p);
 }
 
 // Handles one event; true when it asks to close the window (Esc, Q, the window's close button).
@@ -328,13 +341,17 @@ void cli_preview_run(cli_preview *p, void (*render)(void *), void *arg) {
     draw(p);
     set_title(p, "starting");
     while (!atomic_load(&p->render_done)) {
-        if (pump_events(p) && p->window) {
+        if (pump_events(p) && p->window && !p->stopping) {
             glint_request_stop(); // as Ctrl-C: the render ends soon and the program writes what it has
-            destroy_window(p);
+            // Hidden, not destroyed, while the render's threads run: SDL wakes this loop from them by sending
+            // an X event to the window, and one sent to a destroyed window ends the program (BadWindow).
+            SDL_HideWindow(p->window);
+            p->stopping = true;
         }
         refresh(p);
     }
     pthread_join(thread, NULL);
+    if (p->stopping) close_window(p);
 }
 
 bool cli_preview_is_open(const cli_preview *p) { return p && p->window; }
@@ -351,12 +368,12 @@ void cli_preview_hold(cli_preview *p, const glint_image *img, const char *status
     draw(p);
     set_title(p, status);
     while (!atomic_load(signalled) && !pump_events(p)) {}
-    destroy_window(p);
+    close_window(p);
 }
 
 void cli_preview_close(cli_preview *p) {
     if (!p) return;
-    destroy_window(p);
+    close_window(p);
     SDL_Quit();
     pthread_mutex_destroy(&p->lock);
     free_frames(p);

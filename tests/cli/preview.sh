@@ -111,6 +111,7 @@ else
 fi
 wait_for $pid
 rc=$?
+[[ $rc -eq 130 ]] || sed "s/^/  glint said: /" "$TMP/err-esc" >&2
 check "Esc: exit 130 (got $rc)" test $rc -eq 130
 check "Esc: complete-size P6" test "$(header "$TMP/esc.ppm" 13)" == " P 6 \n 6 4 4 8 \n 2 5 5 \n "
 check "Esc: the image holds rendered samples" test "$(tail -c 9216 "$TMP/esc.ppm" | tr -d '\0' | wc -c)" -gt 0
@@ -123,6 +124,7 @@ win=$(window "tiny.json")
 if [[ -n $win ]] && title_spp "$win"; then "$PROBE" close "$win"; else fail "close: no window with samples"; fi
 wait_for $pid
 rc=$?
+[[ $rc -eq 130 ]] || sed "s/^/  glint said: /" "$TMP/err-close" >&2
 check "close: exit 130 (got $rc)" test $rc -eq 130
 check "close: image written" test "$(size "$TMP/closed.ppm")" -eq $((13 + 64 * 48 * 3))
 check "close: --quiet says nothing" test ! -s "$TMP/err-close"
