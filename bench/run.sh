@@ -10,8 +10,7 @@
 #   --glint PATH measure this binary instead of building one
 # Environment: CMAKE_BUILD_PARALLEL_LEVEL for the build; GLINT_BENCH_BUILD for the build directory.
 # The yardstick is the embree-probe's run_book1.sh (a separate tool, not part of this repository):
-# GLINT_EMBREE_PROBE names it; by default it is looked for beside the repository, in the developers'
-# ../shared/tools/embree-probe/. Without it the suite runs and says the yardstick was skipped.
+# GLINT_EMBREE_PROBE names it. Without it the suite runs and says the yardstick was skipped.
 set -euo pipefail
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
@@ -46,7 +45,7 @@ if [ -z "$GLINT" ]; then
 fi
 [ -x "$GLINT" ] || { echo "bench/run.sh: no glint binary at $GLINT" >&2; exit 1; }
 
-PROBE=${GLINT_EMBREE_PROBE:-$ROOT/../shared/tools/embree-probe/run_book1.sh}
+PROBE=${GLINT_EMBREE_PROBE:-}
 [ $EMBREE = 1 ] && [ -f "$PROBE" ] || PROBE=
 
 # --- helpers -----------------------------------------------------------------------------------------
@@ -105,7 +104,7 @@ emit ""
 if want rtiow; then
     emit "## rtiow-final, 400x225, 10 spp, depth 50 (487 spheres)"
     emit ""
-    [ -n "$PROBE" ] || emit "(Embree yardstick skipped: no run_book1.sh at GLINT_EMBREE_PROBE or ../shared/tools/embree-probe, or --no-embree.)"
+    [ -n "$PROBE" ] || emit "(Embree yardstick skipped: GLINT_EMBREE_PROBE names no run_book1.sh, or --no-embree.)"
     emit "| renderer | threads | wall s | Mrays/s | glint / Embree | peak RSS MB |"
     emit "|---|---:|---:|---:|---:|---:|"
     for t in 1 $([ "$NPROC" -gt 1 ] && echo "$NPROC"); do

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes scenes/rtiow2-bouncing-spheres.json from the layout that book 2's program generates.
 
-The layout (../shared/data/rtiow-book2-bouncing-spheres.json for the developers) was dumped from an
+The layout (tools/layouts/rtiow-book2-bouncing-spheres.json, with its source and licence) was dumped from an
 instrumented copy of "Ray Tracing: The Next Week"'s program. Its source note: RayTracing/raytracing.github.io
 @ 94b510c2201e58464964b828328de0f5c52896c6 (branch release, 2024-03-16), src/TheNextWeek/main.cc, function
 random_spheres() (bouncing_spheres() in later versions), built with g++ 12.2 -O3 -march=native against glibc
