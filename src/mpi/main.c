@@ -246,8 +246,8 @@ int main(int argc, char **argv) {
     cli_action action = cli_parse(&prog, argc, argv, &opt);
     if (action != CLI_RUN) return leave((int)action);
     // Options of the glint program that the ranks' protocol does not carry (yet): refused, not ignored.
-    const char *unsupported = opt.aovs ? "--aov" : opt.preview ? "--preview" : opt.checkpoint ? "--checkpoint"
-                              : opt.resume ? "--resume" : NULL;
+    const char *unsupported = opt.aovs ? "--aov" : opt.preview ? "--preview" : opt.resume ? "--resume"
+                              : opt.checkpoint ? "--checkpoint" : NULL;
     if (unsupported) {
         if (rank == 0) fprintf(stderr, "glint-mpi: %s is not supported by glint-mpi (use glint)\n", unsupported);
         return leave(2);

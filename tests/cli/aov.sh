@@ -51,5 +51,11 @@ run --quiet --aov albedo,normal,depth --threads 2 -o "$TMP/b.exr" "$PATHS"
 check "EXR with AOVs: --threads 1 and 2 give identical files" cmp -s "$TMP/a.exr" "$TMP/b.exr"
 check "the EXR names its AOV channels" grep -q "albedo.R" "$TMP/a.exr"
 check "--help lists --aov" bash -c "'$GLINT' --help | grep -q -- '--aov LIST'"
+# Checkpoints keep the colour's sums only: with AOVs they are refused, before anything is rendered or written.
+for flag in --checkpoint --resume; do
+    expect 2 "glint: --aov cannot be combined with --checkpoint or --resume: checkpoints keep the colour's sums only" \
+        -q --aov albedo $flag "$TMP/c.ckp" "$DATA/tiny.json" -o "$TMP/ck.exr"
+    check "$flag with --aov: no image, no checkpoint" test ! -e "$TMP/ck.exr" -a ! -e "$TMP/c.ckp"
+done
 
 summary
