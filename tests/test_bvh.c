@@ -353,13 +353,13 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
         hit h[4];
         bool f[4];
         memset(h, 0, sizeof h);
-        f[0] = brute_force_intersect(&all, &r, &h[0]);
+        f[0] = brute_force_intersect(&all, NULL, &r, &h[0]);
         f[1] = bvh_intersect(&world_w, &r, &h[1]);
         f[2] = bvh_intersect_scalar(&world_w, &r, &h[2]);
         f[3] = bvh2_intersect(&world_b, &r, &h[3]);
         bool ok = same_hit(f[0], &h[0], f[1], &h[1]) && same_hit(f[0], &h[0], f[2], &h[2]) &&
                   same_hit(f[0], &h[0], f[3], &h[3]);
-        ok = ok && brute_force_occluded(&all, &r) == f[0] && bvh_occluded(&world_w, &r) == f[0] &&
+        ok = ok && brute_force_occluded(&all, NULL, &r) == f[0] && bvh_occluded(&world_w, &r) == f[0] &&
              bvh_occluded_scalar(&world_w, &r) == f[0] && bvh2_occluded(&world_b, &r) == f[0];
         if (f[0] && h[0].kind < 3) kinds_seen[h[0].kind]++;
         if (f[0] && h[0].instance != HIT_NO_INSTANCE) instanced++;

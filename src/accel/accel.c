@@ -1,6 +1,8 @@
 // accel.c — the acceleration structure's front door: the wide SIMD BVH, the binary BVH, or `none`, which
-// tests every primitive. Meshes get a BVH each, shared by all their instances; the world BVH holds spheres,
-// quads and instances.
+// tests every primitive. A mesh placed once, and still, is flattened: its triangles, in world space, join
+// the world BVH (a ray through it crosses one tree and is never moved to object space). A mesh placed several
+// times, or moving, gets a BVH of its own, shared by its instances; the world BVH holds those instances, with
+// spheres and quads.
 #include "accel/accel.h"
 #include "accel/brute_force.h"
 #include "accel/bvh.h"
@@ -15,10 +17,64 @@ struct accel {
     accel_input input;     ///< the primitives (brute force tests them directly); its `meshes` is mesh_list
     const mesh **mesh_list; ///< the input's list of meshes, copied: the caller's may go once the build is done
     bvh world;
-    bvh *blas;             ///< one per mesh
+    bvh *blas;             ///< one per mesh (empty for a mesh that is only flattened)
     size_t blas_count;
+    mesh *flat_meshes;     ///< per instance: its mesh with positions in world space when flattened, else zeroed
+    const mesh **flat;     ///< per instance: &flat_meshes[i] when flattened, else NULL (NULL: none is)
     accel_stats stats;
 };
+
+// Whether instance i is flattened: a still mesh placed by no other instance. Its triangles then cost no
+// more memory in the world BVH than in a BVH of their own, and rays skip the second tree and the transform.
+static bool flattens(const accel_input *in, const uint32_t *placements, size_t i) {
+    const instance *inst = &in->instances[i];
+    return inst->kind == INSTANCE_MESH && inst->motion == 0 && placements[inst->index] == 1;
+}
+
+// Fills a->flat_meshes and a->flat for the instances that flattens() picks: the mesh's arrays shared, its
+// positions transformed to world space (each vertex once, so triangles that share it still share it exactly
+// and the mesh stays watertight). False when out of memory.
+static bool flatten_instances(accel *a, const accel_input *in) {
+    if (in->instance_count == 0) return true;
+    uint32_t *placements = calloc(in->mesh_count ? in->mesh_count : 1, sizeof *placements);
+    a->flat_meshes = calloc(in->instance_count, sizeof *a->flat_meshes);
+    a->flat = calloc(in->instance_count, sizeof *a->flat);
+    bool ok = placements && a->flat_meshes && a->flat;
+    for (size_t i = 0; ok && i < in->instance_count; i++)
+        if (in->instances[i].kind == INSTANCE_MESH) placements[in->instances[i].index]++;
+    bool any = false;
+    for (size_t i = 0; ok && i < in->instance_count; i++) {
+        if (!flattens(in, placements, i)) continue;
+        const mesh *m = in->meshes[in->instances[i].index];
+        mesh *w = &a->flat_meshes[i];
+        *w = *m;
+        w->positions = malloc((m->position_count ? m->position_count : 1) * sizeof *w->positions);
+        if (!w->positions) {
+            ok = false;
+            break;
+        }
+        for (size_t k = 0; k < m->position_count; k++)
+            w->positions[k] = mat4_apply_point(&in->instances[i].xf.m, m->positions[k]);
+        a->flat[i] = w;
+        any = true;
+    }
+    free(placements);
+    if (ok && !any) { // nothing flattened: the structures need not look
+        free(a->flat_meshes);
+        free(a->flat);
+        a->flat_meshes = NULL;
+        a->flat = NULL;
+    }
+    return ok;
+}
+
+// Whether mesh i has an instance that is not flattened (only those need the mesh's own BVH).
+static bool mesh_needs_blas(const accel *a, const accel_input *in, size_t i) {
+    for (size_t k = 0; k < in->instance_count; k++)
+        if (in->instances[k].kind == INSTANCE_MESH && in->instances[k].index == i && !(a->flat && a->flat[k]))
+            return true;
+    return false;
+}
 
 accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
     double t0 = clock_seconds();
@@ -34,11 +90,17 @@ accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
     a->kind = kind;
     a->input = *in;
     a->input.meshes = a->mesh_list = meshes;
+    if (!flatten_instances(a, &a->input)) {
+        accel_free(a);
+        snprintf(err->message, sizeof err->message, "out of memory building the acceleration structure");
+        return NULL;
+    }
     if (kind != ACCEL_NONE) {
         bool wide = kind == ACCEL_BVH;
         a->blas = in->mesh_count ? calloc(in->mesh_count, sizeof *a->blas) : NULL;
         bool ok = !in->mesh_count || a->blas;
         for (size_t i = 0; ok && i < in->mesh_count; i++, a->blas_count++) {
+            if (!mesh_needs_blas(a, in, i)) continue;
             bvh_input mi = {.mesh = meshes[i], .stop = in->stop};
             ok = bvh_build(&a->blas[i], &mi, wide);
             a->stats.nodes += a->blas[i].stats.nodes;
@@ -52,6 +114,7 @@ accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
                            .instances = in->instances,
                            .instance_count = in->instance_count,
                            .blas = a->blas,
+                           .flat = (const mesh *const *)a->flat,
                            .instance_spheres = in->instance_spheres,
                            .moving_spheres = in->moving_spheres,
                            .moving_sphere_count = in->moving_sphere_count,
@@ -81,6 +144,9 @@ void accel_free(accel *a) {
     bvh_release(&a->world);
     for (size_t i = 0; i < a->blas_count; i++) bvh_release(&a->blas[i]);
     free(a->blas);
+    for (size_t i = 0; a->flat && i < a->input.instance_count; i++) free(a->flat_meshes[i].positions);
+    free(a->flat_meshes);
+    free(a->flat);
     free(a->mesh_list);
     free(a);
 }
@@ -91,7 +157,7 @@ bool accel_intersect(const accel *a, const ray *r, hit *h) {
     switch (a->kind) {
     case ACCEL_BVH: return bvh_intersect(&a->world, r, h);
     case ACCEL_BVH2: return bvh2_intersect(&a->world, r, h);
-    case ACCEL_NONE: return brute_force_intersect(&a->input, r, h);
+    case ACCEL_NONE: return brute_force_intersect(&a->input, (const mesh *const *)a->flat, r, h);
     }
     return false;
 }
@@ -100,7 +166,7 @@ bool accel_occluded(const accel *a, const ray *r) {
     switch (a->kind) {
     case ACCEL_BVH: return bvh_occluded(&a->world, r);
     case ACCEL_BVH2: return bvh2_occluded(&a->world, r);
-    case ACCEL_NONE: return brute_force_occluded(&a->input, r);
+    case ACCEL_NONE: return brute_force_occluded(&a->input, (const mesh *const *)a->flat, r);
     }
     return false;
 }

@@ -4,7 +4,7 @@
 #include "accel/bvh_kernel.h"
 
 // Every primitive of in, in the same order of precedence as the BVHs (bvh_better).
-static bool brute_force_run(const accel_input *in, const ray *r, hit *best, bool any) {
+static bool brute_force_run(const accel_input *in, const mesh *const *flat, const ray *r, hit *best, bool any) {
     if (ray_is_nan(r)) return false;
     tri_cache tc = {.ready = false};
     bool found = false;
@@ -32,6 +32,16 @@ static bool brute_force_run(const accel_input *in, const ray *r, hit *best, bool
     }
     for (size_t i = 0; i < in->instance_count; i++) {
         const instance *inst = &in->instances[i];
+        if (flat && flat[i]) { // in world space
+            for (size_t k = 0; k < flat[i]->triangle_count; k++) {
+                tri_hit th;
+                if (!mesh_intersect_triangle(flat[i], k, tri_for(&tc, r), r->tmin, r->tmax, &th)) continue;
+                if (any) return true;
+                found = true;
+                offer(best, (hit){th.t, (uint32_t)k, HIT_TRIANGLE, (uint32_t)i, th.b1, th.b2});
+            }
+            continue;
+        }
         transform moved; // a moving instance's transform at the ray's time
         if (inst->motion) motion_at(&in->motions[inst->motion - 1], r->time, &moved);
         ray o = mat4_apply_ray(inst->motion ? &moved.inv : &inst->xf.inv, r);
@@ -57,14 +67,14 @@ static bool brute_force_run(const accel_input *in, const ray *r, hit *best, bool
     return found;
 }
 
-bool brute_force_intersect(const accel_input *in, const ray *r, hit *h) {
+bool brute_force_intersect(const accel_input *in, const mesh *const *flat, const ray *r, hit *h) {
     hit best = bvh_no_hit(r);
-    if (!brute_force_run(in, r, &best, false)) return false;
+    if (!brute_force_run(in, flat, r, &best, false)) return false;
     *h = best;
     return true;
 }
 
-bool brute_force_occluded(const accel_input *in, const ray *r) {
+bool brute_force_occluded(const accel_input *in, const mesh *const *flat, const ray *r) {
     hit best = bvh_no_hit(r);
-    return brute_force_run(in, r, &best, true);
+    return brute_force_run(in, flat, r, &best, true);
 }

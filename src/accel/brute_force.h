@@ -5,9 +5,11 @@
 
 #include "accel/accel.h"
 
-/// Closest hit among the primitives of in by testing every one, ties broken as the BVHs break them.
-bool brute_force_intersect(const accel_input *in, const ray *r, hit *h);
-/// Whether any primitive of in lies on the ray, by testing every one.
-bool brute_force_occluded(const accel_input *in, const ray *r);
+/// Closest hit among the primitives of in by testing every one, ties broken as the BVHs break them. flat[i], when
+/// flat and it are not NULL, is instance i's mesh in world space (accel_build flattened it): its triangles are
+/// tested there, as the BVHs test them.
+bool brute_force_intersect(const accel_input *in, const mesh *const *flat, const ray *r, hit *h);
+/// Whether any primitive of in lies on the ray, by testing every one (flat as for brute_force_intersect).
+bool brute_force_occluded(const accel_input *in, const mesh *const *flat, const ray *r);
 
 #endif

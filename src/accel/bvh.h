@@ -34,8 +34,9 @@
 
 /// Kinds of primitive a BVH can hold; a leaf packet holds primitives of one kind. The world BVH holds
 /// spheres, quads, instances, moving spheres and moving instances (the last two in index packets, tested one by
-/// one at the ray's time, so that the other kinds' tests are unchanged); the BVH of a mesh (shared by its
-/// instances) holds its triangles.
+/// one at the ray's time, so that the other kinds' tests are unchanged), and the triangles of every mesh placed
+/// once (flattened: in world space, no instance to enter); the BVH of a mesh placed several times (shared by
+/// its instances) holds its triangles.
 typedef enum prim_kind {
     PRIM_SPHERE = 0,
     PRIM_QUAD = 1,
@@ -45,9 +46,10 @@ typedef enum prim_kind {
     PRIM_MOVING_INSTANCE = 5
 } prim_kind;
 
-/// A primitive of the scene: its kind and its index in the scene's array of that kind.
+/// A primitive of the scene: its kind and its index in the scene's array of that kind; a flattened triangle
+/// (see bvh_input.flat) also names its instance, which is HIT_NO_INSTANCE for everything else.
 typedef struct prim_ref {
-    uint32_t kind, index;
+    uint32_t kind, index, instance;
 } prim_ref;
 
 /// Binary BVH node (32 bytes): box[0..2] lower and box[3..5] upper bounds; inner nodes have count 0,
@@ -69,9 +71,10 @@ typedef struct bvh_wnode {
 #define BVH_EMPTY 0xffffffffu
 
 /// Header of a leaf packet (one slot): `count` primitives of `kind`, `slots` slots long including this
-/// header; `last` ends the leaf.
+/// header; `last` ends the leaf. `instance`: the instance whose flattened triangles the packet holds, else
+/// HIT_NO_INSTANCE (a packet holds one instance's triangles).
 typedef struct bvh_packet_header {
-    _Alignas(32) uint32_t kind, count, slots, last;
+    _Alignas(32) uint32_t kind, count, slots, last, instance;
 } bvh_packet_header;
 
 /// A packet of up to BVH_PACKET spheres as structure of arrays; unused lanes have NaN centres.
@@ -81,9 +84,10 @@ typedef struct bvh_sphere_packet {
     uint32_t prim[BVH_PACKET];
 } bvh_sphere_packet;
 
-/// A packet of up to BVH_PACKET triangles of the BVH's mesh, their vertices gathered as structure of arrays
-/// (v[vertex][axis][lane]), so that a packet is tested in SIMD without reading the mesh; unused lanes have
-/// NaN vertices, which no ray hits.
+/// A packet of up to BVH_PACKET triangles of the BVH's mesh or of one flattened instance, their vertices
+/// gathered as structure of arrays (v[vertex][axis][lane]), so that a packet is tested in SIMD without reading
+/// the mesh; unused lanes have NaN vertices, which no ray hits. A packet of kind PRIM_QUAD has this layout too:
+/// quad prim[k] is lanes k and k + 1 for even k, its triangles (p0, p1, p2) and (p0, p2, p3).
 typedef struct bvh_triangle_packet {
     bvh_packet_header h;
     float v[3][3][BVH_PACKET];
@@ -113,6 +117,8 @@ typedef struct bvh_input {
     const instance *instances;
     size_t instance_count;
     const struct bvh *blas;        ///< blas[i]: the BVH of mesh i, for INSTANCE_MESH instances
+    const mesh *const *flat;       ///< flat[i]: instance i's mesh in world space, whose triangles the BVH holds
+                                   ///< instead of the instance (NULL: not flattened; the array may be NULL)
     const sphere *instance_spheres; ///< object-space spheres of INSTANCE_SPHERE instances
     const moving_sphere *moving_spheres;
     size_t moving_sphere_count;
@@ -131,8 +137,10 @@ typedef struct bvh {
     const instance *instances;
     const struct bvh *blas;
     const sphere *instance_spheres;
+    const mesh *const *flat; ///< see bvh_input
     size_t prim_count;
     bool spheres_only;  ///< nothing but spheres: the traversal without the code for other kinds runs
+    bool triangles_only; ///< nothing but triangles and quads (triangle packets): likewise
     // binary BVH (ACCEL_BVH2); nodes[0] is the root
     bvh2_node *nodes2;
     size_t node2_count;

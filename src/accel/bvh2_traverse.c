@@ -41,7 +41,7 @@ bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any)
         } else {
             for (uint32_t i = 0; i < n->count; i++) {
                 prim_ref ref = b->refs[n->offset + i];
-                if (!bvh_prim_hit(b, ref.kind, ref.index, r, &tc, best, inst_id, any, MODE_BINARY)) continue;
+                if (!bvh_prim_hit(b, ref, r, &tc, best, inst_id, any, MODE_BINARY)) continue;
                 found = true;
                 if (any) return true;
             }

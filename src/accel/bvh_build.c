@@ -244,29 +244,48 @@ static float node2_half_area(const bvh2_node *n) {
 static int ref_order(const void *a, const void *b) {
     const prim_ref *x = a, *y = b;
     if (x->kind != y->kind) return x->kind < y->kind ? -1 : 1;
+    if (x->instance != y->instance) return x->instance < y->instance ? -1 : 1;
     return (x->index > y->index) - (x->index < y->index);
 }
 
+// Quads are tested as two triangles in triangle packets; other kinds that are not spheres as indices.
 static size_t packet_slots(uint32_t kind) {
-    size_t bytes = kind == PRIM_SPHERE     ? sizeof(bvh_sphere_packet)
-                   : kind == PRIM_TRIANGLE ? sizeof(bvh_triangle_packet)
-                                           : sizeof(bvh_index_packet);
+    size_t bytes = kind == PRIM_SPHERE                            ? sizeof(bvh_sphere_packet)
+                   : kind == PRIM_TRIANGLE || kind == PRIM_QUAD ? sizeof(bvh_triangle_packet)
+                                                                  : sizeof(bvh_index_packet);
     return bytes / sizeof(bvh_slot);
 }
 
-// Slots the packets of a binary leaf take: primitives of one kind per packet, BVH_PACKET at most. Sorts
-// the leaf's references by (kind, index), which groups the kinds and orders the lanes.
+// How many primitives of kind a packet holds (a quad takes two lanes).
+static size_t packet_capacity(uint32_t kind) { return kind == PRIM_QUAD ? BVH_PACKET / 2 : BVH_PACKET; }
+
+// How many of the sorted refs[i, count) go into the packet that starts at i: one kind and one instance.
+static size_t packet_run(const prim_ref *refs, size_t i, size_t count) {
+    size_t n = 0, cap = packet_capacity(refs[i].kind);
+    while (i + n < count && n < cap && refs[i + n].kind == refs[i].kind && refs[i + n].instance == refs[i].instance)
+        n++;
+    return n;
+}
+
+// Slots the packets of a binary leaf take (packet_run). Sorts the leaf's references by (kind, instance,
+// index), which groups them into packets and orders the lanes.
 static size_t leaf_slots(bvh *b, const bvh2_node *leaf) {
     prim_ref *refs = &b->refs[leaf->offset];
     qsort(refs, leaf->count, sizeof *refs, ref_order);
     size_t slots = 0;
-    for (size_t i = 0; i < leaf->count;) {
-        size_t j = i;
-        while (j < leaf->count && j - i < BVH_PACKET && refs[j].kind == refs[i].kind) j++;
-        slots += packet_slots(refs[i].kind);
-        i = j;
-    }
+    for (size_t i = 0; i < leaf->count; i += packet_run(refs, i, leaf->count)) slots += packet_slots(refs[i].kind);
     return slots;
+}
+
+// Writes the corners of triangle `tri` into lane k of packet pk (NaN corners when tri is NULL: never hit).
+static void put_triangle(bvh_triangle_packet *pk, size_t k, const vec3 *tri, uint32_t prim) {
+    for (int j = 0; j < 3; j++) {
+        vec3 p = tri ? tri[j] : v3s(NAN);
+        pk->v[j][0][k] = p.x;
+        pk->v[j][1][k] = p.y;
+        pk->v[j][2][k] = p.z;
+    }
+    pk->prim[k] = prim;
 }
 
 // Writes the packets of a binary leaf (its references sorted by leaf_slots) into the arena; returns the
@@ -278,9 +297,8 @@ static uint32_t emit_leaf(collapser *cl, const bvh2_node *leaf) {
     bvh_packet_header *last = NULL;
     cl->leaves++;
     for (size_t i = 0; i < leaf->count;) {
-        uint32_t kind = refs[i].kind;
-        size_t n = 0;
-        while (i + n < leaf->count && n < BVH_PACKET && refs[i + n].kind == kind) n++;
+        uint32_t kind = refs[i].kind, owner = refs[i].instance;
+        size_t n = packet_run(refs, i, leaf->count);
         bvh_slot *slot = &b->slots[b->slot_count];
         size_t nslots = packet_slots(kind);
         b->slot_count += nslots;
@@ -289,6 +307,7 @@ static uint32_t emit_leaf(collapser *cl, const bvh2_node *leaf) {
         h->kind = kind;
         h->count = (uint32_t)n;
         h->slots = (uint32_t)nslots;
+        h->instance = owner;
         last = h;
         if (kind == PRIM_SPHERE) {
             bvh_sphere_packet *pk = (bvh_sphere_packet *)(void *)slot;
@@ -309,18 +328,26 @@ static uint32_t emit_leaf(collapser *cl, const bvh2_node *leaf) {
             }
         } else if (kind == PRIM_TRIANGLE) {
             bvh_triangle_packet *pk = (bvh_triangle_packet *)(void *)slot;
+            const mesh *m = owner == HIT_NO_INSTANCE ? b->mesh : b->flat[owner];
             for (size_t k = 0; k < BVH_PACKET; k++) {
-                vec3 p[3] = {v3s(NAN), v3s(NAN), v3s(NAN)}; // NaN vertices: an unused lane never hits
-                pk->prim[k] = UINT32_MAX;
-                if (k < n) {
-                    mesh_triangle_positions(b->mesh, refs[i + k].index, &p[0], &p[1], &p[2]);
-                    pk->prim[k] = refs[i + k].index;
+                vec3 p[3];
+                if (k < n) mesh_triangle_positions(m, refs[i + k].index, &p[0], &p[1], &p[2]);
+                put_triangle(pk, k, k < n ? p : NULL, k < n ? refs[i + k].index : UINT32_MAX);
+            }
+        } else if (kind == PRIM_QUAD) {
+            bvh_triangle_packet *pk = (bvh_triangle_packet *)(void *)slot;
+            for (size_t k = 0; k < BVH_PACKET / 2; k++) {
+                const quad *q = k < n ? &b->quads[refs[i + k].index] : NULL;
+                uint32_t prim = q ? refs[i + k].index : UINT32_MAX;
+                vec3 t0[3], t1[3]; // quad_intersect's two triangles
+                if (q) {
+                    t0[0] = t1[0] = q->p[0];
+                    t0[1] = q->p[1];
+                    t0[2] = t1[1] = q->p[2];
+                    t1[2] = q->p[3];
                 }
-                for (int j = 0; j < 3; j++) {
-                    pk->v[j][0][k] = p[j].x;
-                    pk->v[j][1][k] = p[j].y;
-                    pk->v[j][2][k] = p[j].z;
-                }
+                put_triangle(pk, 2 * k, q ? t0 : NULL, prim);
+                put_triangle(pk, 2 * k + 1, q ? t1 : NULL, prim);
             }
         } else {
             bvh_index_packet *pk = (bvh_index_packet *)(void *)slot;
@@ -404,31 +431,41 @@ static bounds3 instance_object_bounds(const bvh_input *in, const instance *inst)
 // The build input of every primitive: kind, index, padded box, centroid.
 static size_t gather_prims(const bvh_input *in, build_prim *prims) {
     size_t n = 0;
+    const uint32_t none = HIT_NO_INSTANCE;
     for (size_t i = 0; i < in->sphere_count; i++) {
         prims[n].box = sphere_box(&in->spheres[i]);
-        prims[n].ref = (prim_ref){PRIM_SPHERE, (uint32_t)i};
+        prims[n].ref = (prim_ref){PRIM_SPHERE, (uint32_t)i, none};
         n++;
     }
     for (size_t i = 0; i < in->quad_count; i++) {
         prims[n].box = box_padded(quad_bounds(&in->quads[i]));
-        prims[n].ref = (prim_ref){PRIM_QUAD, (uint32_t)i};
+        prims[n].ref = (prim_ref){PRIM_QUAD, (uint32_t)i, none};
         n++;
     }
     for (size_t i = 0; in->mesh && i < in->mesh->triangle_count; i++) {
         prims[n].box = box_padded(mesh_triangle_bounds(in->mesh, i));
-        prims[n].ref = (prim_ref){PRIM_TRIANGLE, (uint32_t)i};
+        prims[n].ref = (prim_ref){PRIM_TRIANGLE, (uint32_t)i, none};
         n++;
     }
     for (size_t i = 0; i < in->instance_count; i++) {
         const instance *inst = &in->instances[i];
+        if (in->flat && in->flat[i]) { // its triangles in world space, each a primitive of this BVH
+            const mesh *m = in->flat[i];
+            for (size_t k = 0; k < m->triangle_count; k++) {
+                prims[n].box = box_padded(mesh_triangle_bounds(m, k));
+                prims[n].ref = (prim_ref){PRIM_TRIANGLE, (uint32_t)k, (uint32_t)i};
+                n++;
+            }
+            continue;
+        }
         bounds3 ob = instance_object_bounds(in, inst);
         if (bounds3_is_empty(ob)) continue; // an instance of an empty mesh: nothing to hit
         if (inst->motion) { // bounded over the whole shutter, and tested at each ray's time
             prims[n].box = box_padded(motion_bounds(&in->motions[inst->motion - 1], ob, in->time0, in->time1));
-            prims[n].ref = (prim_ref){PRIM_MOVING_INSTANCE, (uint32_t)i};
+            prims[n].ref = (prim_ref){PRIM_MOVING_INSTANCE, (uint32_t)i, none};
         } else {
             prims[n].box = box_padded(mat4_apply_bounds(&inst->xf.m, ob));
-            prims[n].ref = (prim_ref){PRIM_INSTANCE, (uint32_t)i};
+            prims[n].ref = (prim_ref){PRIM_INSTANCE, (uint32_t)i, none};
         }
         n++;
     }
@@ -439,7 +476,7 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims) {
         prims[n].box = sphere_box(&a);
         box3 bb = sphere_box(&b);
         box_grow(&prims[n].box, &bb);
-        prims[n].ref = (prim_ref){PRIM_MOVING_SPHERE, (uint32_t)i};
+        prims[n].ref = (prim_ref){PRIM_MOVING_SPHERE, (uint32_t)i, none};
         n++;
     }
     for (size_t i = 0; i < n; i++)
@@ -485,6 +522,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     b->mesh = in->mesh;
     b->instances = in->instances;
     b->blas = in->blas;
+    b->flat = in->flat;
     b->instance_spheres = in->instance_spheres;
     b->moving_spheres = in->moving_spheres;
     b->motions = in->motions;
@@ -494,6 +532,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     b->bounds = bounds3_empty();
     size_t cap = in->sphere_count + in->quad_count + (in->mesh ? in->mesh->triangle_count : 0) + in->instance_count +
                  in->moving_sphere_count;
+    for (size_t i = 0; in->flat && i < in->instance_count; i++) cap += in->flat[i] ? in->flat[i]->triangle_count : 0;
     if (cap == 0) return true;
     if (cap >= BVH_LEAF / 2) return false;
 
@@ -506,7 +545,11 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
         return true;
     }
     box3 all = box_empty();
-    for (size_t i = 0; i < n; i++) box_grow(&all, &prims[i].box);
+    b->triangles_only = true;
+    for (size_t i = 0; i < n; i++) {
+        box_grow(&all, &prims[i].box);
+        b->triangles_only = b->triangles_only && (prims[i].ref.kind == PRIM_TRIANGLE || prims[i].ref.kind == PRIM_QUAD);
+    }
     b->bounds = (bounds3){v3(all.lo[0], all.lo[1], all.lo[2]), v3(all.hi[0], all.hi[1], all.hi[2])};
     // The wide BVH tests the huge spheres (the last `front` prims) on their own, the tree holds the rest.
     size_t front = wide ? split_front(prims, n) : 0, tree = n - front;

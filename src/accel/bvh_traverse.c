@@ -12,6 +12,10 @@
 
 static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode);
 
+/// What a BVH's leaves may hold, so that a traversal compiles only the tests it needs (a compile-time constant
+/// after inlining): spheres only, triangles and quads only (both in triangle packets), or anything.
+enum { LEAVES_SPHERES, LEAVES_TRIANGLES, LEAVES_ANY };
+
 // An instance: the ray taken to object space by world_to_object (direction not normalised, so t keeps its
 // meaning), then the mesh's BVH or the object-space sphere. True when it hit (any-hit queries stop there).
 static bool instance_hit(const bvh *b, uint32_t index, const mat4 *world_to_object, const ray *r, hit *best, bool any,
@@ -47,10 +51,11 @@ static __attribute__((noinline)) bool moving_sphere_hit(const bvh *b, uint32_t i
     return true;
 }
 
-// One primitive that is not tested in SIMD: a quad, a triangle of b's mesh, an instance (or a sphere in
-// the binary BVH). `inst_id` is the instance whose mesh b is, or HIT_NO_INSTANCE. True when it hit.
-static inline bool prim_hit(const bvh *b, uint32_t kind, uint32_t index, const ray *r, tri_cache *tc, hit *best,
-                            uint32_t inst_id, bool any, trav_mode mode) {
+// One primitive that is not tested in SIMD: a quad, a triangle of b's mesh or of the flattened instance
+// `owner` (else HIT_NO_INSTANCE), an instance (or a sphere in the binary BVH). `inst_id` is the instance whose
+// mesh b is, or HIT_NO_INSTANCE. True when it hit.
+static inline bool prim_hit(const bvh *b, uint32_t kind, uint32_t index, uint32_t owner, const ray *r, tri_cache *tc,
+                            hit *best, uint32_t inst_id, bool any, trav_mode mode) {
     switch ((prim_kind)kind) {
     case PRIM_SPHERE: {
         const sphere *s = &b->spheres[index];
@@ -66,9 +71,10 @@ static inline bool prim_hit(const bvh *b, uint32_t kind, uint32_t index, const r
         return true;
     }
     case PRIM_TRIANGLE: {
+        const mesh *m = owner == HIT_NO_INSTANCE ? b->mesh : b->flat[owner];
         tri_hit th;
-        if (!mesh_intersect_triangle(b->mesh, index, tri_for(tc, r), r->tmin, r->tmax, &th)) return false;
-        offer(best, (hit){th.t, index, HIT_TRIANGLE, inst_id, th.b1, th.b2});
+        if (!mesh_intersect_triangle(m, index, tri_for(tc, r), r->tmin, r->tmax, &th)) return false;
+        offer(best, (hit){th.t, index, HIT_TRIANGLE, owner == HIT_NO_INSTANCE ? inst_id : owner, th.b1, th.b2});
         return true;
     }
     case PRIM_INSTANCE: return instance_hit(b, index, &b->instances[index].xf.inv, r, best, any, mode);
@@ -85,11 +91,25 @@ static __attribute__((noinline)) hit packet_hit(const bvh *b, const bvh_index_pa
                                                 hit best, uint32_t inst_id, bool any, trav_mode mode, bool *hit_any) {
     *hit_any = false;
     for (uint32_t k = 0; k < p->h.count; k++) {
-        if (!prim_hit(b, p->h.kind, p->prim[k], r, tc, &best, inst_id, any, mode)) continue;
+        if (!prim_hit(b, p->h.kind, p->prim[k], HIT_NO_INSTANCE, r, tc, &best, inst_id, any, mode)) continue;
         *hit_any = true;
         if (any) break;
     }
     return best;
+}
+
+// Offers the hit on lane k of triangle packet p: a triangle of the BVH's mesh or of the packet's flattened
+// instance, or half of a quad (lanes 2j and 2j + 1 are quad prim[2j]). `inst_id` is the instance whose mesh
+// the BVH is; at most one of it and the packet's instance is not HIT_NO_INSTANCE (the largest value).
+static inline void offer_triangle(hit *best, const bvh_triangle_packet *p, int k, float t, float b1, float b2,
+                                  uint32_t inst_id) {
+    uint32_t id = p->h.instance < inst_id ? p->h.instance : inst_id;
+    if (p->h.kind == PRIM_QUAD) {
+        quad_hit qh = quad_hit_of(&(tri_hit){t, 1.0f - b1 - b2, b1, b2}, k & 1);
+        offer(best, (hit){qh.t, p->prim[k], HIT_QUAD, id, qh.alpha, qh.beta});
+    } else {
+        offer(best, (hit){t, p->prim[k], HIT_TRIANGLE, id, b1, b2});
+    }
 }
 
 // A packet of triangles one lane at a time, through tri_intersect: the scalar path, and the reference the
@@ -98,14 +118,15 @@ static __attribute__((noinline)) hit triangle_packet_scalar(const bvh_triangle_p
                                                             hit best, uint32_t inst_id, bool any, bool *hit_any) {
     const tri_ray *tr = tri_for(tc, r);
     *hit_any = false;
-    for (uint32_t k = 0; k < p->h.count; k++) {
+    uint32_t lanes = p->h.kind == PRIM_QUAD ? 2 * p->h.count : p->h.count;
+    for (uint32_t k = 0; k < lanes; k++) {
         vec3 v[3];
         for (int j = 0; j < 3; j++) v[j] = v3(p->v[j][0][k], p->v[j][1][k], p->v[j][2][k]);
         tri_hit th;
         if (!tri_intersect(tr, v[0], v[1], v[2], r->tmin, r->tmax, &th)) continue;
         *hit_any = true;
         if (any) break;
-        offer(&best, (hit){th.t, p->prim[k], HIT_TRIANGLE, inst_id, th.b1, th.b2});
+        offer_triangle(&best, p, (int)k, th.t, th.b1, th.b2, inst_id);
     }
     return best;
 }
@@ -125,7 +146,7 @@ static __attribute__((noinline)) hit triangle_packet_simd(const bvh_triangle_pac
     do {
         int k = __builtin_ctz(mask);
         mask &= mask - 1;
-        offer(&best, (hit){t[k], p->prim[k], HIT_TRIANGLE, inst_id, b1[k], b2[k]});
+        offer_triangle(&best, p, k, t[k], b1[k], b2[k], inst_id);
     } while (mask);
     return best;
 }
@@ -133,9 +154,9 @@ static __attribute__((noinline)) hit triangle_packet_simd(const bvh_triangle_pac
 #define triangle_packet_simd triangle_packet_scalar
 #endif
 
-bool bvh_prim_hit(const bvh *b, uint32_t kind, uint32_t index, const ray *r, tri_cache *tc, hit *best,
-                  uint32_t inst_id, bool any, trav_mode mode) {
-    return prim_hit(b, kind, index, r, tc, best, inst_id, any, mode);
+bool bvh_prim_hit(const bvh *b, prim_ref ref, const ray *r, tri_cache *tc, hit *best, uint32_t inst_id, bool any,
+                  trav_mode mode) {
+    return prim_hit(b, ref.kind, ref.index, ref.instance, r, tc, best, inst_id, any, mode);
 }
 
 /* ------------------------------------------------------------------------------------------------ */
@@ -166,7 +187,7 @@ static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr,
 
 // Tests one leaf's packets one primitive at a time. True when something was hit.
 static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cache *tc, hit *best, uint32_t inst_id,
-                               bool any, bool generic) {
+                               bool any, int leaves) {
     const bvh_slot *slot = &b->slots[ref & ~BVH_LEAF];
     bool found = false;
     for (;;) {
@@ -181,9 +202,9 @@ static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cac
                 if (any) return true;
                 offer(best, (hit){t, p->prim[k], HIT_SPHERE, inst_id, 0.0f, 0.0f});
             }
-        } else if (generic) {
+        } else if (leaves != LEAVES_SPHERES) {
             bool h;
-            if (hd->kind == PRIM_TRIANGLE)
+            if (hd->kind == PRIM_TRIANGLE || hd->kind == PRIM_QUAD)
                 *best = triangle_packet_scalar((const bvh_triangle_packet *)(const void *)slot, r, tc, *best, inst_id,
                                                any, &h);
             else
@@ -201,14 +222,16 @@ static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cac
 
 #if BVH_SIMD
 // Tests one leaf: spheres and triangles in SIMD packets, everything else one at a time. True when something was hit.
+// In a triangle-only BVH the triangle test is inlined here, the out-of-line calls (around which every vector
+// register is saved) left out.
 static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32_t ref, const ray *r,
                                                             const simd_ray *s, tri_cache *tc, hit *best,
-                                                            uint32_t inst_id, bool any, bool generic) {
+                                                            uint32_t inst_id, bool any, int leaves) {
     const bvh_slot *slot = &b->slots[ref & ~BVH_LEAF];
     bool found = false;
     for (;;) {
         const bvh_packet_header *hd = (const bvh_packet_header *)(const void *)slot;
-        if (!generic || hd->kind == PRIM_SPHERE) { // a sphere-only BVH holds nothing else
+        if (leaves == LEAVES_SPHERES || (leaves == LEAVES_ANY && hd->kind == PRIM_SPHERE)) {
             const bvh_sphere_packet *p = (const bvh_sphere_packet *)(const void *)slot;
             pk tv;
             unsigned mask = spheres_simd(p, s, &tv);
@@ -217,9 +240,36 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
                 if (any) return true;
                 offer_spheres(best, p, mask, tv, inst_id);
             }
-        } else if (generic) {
+        } else if (leaves == LEAVES_TRIANGLES) {
+#if BVH_PACKET == 8
+            const bvh_triangle_packet *p = (const bvh_triangle_packet *)(const void *)slot;
+            __m256 tv, b1v, b2v;
+            unsigned mask = triangles_simd(p, tri_for(tc, r), r->tmin, r->tmax, &tv, &b1v, &b2v);
+            if (mask) {
+                found = true;
+                if (any) return true;
+                _Alignas(32) float t[8], b1[8], b2[8];
+                _mm256_store_ps(t, tv);
+                _mm256_store_ps(b1, b1v);
+                _mm256_store_ps(b2, b2v);
+                do {
+                    int k = __builtin_ctz(mask);
+                    mask &= mask - 1;
+                    offer_triangle(best, p, k, t[k], b1[k], b2[k], inst_id);
+                } while (mask);
+            }
+#else
             bool h;
-            if (hd->kind == PRIM_TRIANGLE)
+            *best = triangle_packet_scalar((const bvh_triangle_packet *)(const void *)slot, r, tc, *best, inst_id, any,
+                                           &h);
+            if (h) {
+                found = true;
+                if (any) return true;
+            }
+#endif
+        } else {
+            bool h;
+            if (hd->kind == PRIM_TRIANGLE || hd->kind == PRIM_QUAD)
                 *best = triangle_packet_simd((const bvh_triangle_packet *)(const void *)slot, r, tc, *best, inst_id,
                                              any, &h);
             else
@@ -255,7 +305,7 @@ enum { STEP_MORE, STEP_DONE, STEP_FOUND };
 static inline __attribute__((always_inline)) int wide_step(const bvh *b, const ray *r, const trav_ray *tr,
                                                           const simd_ray *sr, tri_cache *tc, stack_entry *stack,
                                                           walk *w, hit *best, uint32_t inst_id, bool *found,
-                                                          bool any, bool simd, bool generic) {
+                                                          bool any, bool simd, int leaves) {
 #if !BVH_SIMD
     (void)sr;
     (void)simd;
@@ -308,10 +358,10 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
     } else {
         bool hit_here;
 #if BVH_SIMD
-        if (simd) hit_here = leaf_simd(b, ref, r, sr, tc, best, inst_id, any, generic);
+        if (simd) hit_here = leaf_simd(b, ref, r, sr, tc, best, inst_id, any, leaves);
         else
 #endif
-            hit_here = leaf_scalar(b, ref, r, tc, best, inst_id, any, generic);
+            hit_here = leaf_scalar(b, ref, r, tc, best, inst_id, any, leaves);
         if (hit_here) {
             *found = true;
             if (any) return STEP_FOUND;
@@ -328,11 +378,11 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
     return STEP_DONE;
 }
 
-// One ray through a wide BVH from its root, improving *best; true when anything was hit. With `generic`
-// false the BVH holds only spheres: the code for other kinds, with its out-of-line calls (around which
-// every vector register would have to be saved), is left out.
+// One ray through a wide BVH from its root, improving *best; true when anything was hit. With `leaves` not
+// LEAVES_ANY, the code for other kinds, with its out-of-line calls (around which every vector register would
+// have to be saved), is left out.
 static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id,
-                                                           bool any, bool simd, bool generic) {
+                                                           bool any, bool simd, int leaves) {
     if (b->root == BVH_EMPTY && b->front == BVH_EMPTY) return false;
     trav_ray tr;
 #if BVH_SIMD
@@ -351,7 +401,7 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
     // In a sphere-only BVH the huge spheres are one sphere packet. Its test does not depend on the tree's, so
     // a closest-hit query makes it first, where the processor overlaps it with the first tree steps, and
     // merges its hits after the tree (+1.3 to +1.6% on rtiow-final; docs/benchmarks.md).
-    bool front_first = simd && !any && !generic && b->front != BVH_EMPTY;
+    bool front_first = simd && !any && leaves == LEAVES_SPHERES && b->front != BVH_EMPTY;
     const bvh_sphere_packet *front = NULL;
     unsigned front_mask = 0;
     pk front_t = PK(setzero_ps)();
@@ -365,11 +415,11 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
         walk w = {b->root, 0};
 #if BVH_SIMD
         int st;
-        while ((st = wide_step(b, r, &tr, &sr, &tc, stack, &w, best, inst_id, &found, any, simd, generic)) == STEP_MORE) {
+        while ((st = wide_step(b, r, &tr, &sr, &tc, stack, &w, best, inst_id, &found, any, simd, leaves)) == STEP_MORE) {
         }
 #else
         int st;
-        while ((st = wide_step(b, r, &tr, NULL, &tc, stack, &w, best, inst_id, &found, any, simd, generic)) == STEP_MORE) {
+        while ((st = wide_step(b, r, &tr, NULL, &tc, stack, &w, best, inst_id, &found, any, simd, leaves)) == STEP_MORE) {
         }
 #endif
         if (st == STEP_FOUND) return true;
@@ -387,10 +437,10 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
     if (b->front != BVH_EMPTY) {
         bool h;
 #if BVH_SIMD
-        if (simd) h = leaf_simd(b, b->front, r, &sr, &tc, best, inst_id, any, generic);
+        if (simd) h = leaf_simd(b, b->front, r, &sr, &tc, best, inst_id, any, leaves);
         else
 #endif
-            h = leaf_scalar(b, b->front, r, &tc, best, inst_id, any, generic);
+            h = leaf_scalar(b, b->front, r, &tc, best, inst_id, any, leaves);
         found = found || h;
     }
     return found;
@@ -398,47 +448,58 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
 
 static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode) {
     switch (mode) {
-#if BVH_SIMD
-    case MODE_WIDE_SIMD: return wide_run(blas, r, best, inst_id, any, true, true);
-#else
-    case MODE_WIDE_SIMD: return wide_run(blas, r, best, inst_id, any, false, true);
-#endif
-    case MODE_WIDE_SCALAR: return wide_run(blas, r, best, inst_id, any, false, true);
+    case MODE_WIDE_SIMD: // a mesh's BVH holds only triangles
+        if (blas->triangles_only) return wide_run(blas, r, best, inst_id, any, BVH_SIMD, LEAVES_TRIANGLES);
+        return wide_run(blas, r, best, inst_id, any, BVH_SIMD, LEAVES_ANY);
+    case MODE_WIDE_SCALAR: return wide_run(blas, r, best, inst_id, any, false, LEAVES_ANY);
     case MODE_BINARY: return bvh2_run(blas, r, best, inst_id, any);
     }
     return false;
 }
 
 // The closest-hit and any-hit entry points, one function per combination so that each is compiled
-// for exactly its case (the sphere-only ones contain no call at all).
+// for exactly its case (the sphere-only and triangle-only ones contain no call at all).
 static inline __attribute__((always_inline)) bool wide_query(const bvh *b, const ray *r, hit *h, bool any, bool simd,
-                                                             bool generic) {
+                                                             int leaves) {
     hit best = bvh_no_hit(r);
-    if (!wide_run(b, r, &best, HIT_NO_INSTANCE, any, simd, generic)) return false;
+    if (!wide_run(b, r, &best, HIT_NO_INSTANCE, any, simd, leaves)) return false;
     if (!any) *h = best;
     return true;
 }
 
-static bool closest_spheres(const bvh *b, const ray *r, hit *h) { return wide_query(b, r, h, false, BVH_SIMD, false); }
-static bool closest_generic(const bvh *b, const ray *r, hit *h) { return wide_query(b, r, h, false, BVH_SIMD, true); }
+static bool closest_spheres(const bvh *b, const ray *r, hit *h) {
+    return wide_query(b, r, h, false, BVH_SIMD, LEAVES_SPHERES);
+}
+static bool closest_triangles(const bvh *b, const ray *r, hit *h) {
+    return wide_query(b, r, h, false, BVH_SIMD, LEAVES_TRIANGLES);
+}
+static bool closest_generic(const bvh *b, const ray *r, hit *h) { return wide_query(b, r, h, false, BVH_SIMD, LEAVES_ANY); }
 static bool any_spheres(const bvh *b, const ray *r) {
     hit h;
-    return wide_query(b, r, &h, true, BVH_SIMD, false);
+    return wide_query(b, r, &h, true, BVH_SIMD, LEAVES_SPHERES);
+}
+static bool any_triangles(const bvh *b, const ray *r) {
+    hit h;
+    return wide_query(b, r, &h, true, BVH_SIMD, LEAVES_TRIANGLES);
 }
 static bool any_generic(const bvh *b, const ray *r) {
     hit h;
-    return wide_query(b, r, &h, true, BVH_SIMD, true);
+    return wide_query(b, r, &h, true, BVH_SIMD, LEAVES_ANY);
 }
 
-bool bvh_intersect_scalar(const bvh *b, const ray *r, hit *h) { return wide_query(b, r, h, false, false, true); }
+bool bvh_intersect_scalar(const bvh *b, const ray *r, hit *h) { return wide_query(b, r, h, false, false, LEAVES_ANY); }
 
 bool bvh_occluded_scalar(const bvh *b, const ray *r) {
     hit h;
-    return wide_query(b, r, &h, true, false, true);
+    return wide_query(b, r, &h, true, false, LEAVES_ANY);
 }
 
 bool bvh_intersect(const bvh *b, const ray *r, hit *h) {
-    return b->spheres_only ? closest_spheres(b, r, h) : closest_generic(b, r, h);
+    if (b->spheres_only) return closest_spheres(b, r, h);
+    return b->triangles_only ? closest_triangles(b, r, h) : closest_generic(b, r, h);
 }
 
-bool bvh_occluded(const bvh *b, const ray *r) { return b->spheres_only ? any_spheres(b, r) : any_generic(b, r); }
+bool bvh_occluded(const bvh *b, const ray *r) {
+    if (b->spheres_only) return any_spheres(b, r);
+    return b->triangles_only ? any_triangles(b, r) : any_generic(b, r);
+}

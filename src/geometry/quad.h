@@ -38,24 +38,22 @@ bool quad_transform(const quad *q, const mat4 *m, quad *out);
 /// Bounds of a quad.
 bounds3 quad_bounds(const quad *q);
 
-/// Ray/quad test with tmin < t < tmax: the watertight triangle test on the quad's two triangles.
+/// The quad coordinates of a hit on triangle `half` (0: p0 p1 p2, 1: p0 p2 p3) with barycentrics th.
+static inline quad_hit quad_hit_of(const tri_hit *th, int half) {
+    // Half 0: b1 (q+u) + b2 (q+u+v) - q, so alpha = b1 + b2, beta = b2; half 1: b1 (q+u+v) + b2 (q+v) - q.
+    if (half == 0) return (quad_hit){th->t, th->b1 + th->b2, th->b2};
+    return (quad_hit){th->t, th->b1, th->b1 + th->b2};
+}
+
+/// Ray/quad test with tmin < t < tmax: the watertight triangle test on the quad's two triangles, the nearer
+/// hit kept (the first triangle's on a tie), which is what the BVH's SIMD packets find when they test both.
 static inline bool quad_intersect(const quad *qd, const tri_ray *tr, float tmin, float tmax, quad_hit *h) {
-    tri_hit th;
-    if (tri_intersect(tr, qd->p[0], qd->p[1], qd->p[2], tmin, tmax, &th)) {
-        // b1 (q+u) + b2 (q+u+v) - q: alpha = b1 + b2, beta = b2.
-        h->t = th.t;
-        h->alpha = th.b1 + th.b2;
-        h->beta = th.b2;
-        return true;
-    }
-    if (tri_intersect(tr, qd->p[0], qd->p[2], qd->p[3], tmin, tmax, &th)) {
-        // b1 (q+u+v) + b2 (q+v) - q: alpha = b1, beta = b1 + b2.
-        h->t = th.t;
-        h->alpha = th.b1;
-        h->beta = th.b1 + th.b2;
-        return true;
-    }
-    return false;
+    tri_hit th0 = {0}, th1 = {0};
+    bool hit0 = tri_intersect(tr, qd->p[0], qd->p[1], qd->p[2], tmin, tmax, &th0);
+    bool hit1 = tri_intersect(tr, qd->p[0], qd->p[2], qd->p[3], tmin, hit0 ? th0.t : tmax, &th1);
+    if (hit1) *h = quad_hit_of(&th1, 1);
+    else if (hit0) *h = quad_hit_of(&th0, 0);
+    return hit0 || hit1;
 }
 
 #endif
