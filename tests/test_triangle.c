@@ -1,6 +1,7 @@
 // test_triangle.c — ray/triangle and ray/quad hits against analytic answers, and watertightness: rays from
 // inside closed meshes aimed exactly at shared vertices and along shared edges never escape.
 #include "check.h"
+#include "accel/bvh.h"
 #include "core/rng.h"
 #include "geometry/mesh.h"
 #include "geometry/transform.h"
@@ -193,28 +194,51 @@ static bool mesh_hit_any(const mesh *m, const ray *r, float *t_out) {
     return any;
 }
 
-// Fires rays from `origins` at every vertex and at points along every edge; returns how many escaped.
+// Rays for which the mesh's BVH (its SIMD packets, and its scalar path) found another hit than testing every
+// triangle: these rays hit edges and vertices exactly, where the packets' lanes take the double path.
+static int bvh_disagreements;
+
+// Whether the wide BVH b over m's triangles finds the hit mesh_hit_any found (t, and hit or not), by both paths.
+static bool bvh_agrees(const bvh *b, const ray *r, bool found, float t) {
+    hit hs, hv;
+    bool fs = bvh_intersect_scalar(b, r, &hs), fv = bvh_intersect(b, r, &hv);
+    bool ok = fs == found && fv == found && (!found || (hs.t == t && hv.t == t && hs.prim == hv.prim &&
+                                                        hs.b1 == hv.b1 && hs.b2 == hv.b2));
+    ok = ok && bvh_occluded(b, r) == found && bvh_occluded_scalar(b, r) == found;
+    return ok;
+}
+
+// Fires rays from `origins` at every vertex and at points along every edge; returns how many escaped. Each ray
+// also goes through the mesh's BVH (bvh_agrees), whose disagreements are counted in bvh_disagreements.
 static int fire_at_vertices_and_edges(const mesh *m, const vec3 *origins, int norigins, int *fired) {
     static const float params[] = {0.5f, 0.25f, 1e-3f, 0.999f, 0.3333333f};
     int escaped = 0;
+    bvh b;
+    bvh_input in = {.mesh = m};
+    CHECK(bvh_build(&b, &in, true));
     for (int o = 0; o < norigins; o++) {
         for (size_t i = 0; i < m->position_count; i++) {
             ray r = mkray(origins[o], v3_sub(m->positions[i], origins[o]));
             float t;
-            if (!mesh_hit_any(m, &r, &t)) escaped++;
+            bool found = mesh_hit_any(m, &r, &t);
+            if (!found) escaped++;
+            if (!bvh_agrees(&b, &r, found, t)) bvh_disagreements++;
             (*fired)++;
         }
         for (size_t i = 0; i < m->triangle_count; i++)
             for (int e = 0; e < 3; e++) {
-                vec3 a = m->positions[m->triangles[i].v[e]], b = m->positions[m->triangles[i].v[(e + 1) % 3]];
+                vec3 a = m->positions[m->triangles[i].v[e]], c = m->positions[m->triangles[i].v[(e + 1) % 3]];
                 for (size_t k = 0; k < sizeof params / sizeof params[0]; k++) {
-                    ray r = mkray(origins[o], v3_sub(v3_lerp(a, b, params[k]), origins[o]));
+                    ray r = mkray(origins[o], v3_sub(v3_lerp(a, c, params[k]), origins[o]));
                     float t;
-                    if (!mesh_hit_any(m, &r, &t)) escaped++;
+                    bool found = mesh_hit_any(m, &r, &t);
+                    if (!found) escaped++;
+                    if (!bvh_agrees(&b, &r, found, t)) bvh_disagreements++;
                     (*fired)++;
                 }
             }
     }
+    bvh_release(&b);
     return escaped;
 }
 
@@ -306,13 +330,13 @@ static void test_watertight_box(void) {
                     vec3 a = q[i].p[k], b = q[i].p[(k + 1) % 4];
                     ray ry = mkray(origin, v3_sub(v3_lerp(a, b, (float)s / 20.0f), origin));
                     tri_ray tr = tri_ray_make(&ry);
-                    bool hit = false;
-                    for (int j = 0; j < 6 && !hit; j++) {
+                    bool struck = false;
+                    for (int j = 0; j < 6 && !struck; j++) {
                         quad_hit h;
-                        hit = quad_intersect(&q[j], &tr, 0, INFINITY, &h);
+                        struck = quad_intersect(&q[j], &tr, 0, INFINITY, &h);
                     }
                     fired++;
-                    if (!hit) escaped++;
+                    if (!struck) escaped++;
                 }
     }
     CHECK(fired > 5000);
@@ -442,6 +466,8 @@ int main(void) {
     test_watertight_icosphere();
     test_watertight_cube();
     test_watertight_box();
+    CHECK(bvh_disagreements == 0);
+    if (bvh_disagreements) fprintf(stderr, "%d rays: the BVH disagreed with testing every triangle\n", bvh_disagreements);
     test_quad();
     test_quad_transform();
     test_shading();

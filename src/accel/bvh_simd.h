@@ -136,40 +136,32 @@ static inline void offer_spheres(hit *best, const bvh_sphere_packet *p, unsigned
     } while (mask);
 }
 
-// One half (four lanes) of triangles_simd's double-precision part: the edge functions, the rejections and
-// the distance, each lane exactly as tri_intersect computes it (products and sums one by one, no fused
-// multiply-add, in its order). Returns the 4-bit mask of lanes not rejected, and t, b1, b2 of every lane.
-static inline unsigned triangles_half(__m128 x0, __m128 y0, __m128 z0, __m128 x1, __m128 y1, __m128 z1, __m128 x2,
-                                      __m128 y2, __m128 z2, __m256d sz, __m128 *t, __m128 *b1, __m128 *b2) {
-    __m256d ax = _mm256_cvtps_pd(x0), ay = _mm256_cvtps_pd(y0), az = _mm256_cvtps_pd(z0);
-    __m256d bx = _mm256_cvtps_pd(x1), by = _mm256_cvtps_pd(y1), bz = _mm256_cvtps_pd(z1);
-    __m256d cx = _mm256_cvtps_pd(x2), cy = _mm256_cvtps_pd(y2), cz = _mm256_cvtps_pd(z2);
-    __m256d u = _mm256_sub_pd(_mm256_mul_pd(cx, by), _mm256_mul_pd(cy, bx));
-    __m256d v = _mm256_sub_pd(_mm256_mul_pd(ax, cy), _mm256_mul_pd(ay, cx));
-    __m256d w = _mm256_sub_pd(_mm256_mul_pd(bx, ay), _mm256_mul_pd(by, ax));
-    const __m256d zero = _mm256_setzero_pd();
-    __m256d neg = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
-                               _mm256_cmp_pd(w, zero, _CMP_LT_OQ));
-    __m256d pos = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
-                               _mm256_cmp_pd(w, zero, _CMP_GT_OQ));
-    __m256d det = _mm256_add_pd(_mm256_add_pd(u, v), w);
-    // Edges of both signs (outside), a zero determinant (edge-on or degenerate), or NaN (an unused lane).
-    __m256d bad = _mm256_or_pd(_mm256_and_pd(neg, pos),
-                               _mm256_or_pd(_mm256_cmp_pd(det, zero, _CMP_EQ_OQ), _mm256_cmp_pd(det, det, _CMP_UNORD_Q)));
-    __m256d scaled = _mm256_mul_pd(
-        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(u, az), _mm256_mul_pd(v, bz)), _mm256_mul_pd(w, cz)), sz);
-    __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0), det);
-    *t = _mm256_cvtpd_ps(_mm256_mul_pd(scaled, inv));
-    *b1 = _mm256_cvtpd_ps(_mm256_mul_pd(v, inv));
-    *b2 = _mm256_cvtpd_ps(_mm256_mul_pd(w, inv));
-    return ~(unsigned)_mm256_movemask_pd(bad) & 0xfu;
+// The lanes of triangle packet p that tri_intersect tests in double (an edge function rounded to zero): each
+// through tri_intersect itself, its result written into lane k of t, b1, b2. Returns the lanes hit.
+static __attribute__((noinline)) unsigned triangles_exact(const bvh_triangle_packet *p, const tri_ray *tr, float tmin,
+                                                          float tmax, unsigned lanes, float *t, float *b1, float *b2) {
+    unsigned found = 0;
+    do {
+        int k = __builtin_ctz(lanes);
+        lanes &= lanes - 1;
+        vec3 v[3];
+        for (int j = 0; j < 3; j++) v[j] = v3(p->v[j][0][k], p->v[j][1][k], p->v[j][2][k]);
+        tri_hit th;
+        if (!tri_intersect(tr, v[0], v[1], v[2], tmin, tmax, &th)) continue;
+        t[k] = th.t;
+        b1[k] = th.b1;
+        b2[k] = th.b2;
+        found |= 1u << k;
+    } while (lanes);
+    return found;
 }
 
-// A packet of eight triangles at once, each lane computing exactly what tri_intersect computes for it (the
-// same float shear into ray space, then triangles_half in double), so t and the barycentrics are
-// bit-identical to the scalar test. Returns the mask of lanes hit with tmin < t < tmax, with t, b1, b2.
-static inline unsigned triangles_simd(const bvh_triangle_packet *p, const tri_ray *tr, float tmin, float tmax,
-                                      __m256 *t, __m256 *b1, __m256 *b2) {
+// A packet of eight triangles at once, each lane computing exactly what tri_intersect computes for it (the same
+// float operations in the same order, unfused), so t and the barycentrics are bit-identical to the scalar test;
+// lanes with an edge function of zero go through tri_intersect's double path. Returns the mask of lanes hit with
+// tmin < t < tmax, with t, b1, b2 in the arrays (lanes outside the mask undefined).
+static inline unsigned triangles_simd(const bvh_triangle_packet *p, const tri_ray *tr, float tmin, float tmax, float *t,
+                                      float *b1, float *b2) {
     const float o[3] = {tr->o.x, tr->o.y, tr->o.z};
     const __m256 ox = _mm256_set1_ps(o[tr->kx]), oy = _mm256_set1_ps(o[tr->ky]), oz = _mm256_set1_ps(o[tr->kz]);
     const __m256 sx = _mm256_set1_ps(tr->sx), sy = _mm256_set1_ps(tr->sy);
@@ -179,24 +171,40 @@ static inline unsigned triangles_simd(const bvh_triangle_packet *p, const tri_ra
         x[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][tr->kx]), ox), _mm256_mul_ps(sx, z[j]));
         y[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][tr->ky]), oy), _mm256_mul_ps(sy, z[j]));
     }
-    const __m256d sz = _mm256_set1_pd((double)tr->sz);
-    __m128 tl, th, b1l, b1h, b2l, b2h;
-#define GLINT_LO(r) _mm256_castps256_ps128(r)
-#define GLINT_HI(r) _mm256_extractf128_ps(r, 1)
-    unsigned lo = triangles_half(GLINT_LO(x[0]), GLINT_LO(y[0]), GLINT_LO(z[0]), GLINT_LO(x[1]), GLINT_LO(y[1]),
-                                 GLINT_LO(z[1]), GLINT_LO(x[2]), GLINT_LO(y[2]), GLINT_LO(z[2]), sz, &tl, &b1l, &b2l);
-    unsigned hi = triangles_half(GLINT_HI(x[0]), GLINT_HI(y[0]), GLINT_HI(z[0]), GLINT_HI(x[1]), GLINT_HI(y[1]),
-                                 GLINT_HI(z[1]), GLINT_HI(x[2]), GLINT_HI(y[2]), GLINT_HI(z[2]), sz, &th, &b1h, &b2h);
-#undef GLINT_LO
-#undef GLINT_HI
-    unsigned mask = lo | hi << 4;
-    if (!mask) return 0;
-    *t = _mm256_set_m128(th, tl);
-    *b1 = _mm256_set_m128(b1h, b1l);
-    *b2 = _mm256_set_m128(b2h, b2l);
-    __m256 in = _mm256_and_ps(_mm256_cmp_ps(*t, _mm256_set1_ps(tmin), _CMP_GT_OQ),
-                              _mm256_cmp_ps(*t, _mm256_set1_ps(tmax), _CMP_LT_OQ));
-    return mask & (unsigned)_mm256_movemask_ps(in);
+    __m256 u = _mm256_sub_ps(_mm256_mul_ps(x[2], y[1]), _mm256_mul_ps(y[2], x[1]));
+    __m256 v = _mm256_sub_ps(_mm256_mul_ps(x[0], y[2]), _mm256_mul_ps(y[0], x[2]));
+    __m256 w = _mm256_sub_ps(_mm256_mul_ps(x[1], y[0]), _mm256_mul_ps(y[1], x[0]));
+    const __m256 zero = _mm256_setzero_ps();
+    __m256 neg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
+                              _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
+    __m256 pos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
+                              _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
+    __m256 zeros = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
+                                _mm256_cmp_ps(w, zero, _CMP_EQ_OQ));
+    unsigned exact = (unsigned)_mm256_movemask_ps(zeros);
+    // Edges of both signs: outside (most lanes of most packets, so most calls end here, before the division).
+    unsigned inside = ~(unsigned)_mm256_movemask_ps(_mm256_and_ps(neg, pos)) & 0xffu & ~exact;
+    unsigned mask = 0;
+    if (inside) {
+        __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+        __m256 scaled = _mm256_mul_ps(
+            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, z[0]), _mm256_mul_ps(v, z[1])), _mm256_mul_ps(w, z[2])),
+            _mm256_set1_ps(tr->sz));
+        __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
+        __m256 tv = _mm256_mul_ps(scaled, inv);
+        // det zero or NaN (unused lanes are NaN), and t outside (tmin, tmax), fail these ordered comparisons.
+        __m256 ok = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ),
+                                  _mm256_and_ps(_mm256_cmp_ps(tv, _mm256_set1_ps(tmin), _CMP_GT_OQ),
+                                                _mm256_cmp_ps(tv, _mm256_set1_ps(tmax), _CMP_LT_OQ)));
+        mask = inside & (unsigned)_mm256_movemask_ps(ok);
+        if (mask) {
+            _mm256_store_ps(t, tv);
+            _mm256_store_ps(b1, _mm256_mul_ps(v, inv));
+            _mm256_store_ps(b2, _mm256_mul_ps(w, inv));
+        }
+    }
+    if (exact) mask |= triangles_exact(p, tr, tmin, tmax, exact, t, b1, b2);
+    return mask;
 }
 
 #endif

@@ -135,14 +135,10 @@ static __attribute__((noinline)) hit triangle_packet_scalar(const bvh_triangle_p
 // A packet of triangles in SIMD (triangles_simd), its hits offered lane by lane.
 static __attribute__((noinline)) hit triangle_packet_simd(const bvh_triangle_packet *p, const ray *r, tri_cache *tc,
                                                           hit best, uint32_t inst_id, bool any, bool *hit_any) {
-    __m256 tv, b1v, b2v;
-    unsigned mask = triangles_simd(p, tri_for(tc, r), r->tmin, r->tmax, &tv, &b1v, &b2v);
+    _Alignas(32) float t[8], b1[8], b2[8];
+    unsigned mask = triangles_simd(p, tri_for(tc, r), r->tmin, r->tmax, t, b1, b2);
     *hit_any = mask != 0;
     if (!mask || any) return best;
-    _Alignas(32) float t[8], b1[8], b2[8];
-    _mm256_store_ps(t, tv);
-    _mm256_store_ps(b1, b1v);
-    _mm256_store_ps(b2, b2v);
     do {
         int k = __builtin_ctz(mask);
         mask &= mask - 1;
@@ -243,15 +239,11 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
         } else if (leaves == LEAVES_TRIANGLES) {
 #if BVH_PACKET == 8
             const bvh_triangle_packet *p = (const bvh_triangle_packet *)(const void *)slot;
-            __m256 tv, b1v, b2v;
-            unsigned mask = triangles_simd(p, tri_for(tc, r), r->tmin, r->tmax, &tv, &b1v, &b2v);
+            _Alignas(32) float t[8], b1[8], b2[8];
+            unsigned mask = triangles_simd(p, tri_for(tc, r), r->tmin, r->tmax, t, b1, b2);
             if (mask) {
                 found = true;
                 if (any) return true;
-                _Alignas(32) float t[8], b1[8], b2[8];
-                _mm256_store_ps(t, tv);
-                _mm256_store_ps(b1, b1v);
-                _mm256_store_ps(b2, b2v);
                 do {
                     int k = __builtin_ctz(mask);
                     mask &= mask - 1;

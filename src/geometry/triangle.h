@@ -1,4 +1,5 @@
-// triangle.h — the watertight ray/triangle test of Woop, Benthin and Wald (JCGT 2013).
+// triangle.h — the watertight ray/triangle test of Woop, Benthin and Wald (JCGT 2013): float, with an exact
+// double fallback where an edge function is zero.
 #ifndef GLINT_TRIANGLE_H
 #define GLINT_TRIANGLE_H
 
@@ -42,27 +43,36 @@ static inline tri_ray tri_ray_make(const ray *r) {
     return tr;
 }
 
-/// Watertight ray/triangle test: the hit with tmin < t < tmax, either side of the triangle. Rays through a
-/// shared edge or vertex hit at least one of the triangles around it. Vertices are sheared into ray space
-/// in float (the same operations for every triangle that shares a vertex), and the edge functions are
-/// evaluated in double, where the products of two floats are exact: their signs are exact and opposite for
-/// the two triangles of an edge whether or not the compiler fuses multiply-adds. This replaces the paper's
-/// float path with a double fallback at zero, at about the same cost in scalar code.
-static inline bool tri_intersect(const tri_ray *tr, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax, tri_hit *h) {
+/// The vertices of a triangle moved to ray space (tri_ray): (x, y) sheared so that the ray is the z axis.
+typedef struct tri_sheared {
+    float ax, ay, az, bx, by, bz, cx, cy, cz;
+} tri_sheared;
+
+static inline tri_sheared tri_shear(const tri_ray *tr, vec3 p0, vec3 p1, vec3 p2) {
     vec3 a = v3_sub(p0, tr->o), b = v3_sub(p1, tr->o), c = v3_sub(p2, tr->o);
-    float az = v3_comp(a, tr->kz), bz = v3_comp(b, tr->kz), cz = v3_comp(c, tr->kz);
-    float ax = v3_comp(a, tr->kx) - tr->sx * az, ay = v3_comp(a, tr->ky) - tr->sy * az;
-    float bx = v3_comp(b, tr->kx) - tr->sx * bz, by = v3_comp(b, tr->ky) - tr->sy * bz;
-    float cx = v3_comp(c, tr->kx) - tr->sx * cz, cy = v3_comp(c, tr->ky) - tr->sy * cz;
-    // Edge functions: twice the signed areas of the 2D triangles (origin, edge), in ray space.
-    double u = (double)cx * by - (double)cy * bx;
-    double v = (double)ax * cy - (double)ay * cx;
-    double w = (double)bx * ay - (double)by * ax;
+    tri_sheared s;
+    s.az = v3_comp(a, tr->kz);
+    s.bz = v3_comp(b, tr->kz);
+    s.cz = v3_comp(c, tr->kz);
+    s.ax = v3_comp(a, tr->kx) - tr->sx * s.az;
+    s.ay = v3_comp(a, tr->ky) - tr->sy * s.az;
+    s.bx = v3_comp(b, tr->kx) - tr->sx * s.bz;
+    s.by = v3_comp(b, tr->ky) - tr->sy * s.bz;
+    s.cx = v3_comp(c, tr->kx) - tr->sx * s.cz;
+    s.cy = v3_comp(c, tr->ky) - tr->sy * s.cz;
+    return s;
+}
+
+/// The test in double, for tri_intersect when an edge function rounds to zero in float: the products of two
+/// floats are exact in double, so the signs are exact.
+static inline bool tri_intersect_exact(const tri_ray *tr, const tri_sheared *s, float tmin, float tmax, tri_hit *h) {
+    double u = (double)s->cx * s->by - (double)s->cy * s->bx;
+    double v = (double)s->ax * s->cy - (double)s->ay * s->cx;
+    double w = (double)s->bx * s->ay - (double)s->by * s->ax;
     if ((u < 0.0 || v < 0.0 || w < 0.0) && (u > 0.0 || v > 0.0 || w > 0.0)) return false;
     double det = u + v + w;
     if (det == 0.0 || det != det) return false; // ray in the triangle's plane, degenerate triangle, or NaN
-    // Distance: the barycentric mix of the vertices' z in ray space, scaled by 1/dz.
-    double scaled_t = (u * az + v * bz + w * cz) * (double)tr->sz;
+    double scaled_t = (u * s->az + v * s->bz + w * s->cz) * (double)tr->sz;
     double inv_det = 1.0 / det;
     float t = (float)(scaled_t * inv_det);
     if (!(t > tmin && t < tmax)) return false;
@@ -70,6 +80,34 @@ static inline bool tri_intersect(const tri_ray *tr, vec3 p0, vec3 p1, vec3 p2, f
     h->b0 = (float)(u * inv_det);
     h->b1 = (float)(v * inv_det);
     h->b2 = (float)(w * inv_det);
+    return true;
+}
+
+/// Watertight ray/triangle test of Woop, Benthin and Wald: the hit with tmin < t < tmax, either side of the
+/// triangle. Rays through a shared edge or vertex hit at least one of the triangles around it. Vertices are
+/// sheared into ray space (the same float operations for every triangle that shares a vertex); the edge
+/// functions are differences of two rounded products, so the two triangles of an edge compute exactly opposite
+/// values, and rounding is monotone, so a value's sign is exact unless it is zero, where the test is redone in
+/// double (tri_intersect_exact). This needs multiply-adds left unfused (-ffp-contract=off, as glint builds):
+/// a fused one rounds the two orders of an edge differently. The SIMD packets compute the same, lane by lane.
+static inline bool tri_intersect(const tri_ray *tr, vec3 p0, vec3 p1, vec3 p2, float tmin, float tmax, tri_hit *h) {
+    tri_sheared s = tri_shear(tr, p0, p1, p2);
+    // Edge functions: twice the signed areas of the 2D triangles (origin, edge), in ray space.
+    float u = s.cx * s.by - s.cy * s.bx;
+    float v = s.ax * s.cy - s.ay * s.cx;
+    float w = s.bx * s.ay - s.by * s.ax;
+    if (u == 0.0f || v == 0.0f || w == 0.0f) return tri_intersect_exact(tr, &s, tmin, tmax, h);
+    if ((u < 0.0f || v < 0.0f || w < 0.0f) && (u > 0.0f || v > 0.0f || w > 0.0f)) return false;
+    float det = u + v + w;
+    if (det == 0.0f || det != det) return false; // NaN (or an overflow to opposite infinities)
+    float scaled_t = (u * s.az + v * s.bz + w * s.cz) * tr->sz;
+    float inv_det = 1.0f / det;
+    float t = scaled_t * inv_det;
+    if (!(t > tmin && t < tmax)) return false;
+    h->t = t;
+    h->b0 = u * inv_det;
+    h->b1 = v * inv_det;
+    h->b2 = w * inv_det;
     return true;
 }
 
