@@ -247,6 +247,7 @@ emit "- commit: $COMMIT"
 emit "- CPU: $CPU, $NPROC online CPUs"
 emit "- compiler: $(${CC:-cc} --version 2>/dev/null | head -n 1)"
 emit "- mode: $([ $QUICK = 1 ] && echo quick || echo full), $RUNS runs per measurement, medians"
+emit "- threads (rtiow, meshyard):$THREAD_LIST; mesh sections: $MESH_SPP spp, meshscale up to $MESH_MAX triangles"
 emit ""
 
 # --- 1. rtiow-final against the Embree-based renderer -----------------------------------------------
