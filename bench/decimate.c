@@ -147,6 +147,7 @@ int main(int argc, char **argv) {
     if (m.nv >= (size_t)1 << 21) mesh_die("more than 2^21 vertices: too many for the grid's keys");
     if ((size_t)target >= m.nt) {
         fprintf(stderr, "decimate: TRIANGLES (%ld) must be fewer than the input's %zu\n", target, m.nt);
+        mesh_free(&m);
         return 2;
     }
     double lo[3], hi[3];
