@@ -156,20 +156,43 @@ static __attribute__((noinline)) unsigned triangles_exact(const bvh_triangle_pac
     return found;
 }
 
+/// A ray's triangle-test constants (tri_ray) broadcast into registers, made once per ray.
+typedef struct simd_tri {
+    __m256 ox, oy, oz, sx, sy, sz, tmin, tmax; ///< origin and shear in ray-space order (x = kx, ...)
+    int kx, ky, kz;
+    float tmin1, tmax1;
+    const tri_ray *tr; ///< for the lanes that take tri_intersect's double path
+} simd_tri;
+
+static inline void simd_tri_setup(const tri_ray *tr, float tmin, float tmax, simd_tri *st) {
+    const float o[3] = {tr->o.x, tr->o.y, tr->o.z};
+    st->ox = _mm256_set1_ps(o[tr->kx]);
+    st->oy = _mm256_set1_ps(o[tr->ky]);
+    st->oz = _mm256_set1_ps(o[tr->kz]);
+    st->sx = _mm256_set1_ps(tr->sx);
+    st->sy = _mm256_set1_ps(tr->sy);
+    st->sz = _mm256_set1_ps(tr->sz);
+    st->tmin = _mm256_set1_ps(tmin);
+    st->tmax = _mm256_set1_ps(tmax);
+    st->kx = tr->kx;
+    st->ky = tr->ky;
+    st->kz = tr->kz;
+    st->tmin1 = tmin;
+    st->tmax1 = tmax;
+    st->tr = tr;
+}
+
 // A packet of eight triangles at once, each lane computing exactly what tri_intersect computes for it (the same
 // float operations in the same order, unfused), so t and the barycentrics are bit-identical to the scalar test;
 // lanes with an edge function of zero go through tri_intersect's double path. Returns the mask of lanes hit with
 // tmin < t < tmax, with t, b1, b2 in the arrays (lanes outside the mask undefined).
-static inline unsigned triangles_simd(const bvh_triangle_packet *p, const tri_ray *tr, float tmin, float tmax, float *t,
-                                      float *b1, float *b2) {
-    const float o[3] = {tr->o.x, tr->o.y, tr->o.z};
-    const __m256 ox = _mm256_set1_ps(o[tr->kx]), oy = _mm256_set1_ps(o[tr->ky]), oz = _mm256_set1_ps(o[tr->kz]);
-    const __m256 sx = _mm256_set1_ps(tr->sx), sy = _mm256_set1_ps(tr->sy);
+static inline unsigned triangles_simd(const bvh_triangle_packet *p, const simd_tri *st, float *t, float *b1,
+                                      float *b2) {
     __m256 x[3], y[3], z[3];
     for (int j = 0; j < 3; j++) { // vertex j - o, sheared: x - sx z, y - sy z (products, then differences)
-        z[j] = _mm256_sub_ps(_mm256_load_ps(p->v[j][tr->kz]), oz);
-        x[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][tr->kx]), ox), _mm256_mul_ps(sx, z[j]));
-        y[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][tr->ky]), oy), _mm256_mul_ps(sy, z[j]));
+        z[j] = _mm256_sub_ps(_mm256_load_ps(p->v[j][st->kz]), st->oz);
+        x[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][st->kx]), st->ox), _mm256_mul_ps(st->sx, z[j]));
+        y[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][st->ky]), st->oy), _mm256_mul_ps(st->sy, z[j]));
     }
     __m256 u = _mm256_sub_ps(_mm256_mul_ps(x[2], y[1]), _mm256_mul_ps(y[2], x[1]));
     __m256 v = _mm256_sub_ps(_mm256_mul_ps(x[0], y[2]), _mm256_mul_ps(y[0], x[2]));
@@ -189,13 +212,13 @@ static inline unsigned triangles_simd(const bvh_triangle_packet *p, const tri_ra
         __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
         __m256 scaled = _mm256_mul_ps(
             _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, z[0]), _mm256_mul_ps(v, z[1])), _mm256_mul_ps(w, z[2])),
-            _mm256_set1_ps(tr->sz));
+            st->sz);
         __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
         __m256 tv = _mm256_mul_ps(scaled, inv);
         // det zero or NaN (unused lanes are NaN), and t outside (tmin, tmax), fail these ordered comparisons.
         __m256 ok = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ),
-                                  _mm256_and_ps(_mm256_cmp_ps(tv, _mm256_set1_ps(tmin), _CMP_GT_OQ),
-                                                _mm256_cmp_ps(tv, _mm256_set1_ps(tmax), _CMP_LT_OQ)));
+                                  _mm256_and_ps(_mm256_cmp_ps(tv, st->tmin, _CMP_GT_OQ),
+                                                _mm256_cmp_ps(tv, st->tmax, _CMP_LT_OQ)));
         mask = inside & (unsigned)_mm256_movemask_ps(ok);
         if (mask) {
             _mm256_store_ps(t, tv);
@@ -203,7 +226,7 @@ static inline unsigned triangles_simd(const bvh_triangle_packet *p, const tri_ra
             _mm256_store_ps(b2, _mm256_mul_ps(w, inv));
         }
     }
-    if (exact) mask |= triangles_exact(p, tr, tmin, tmax, exact, t, b1, b2);
+    if (exact) mask |= triangles_exact(p, st->tr, st->tmin1, st->tmax1, exact, t, b1, b2);
     return mask;
 }
 

@@ -136,7 +136,9 @@ static __attribute__((noinline)) hit triangle_packet_scalar(const bvh_triangle_p
 static __attribute__((noinline)) hit triangle_packet_simd(const bvh_triangle_packet *p, const ray *r, tri_cache *tc,
                                                           hit best, uint32_t inst_id, bool any, bool *hit_any) {
     _Alignas(32) float t[8], b1[8], b2[8];
-    unsigned mask = triangles_simd(p, tri_for(tc, r), r->tmin, r->tmax, t, b1, b2);
+    simd_tri st;
+    simd_tri_setup(tri_for(tc, r), r->tmin, r->tmax, &st);
+    unsigned mask = triangles_simd(p, &st, t, b1, b2);
     *hit_any = mask != 0;
     if (!mask || any) return best;
     do {
@@ -221,7 +223,8 @@ static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cac
 // In a triangle-only BVH the triangle test is inlined here, the out-of-line calls (around which every vector
 // register is saved) left out.
 static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32_t ref, const ray *r,
-                                                            const simd_ray *s, tri_cache *tc, hit *best,
+                                                            const simd_ray *s, const simd_tri *st, tri_cache *tc,
+                                                            hit *best,
                                                             uint32_t inst_id, bool any, int leaves) {
     const bvh_slot *slot = &b->slots[ref & ~BVH_LEAF];
     bool found = false;
@@ -240,7 +243,7 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
 #if BVH_PACKET == 8
             const bvh_triangle_packet *p = (const bvh_triangle_packet *)(const void *)slot;
             _Alignas(32) float t[8], b1[8], b2[8];
-            unsigned mask = triangles_simd(p, tri_for(tc, r), r->tmin, r->tmax, t, b1, b2);
+            unsigned mask = triangles_simd(p, st, t, b1, b2);
             if (mask) {
                 found = true;
                 if (any) return true;
@@ -278,6 +281,7 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
 }
 #else
 typedef struct simd_ray simd_ray; // never defined: the SIMD path is not compiled in
+typedef struct simd_tri simd_tri;
 #endif
 
 /* ------------------------------------------------------------------------------------------------ */
@@ -295,11 +299,13 @@ enum { STEP_MORE, STEP_DONE, STEP_FOUND };
 // picks the next reference. STEP_DONE when nothing is left, STEP_FOUND when an any-hit query found one.
 // The scalar path reads tr, the SIMD path sr; *found records whether anything was hit.
 static inline __attribute__((always_inline)) int wide_step(const bvh *b, const ray *r, const trav_ray *tr,
-                                                          const simd_ray *sr, tri_cache *tc, stack_entry *stack,
+                                                          const simd_ray *sr, const simd_tri *stri, tri_cache *tc,
+                                                          stack_entry *stack,
                                                           walk *w, hit *best, uint32_t inst_id, bool *found,
                                                           bool any, bool simd, int leaves) {
 #if !BVH_SIMD
     (void)sr;
+    (void)stri;
     (void)simd;
 #endif
     uint32_t ref = w->ref;
@@ -350,7 +356,7 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
     } else {
         bool hit_here;
 #if BVH_SIMD
-        if (simd) hit_here = leaf_simd(b, ref, r, sr, tc, best, inst_id, any, leaves);
+        if (simd) hit_here = leaf_simd(b, ref, r, sr, stri, tc, best, inst_id, any, leaves);
         else
 #endif
             hit_here = leaf_scalar(b, ref, r, tc, best, inst_id, any, leaves);
@@ -379,6 +385,7 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
     trav_ray tr;
 #if BVH_SIMD
     simd_ray sr;
+    simd_tri stri;
     if (simd) {
         if (!simd_setup(r, &sr)) return false;
     } else
@@ -388,6 +395,13 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
         tr = trav_setup(r);
     }
     tri_cache tc = {.ready = false};
+#if BVH_SIMD
+    // A triangle-only BVH tests triangles in nearly every leaf: their constants are made once, up front.
+    if (simd && leaves == LEAVES_TRIANGLES) {
+        tri_for(&tc, r);
+        simd_tri_setup(&tc.tr, r->tmin, r->tmax, &stri);
+    }
+#endif
     bool found = false;
 #if BVH_SIMD
     // In a sphere-only BVH the huge spheres are one sphere packet. Its test does not depend on the tree's, so
@@ -407,11 +421,11 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
         walk w = {b->root, 0};
 #if BVH_SIMD
         int st;
-        while ((st = wide_step(b, r, &tr, &sr, &tc, stack, &w, best, inst_id, &found, any, simd, leaves)) == STEP_MORE) {
+        while ((st = wide_step(b, r, &tr, &sr, &stri, &tc, stack, &w, best, inst_id, &found, any, simd, leaves)) == STEP_MORE) {
         }
 #else
         int st;
-        while ((st = wide_step(b, r, &tr, NULL, &tc, stack, &w, best, inst_id, &found, any, simd, leaves)) == STEP_MORE) {
+        while ((st = wide_step(b, r, &tr, NULL, NULL, &tc, stack, &w, best, inst_id, &found, any, simd, leaves)) == STEP_MORE) {
         }
 #endif
         if (st == STEP_FOUND) return true;
@@ -429,7 +443,7 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
     if (b->front != BVH_EMPTY) {
         bool h;
 #if BVH_SIMD
-        if (simd) h = leaf_simd(b, b->front, r, &sr, &tc, best, inst_id, any, leaves);
+        if (simd) h = leaf_simd(b, b->front, r, &sr, &stri, &tc, best, inst_id, any, leaves);
         else
 #endif
             h = leaf_scalar(b, b->front, r, &tc, best, inst_id, any, leaves);
