@@ -319,6 +319,19 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
 #endif
             mask = wnode_test_scalar(n, tr, best->t, tnear);
         if (mask != 0) {
+#if BVH_SIMD
+            // Start fetching every child the ray enters: the nearest is read next, the others soon after, and
+            // on a large mesh nodes and leaves come from beyond the L2 cache.
+            if (leaves == LEAVES_TRIANGLES)
+                for (unsigned m = mask; m; m &= m - 1) {
+                    uint32_t c = n->child[__builtin_ctz(m)];
+                    const char *at = c & BVH_LEAF ? (const char *)&b->slots[c & ~BVH_LEAF] : (const char *)&b->wnodes[c];
+                    _mm_prefetch(at, _MM_HINT_T0);
+                    _mm_prefetch(at + 64, _MM_HINT_T0);
+                    _mm_prefetch(at + 128, _MM_HINT_T0);
+                    _mm_prefetch(at + 192, _MM_HINT_T0);
+                }
+#endif
             unsigned rest = mask & (mask - 1);
             if (rest == 0) {
                 w->ref = n->child[__builtin_ctz(mask)];
