@@ -95,7 +95,7 @@ typedef void (*glint_live_image_fn)(const glint_image *image, int spp_done, doub
 /// A value struct: options of one render that are not part of the scene (zero-initialised: the defaults). Every
 /// field is a value field; initialise the whole struct ({0} or memset) so that fields added later stay default.
 typedef struct glint_render_options {
-    int threads; ///< worker threads; 0 = all online CPUs. The image is the same for every count
+    int threads; ///< worker threads (the render's and the BVH build's); 0 = all online CPUs. The image is the same for every count
     /// > 0: after this many seconds of rendering no new sample pass starts (passes are 1, 1, 2, 4, ...
     /// samples per pixel); the render ends with GLINT_OK once the pass in progress is complete, and its
     /// image is exactly that of a render at the samples per pixel reached (glint_render_stats.spp_done).

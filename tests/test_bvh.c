@@ -94,7 +94,7 @@ static void check_scene(uint64_t seed, size_t n) {
     for (int k = 0; k < 3; k++) {
         rng g = rng_for_sample(seed, n, 0); // the same spheres for every kind
         sc[k] = random_scene(&g, n, kinds[k]);
-        ac[k] = frame_accel_build(sc[k], NULL, &err);
+        ac[k] = frame_accel_build(sc[k], 0, NULL, &err);
         CHECK(ac[k] != NULL);
         if (!ac[k]) return;
     }
@@ -155,7 +155,7 @@ static void check_coincident(void) {
         sc[k] = scene_new("coincident");
         sc[k]->settings.accel = kinds[k];
         for (int i = 0; i < 300; i++) scene_add_sphere(sc[k], (sphere){v3(1, 2, 3), i % 3 == 0 ? 1.0f : 0.5f * (float)(1 + i % 5), 0});
-        ac[k] = frame_accel_build(sc[k], NULL, &err);
+        ac[k] = frame_accel_build(sc[k], 0, NULL, &err);
         CHECK(ac[k] != NULL);
     }
     accel_stats st;
@@ -195,7 +195,7 @@ static void check_empty(void) {
     for (int k = 0; k < 3; k++) {
         glint_scene *s = scene_new("empty");
         s->settings.accel = kinds[k];
-        accel *a = frame_accel_build(s, NULL, &err);
+        accel *a = frame_accel_build(s, 0, NULL, &err);
         CHECK(a != NULL);
         ray r = {v3(0, 0, 0), v3(0, 0, 1), 0.0f, INFINITY, 0.0f};
         hit h;
@@ -216,7 +216,7 @@ static void check_known(void) {
     scene_add_sphere(s, (sphere){v3(0, -1000, 0), 1000.0f, 0});
     scene_add_sphere(s, (sphere){v3(0, 1, 0), 1.0f, 0});
     scene_add_sphere(s, (sphere){v3(0, 1, 0), -0.9f, 0});
-    accel *a = frame_accel_build(s, NULL, &err);
+    accel *a = frame_accel_build(s, 0, NULL, &err);
     CHECK(a != NULL);
     if (!a) return;
     ray r = {v3(0, 1, -5), v3(0, 0, 1), 0.001f, INFINITY, 0.0f};

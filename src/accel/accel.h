@@ -35,6 +35,7 @@ typedef struct accel_input {
     const motion *motions;  ///< motions[k - 1]: how an instance with motion k moves
     float time0, time1;     ///< the shutter: moving primitives are bounded over every time in [time0, time1]
     const atomic_int *stop; ///< nonzero once a stop is requested: the build gives up (NULL: never)
+    int threads;            ///< threads that build the BVHs (the same BVHs for any number); 0: all online CPUs
 } accel_input;
 
 /// Kinds of primitive a hit can be on.

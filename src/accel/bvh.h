@@ -125,6 +125,8 @@ typedef struct bvh_input {
     const motion *motions;          ///< motions[k - 1]: how an instance with motion k moves
     float time0, time1;             ///< the shutter, over which moving primitives are bounded
     const atomic_int *stop;         ///< nonzero once a stop is requested: the build gives up (NULL: never)
+    int threads;                    ///< threads that build a big tree (the tree is the same for any number); 0: all online CPUs
+    size_t parallel_min;            ///< (tests) fewest primitives of a range split by all threads together; 0: the default
 } bvh_input;
 
 /// Everything the traversals need; built once, then read-only.
@@ -175,8 +177,8 @@ static inline hit bvh_no_hit(const ray *r) {
     return h;
 }
 
-/// Builds the binary BVH (wide = false) or the wide one; false when out of memory or stopped by in->stop (b is
-/// then empty).
+/// Builds the binary BVH (wide = false) or the wide one, on in->threads threads when it is big; false when out
+/// of memory or stopped by in->stop (b is then empty).
 bool bvh_build(bvh *b, const bvh_input *in, bool wide);
 /// Frees what bvh_build allocated.
 void bvh_release(bvh *b);

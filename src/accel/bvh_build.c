@@ -1,6 +1,8 @@
 // bvh_build.c — binned-SAH construction of the binary BVH, and its collapse into the wide BVH with
 // structure-of-arrays leaf packets.
 #include "accel/bvh.h"
+#include "core/array.h"
+#include "core/thread_pool.h"
 
 #include <stdatomic.h>
 
@@ -106,126 +108,554 @@ static float leaf_blocks(const builder *bd, size_t n) { return (float)((n + bd->
 
 static uint32_t new_node(builder *bd) { return (uint32_t)bd->node_count++; }
 
+// Grows *bounds and *cbounds by the boxes and the centroids of prims[begin, end), in index order. box_grow
+// keeps the later of two equal bounds (+0 and -0 compare equal), so growing the results of consecutive chunks
+// in their order gives the bits of one pass over the whole range: what the parallel build relies on.
+static void range_bounds(const build_prim *prims, size_t begin, size_t end, box3 *bounds, box3 *cbounds) {
+    for (size_t i = begin; i < end; i++) {
+        box_grow(bounds, &prims[i].box);
+        box3 c = {{prims[i].c[0], prims[i].c[1], prims[i].c[2], 0.0f}, {prims[i].c[0], prims[i].c[1], prims[i].c[2], 0.0f}};
+        box_grow(cbounds, &c);
+    }
+}
+
+/// The SAH bins of a range: on each axis its centroid box cut into nb equal bins, each with the box and the
+/// count of the primitives whose centroid falls in it.
+typedef struct bins {
+    int nb;
+    float lo[3], scale[3];
+    bool live[3]; ///< the centroids spread along the axis (one without extent is not split)
+    box3 box[3][SAH_BINS];
+    size_t count[3][SAH_BINS];
+} bins;
+
+// Empty bins over the centroid box of n primitives. Small ranges use fewer bins, which costs them nothing in
+// quality and saves most of the sweep.
+static void bins_init(bins *b, size_t n, const box3 *cbounds) {
+    int nb = n < SAH_BINS ? (n < 4 ? 4 : (int)n) : SAH_BINS;
+    b->nb = nb;
+    for (int a = 0; a < 3; a++) {
+        float extent = cbounds->hi[a] - cbounds->lo[a];
+        b->lo[a] = cbounds->lo[a];
+        b->live[a] = extent > 0.0f;
+        b->scale[a] = b->live[a] ? (float)nb * (1.0f - 0x1p-20f) / extent : 0.0f;
+        for (int k = 0; k < nb; k++) {
+            b->box[a][k] = box_empty();
+            b->count[a][k] = 0;
+        }
+    }
+}
+
+// Bins prims[begin, end) on all three axes in one pass.
+static void bins_add(bins *b, const build_prim *prims, size_t begin, size_t end) {
+    // Locals: the stores into the bin boxes could alias the float fields of *b.
+    int nb = b->nb;
+    float lo[3] = {b->lo[0], b->lo[1], b->lo[2]}, scale[3] = {b->scale[0], b->scale[1], b->scale[2]};
+    for (size_t i = begin; i < end; i++) {
+        const build_prim *p = &prims[i];
+        for (int a = 0; a < 3; a++) {
+            int k = bin_of(p->c[a], lo[a], scale[a], nb);
+            b->count[a][k]++;
+            box_grow(&b->box[a][k], &p->box);
+        }
+    }
+}
+
+// Adds the bins of the primitives that follow into's (the same setup) to into.
+static void bins_merge(bins *into, const bins *from) {
+    for (int a = 0; a < 3; a++)
+        for (int k = 0; k < into->nb; k++) {
+            into->count[a][k] += from->count[a][k];
+            box_grow(&into->box[a][k], &from->box[a][k]);
+        }
+}
+
+/// A split of a range: the primitives in bins 0..bin of the axis go left.
+typedef struct split {
+    int axis; ///< -1: none (every centroid coincides, or the range was not binned)
+    int bin;
+    float cost;
+} split;
+
+// The best binned SAH split over the three axes (axes with no extent are skipped).
+static split best_split(const builder *bd, const bins *b, const box3 *bounds) {
+    split best = {-1, 0, INFINITY};
+    float parent_area = box_half_area(bounds), inv_area = parent_area > 0.0f ? 1.0f / parent_area : 1.0f;
+    int nb = b->nb;
+    for (int a = 0; a < 3; a++) {
+        if (!b->live[a]) continue;
+        // Sweep from the right for the areas and counts of every right side.
+        float right_area[SAH_BINS];
+        size_t right_count[SAH_BINS];
+        box3 acc = box_empty();
+        size_t cnt = 0;
+        for (int k = nb - 1; k > 0; k--) {
+            box_grow(&acc, &b->box[a][k]);
+            cnt += b->count[a][k];
+            right_area[k] = box_half_area(&acc);
+            right_count[k] = cnt;
+        }
+        acc = box_empty();
+        cnt = 0;
+        for (int k = 0; k < nb - 1; k++) {
+            box_grow(&acc, &b->box[a][k]);
+            cnt += b->count[a][k];
+            if (cnt == 0 || right_count[k + 1] == 0) continue;
+            float cost = SAH_TRAVERSAL_COST + SAH_INTERSECT_COST * inv_area *
+                                                  (box_half_area(&acc) * leaf_blocks(bd, cnt) +
+                                                   right_area[k + 1] * leaf_blocks(bd, right_count[k + 1]));
+            if (cost < best.cost) best = (split){a, k, cost};
+        }
+    }
+    return best;
+}
+
+// Whether a range of n primitives at `depth` stays a leaf: one primitive, the depth limit, or a leaf that the
+// SAH prefers to the best split (unless it holds too many primitives for a leaf).
+static bool keep_leaf(const builder *bd, size_t n, uint64_t depth, float split_cost) {
+    if (n <= 1 || depth + 1 >= BVH_MAX_DEPTH) return true;
+    return n <= (size_t)bd->max_leaf && leaf_blocks(bd, n) * SAH_INTERSECT_COST <= split_cost;
+}
+
+// A stop request ends the build: every range left becomes a leaf, and bvh_build discards the tree.
+static bool stop_requested(builder *bd) {
+    if (!bd->stopped && bd->stop && atomic_load_explicit(bd->stop, memory_order_relaxed)) bd->stopped = true;
+    return bd->stopped;
+}
+
+static void node_set_box(bvh2_node *node, const box3 *b) {
+    memcpy(node->box, b->lo, 3 * sizeof(float));
+    memcpy(node->box + 3, b->hi, 3 * sizeof(float));
+}
+
+static void node_set_leaf(builder *bd, bvh2_node *node, size_t begin, size_t n) {
+    node->offset = (uint32_t)begin;
+    node->count = (uint32_t)n;
+    bd->leaves++;
+}
+
+// Partitions prims[begin, end) by the split, left side first, and returns where the right side starts. The
+// order it leaves is the leaf order of the tree; parallel_partition reproduces it.
+static size_t partition(build_prim *prims, size_t begin, size_t end, const bins *b, split s) {
+    // The chosen bin, recomputed with exactly the arithmetic of the binning.
+    int a = s.axis, nb = b->nb;
+    float lo = b->lo[a], scale = b->scale[a];
+    size_t i = begin, j = end;
+    while (i < j) {
+        if (bin_of(prims[i].c[a], lo, scale, nb) <= s.bin) {
+            i++;
+        } else {
+            build_prim tmp = prims[i];
+            prims[i] = prims[--j];
+            prims[j] = tmp;
+        }
+    }
+    return i;
+}
+
 // Recursively builds the subtree over prims[begin, end) and returns its node index (depth-first order).
 static uint32_t build_range(builder *bd, size_t begin, size_t end, uint64_t depth) {
     uint32_t id = new_node(bd);
     if (depth + 1 > bd->depth) bd->depth = depth + 1;
     box3 bounds = box_empty(), cbounds = box_empty();
-    for (size_t i = begin; i < end; i++) {
-        box_grow(&bounds, &bd->prims[i].box);
-        box3 c = {{bd->prims[i].c[0], bd->prims[i].c[1], bd->prims[i].c[2], 0.0f},
-                  {bd->prims[i].c[0], bd->prims[i].c[1], bd->prims[i].c[2], 0.0f}};
-        box_grow(&cbounds, &c);
-    }
+    range_bounds(bd->prims, begin, end, &bounds, &cbounds);
     bvh2_node *node = &bd->nodes[id];
-    memcpy(node->box, bounds.lo, 3 * sizeof(float));
-    memcpy(node->box + 3, bounds.hi, 3 * sizeof(float));
+    node_set_box(node, &bounds);
     size_t n = end - begin;
-    // A stop request ends the build: every range left becomes a leaf, and bvh_build discards the tree.
-    if (!bd->stopped && bd->stop && atomic_load_explicit(bd->stop, memory_order_relaxed)) bd->stopped = true;
-    if (bd->stopped) {
-        node->offset = (uint32_t)begin;
-        node->count = (uint32_t)n;
-        bd->leaves++;
+    bool stopped = stop_requested(bd);
+    split s = {-1, 0, INFINITY};
+    bins b;
+    if (!stopped && n > 1 && depth + 1 < BVH_MAX_DEPTH) {
+        bins_init(&b, n, &cbounds);
+        bins_add(&b, bd->prims, begin, end);
+        s = best_split(bd, &b, &bounds);
+    }
+    if (stopped || keep_leaf(bd, n, depth, s.cost)) {
+        node_set_leaf(bd, node, begin, n);
         return id;
     }
-
-    // Best binned SAH split over the three axes.
-    float leaf_cost = leaf_blocks(bd, n) * SAH_INTERSECT_COST;
-    float best_cost = INFINITY;
-    int best_axis = -1, best_bin = 0, best_nb = SAH_BINS;
-    float parent_area = box_half_area(&bounds), inv_area = parent_area > 0.0f ? 1.0f / parent_area : 1.0f;
-    if (n > 1 && depth + 1 < BVH_MAX_DEPTH) {
-        // One pass over the primitives bins them on all three axes (axes with no extent are skipped);
-        // small ranges use fewer bins, which costs them nothing in quality and saves most of the sweep.
-        int nb = n < SAH_BINS ? (n < 4 ? 4 : (int)n) : SAH_BINS;
-        float scale[3];
-        bool live[3];
-        for (int a = 0; a < 3; a++) {
-            float extent = cbounds.hi[a] - cbounds.lo[a];
-            live[a] = extent > 0.0f;
-            scale[a] = live[a] ? (float)nb * (1.0f - 0x1p-20f) / extent : 0.0f;
-        }
-        box3 bin_box[3][SAH_BINS];
-        size_t bin_count[3][SAH_BINS];
-        for (int a = 0; a < 3; a++)
-            for (int k = 0; k < nb; k++) {
-                bin_box[a][k] = box_empty();
-                bin_count[a][k] = 0;
-            }
-        for (size_t i = begin; i < end; i++) {
-            const build_prim *p = &bd->prims[i];
-            for (int a = 0; a < 3; a++) {
-                int k = bin_of(p->c[a], cbounds.lo[a], scale[a], nb);
-                bin_count[a][k]++;
-                box_grow(&bin_box[a][k], &p->box);
-            }
-        }
-        for (int a = 0; a < 3; a++) {
-            if (!live[a]) continue;
-            // Sweep from the right for the areas and counts of every right side.
-            float right_area[SAH_BINS];
-            size_t right_count[SAH_BINS];
-            box3 acc = box_empty();
-            size_t cnt = 0;
-            for (int k = nb - 1; k > 0; k--) {
-                box_grow(&acc, &bin_box[a][k]);
-                cnt += bin_count[a][k];
-                right_area[k] = box_half_area(&acc);
-                right_count[k] = cnt;
-            }
-            acc = box_empty();
-            cnt = 0;
-            for (int k = 0; k < nb - 1; k++) {
-                box_grow(&acc, &bin_box[a][k]);
-                cnt += bin_count[a][k];
-                if (cnt == 0 || right_count[k + 1] == 0) continue;
-                float cost = SAH_TRAVERSAL_COST + SAH_INTERSECT_COST * inv_area *
-                                                      (box_half_area(&acc) * leaf_blocks(bd, cnt) +
-                                                       right_area[k + 1] * leaf_blocks(bd, right_count[k + 1]));
-                if (cost < best_cost) {
-                    best_cost = cost;
-                    best_axis = a;
-                    best_bin = k;
-                    best_nb = nb;
-                }
-            }
-        }
-    }
-
-    bool must_split = n > (size_t)bd->max_leaf && depth + 1 < BVH_MAX_DEPTH;
-    if (n <= 1 || depth + 1 >= BVH_MAX_DEPTH || (!must_split && leaf_cost <= best_cost)) {
-        node->offset = (uint32_t)begin;
-        node->count = (uint32_t)n;
-        bd->leaves++;
-        return id;
-    }
-
-    size_t mid;
-    if (best_axis >= 0) {
-        // Partition by the chosen bin, recomputed with exactly the arithmetic of the binning.
-        int a = best_axis;
-        float scale = (float)best_nb * (1.0f - 0x1p-20f) / (cbounds.hi[a] - cbounds.lo[a]);
-        size_t i = begin, j = end;
-        while (i < j) {
-            if (bin_of(bd->prims[i].c[a], cbounds.lo[a], scale, best_nb) <= best_bin) {
-                i++;
-            } else {
-                build_prim tmp = bd->prims[i];
-                bd->prims[i] = bd->prims[--j];
-                bd->prims[j] = tmp;
-            }
-        }
-        mid = i;
-    } else {
-        // Every centroid coincides: no split separates them, so halve the range.
-        mid = begin + n / 2;
-    }
+    // No axis separates the centroids when they all coincide: halve the range.
+    size_t mid = s.axis >= 0 ? partition(bd->prims, begin, end, &b, s) : begin + n / 2;
     build_range(bd, begin, mid, depth + 1);
     uint32_t right = build_range(bd, mid, end, depth + 1);
     bd->nodes[id].offset = right;
     bd->nodes[id].count = 0;
     return id;
+}
+
+// ---- The parallel build ----
+//
+// It makes exactly the tree of build_range(bd, 0, n, 0), for any number of threads. Ranges of at least
+// subtree_min primitives (the top of the tree, where the root alone reads every primitive) are split one
+// at a time by all threads together: their bounds and bins are computed in chunks and grown together in
+// chunk order (the bits of one pass: range_bounds), and parallel_partition reproduces partition's order.
+// Smaller ranges are subtrees, each built by build_range on one thread into its own node buffer, largest
+// first; then every subtree is copied to where the serial build numbers it, its child offsets moved along.
+
+// Defaults: a build over fewer than 2 * PARALLEL_MIN primitives runs on one thread (threads would cost more
+// than they save); the top leaves at least SUBTREES_PER_THREAD subtrees per thread, for the balance of the
+// threads; a step over a range is cut into at most CHUNKS_PER_THREAD chunks per thread, of at least
+// PARALLEL_MIN / CHUNK_DIVISOR primitives.
+enum { PARALLEL_MIN = 1 << 15, SUBTREES_PER_THREAD = 8, CHUNKS_PER_THREAD = 4, CHUNK_DIVISOR = 8 };
+#define NO_SUBTREE SIZE_MAX
+
+/// A range the top leaves to one thread.
+typedef struct subtree {
+    size_t begin, end;
+    uint64_t depth; ///< of its root in the whole tree
+    builder bd;     ///< its build: own nodes (local indices), statistics, stop
+    uint32_t base;  ///< index of its root in the node array
+    bool failed;    ///< out of memory
+} subtree;
+
+/// A node of the top, or the place of a subtree, in depth-first order.
+typedef struct top_node {
+    bvh2_node node;
+    size_t right;   ///< inner node: the top_node of its second child (the first follows it)
+    size_t subtree; ///< NO_SUBTREE: a node of the top; else the subtree in this place
+    uint32_t index; ///< in the node array
+} top_node;
+
+/// What one chunk of a step over a range leaves for the steps after it.
+typedef struct chunk {
+    box3 bounds, cbounds;  ///< of its primitives and their centroids
+    size_t wrong_front;    ///< right-side primitives before the split point, then the number of the first
+    size_t wrong_back;     ///< left-side primitives after it, then the number of the first (counted from the end)
+    size_t segment;        ///< rotation: back_left index of the first segment start after the chunk's start
+    build_prim head, next; ///< rotation: the first element of its segment and the element after the chunk
+} chunk;
+
+typedef struct par_build {
+    builder proto; ///< the settings every subtree copies; the statistics and stop of the top
+    thread_pool *pool;
+    size_t subtree_min, grain, max_chunks;
+    top_node *top;
+    size_t top_count, top_cap;
+    subtree *subtrees;
+    size_t subtree_count, subtree_cap;
+    chunk *chunks;                    ///< max_chunks
+    bins *chunk_bins;                 ///< max_chunks
+    unsigned char *left;              ///< the side of every primitive of the range being partitioned
+    uint32_t *front_right, *back_left; ///< positions of the primitives on the wrong side, paired by number
+    bool failed;                      ///< out of memory
+} par_build;
+
+/// One step over [begin, end), chunk by chunk on the pool, and the range it works for.
+typedef struct range_step {
+    par_build *pb;
+    size_t begin, end, count; ///< `count` chunks over [begin, end)
+    const bins *b;
+    split s;
+    size_t mid, range_end, pairs; ///< partition: the split point, the range's end, wrong-side pairs
+} range_step;
+
+static size_t chunk_begin(const range_step *st, size_t k) { return st->begin + (st->end - st->begin) * k / st->count; }
+
+// Runs fn over [begin, end) cut into chunks of at least pb->grain elements.
+static void run_chunks(par_build *pb, range_step *st, size_t begin, size_t end, thread_pool_fn fn) {
+    size_t count = (end - begin) / pb->grain;
+    st->begin = begin;
+    st->end = end;
+    st->count = count < 1 ? 1 : (count > pb->max_chunks ? pb->max_chunks : count);
+    thread_pool_run(pb->pool, st->count, fn, st);
+}
+
+static void step_bounds(void *ctx, size_t k) {
+    range_step *st = ctx;
+    chunk *c = &st->pb->chunks[k];
+    c->bounds = c->cbounds = box_empty();
+    range_bounds(st->pb->proto.prims, chunk_begin(st, k), chunk_begin(st, k + 1), &c->bounds, &c->cbounds);
+}
+
+static void step_bins(void *ctx, size_t k) {
+    range_step *st = ctx;
+    bins *b = &st->pb->chunk_bins[k];
+    *b = *st->b; // empty, with the range's setup
+    bins_add(b, st->pb->proto.prims, chunk_begin(st, k), chunk_begin(st, k + 1));
+}
+
+// partition's order, computed in parallel. partition walks i up from begin; a right-side primitive at i
+// is swapped with the last unseen one (at --j), which is examined next. Its result: every left-side
+// primitive before the split point `mid` stays; the m-th right-side one there (from the left) swaps with
+// the m-th left-side one after mid (from the right); then, after mid, each segment that starts at mid or
+// at one of those left-side positions (and runs to the next, or to the end) turns left by one place.
+static void step_classify(void *ctx, size_t k) {
+    range_step *st = ctx;
+    par_build *pb = st->pb;
+    const build_prim *prims = pb->proto.prims;
+    int a = st->s.axis, nb = st->b->nb, bin = st->s.bin;
+    float lo = st->b->lo[a], scale = st->b->scale[a];
+    size_t wrong_front = 0, wrong_back = 0;
+    for (size_t i = chunk_begin(st, k), end = chunk_begin(st, k + 1); i < end; i++) {
+        bool left = bin_of(prims[i].c[a], lo, scale, nb) <= bin;
+        pb->left[i] = left;
+        if (i < st->mid) wrong_front += !left;
+        else wrong_back += left;
+    }
+    pb->chunks[k].wrong_front = wrong_front;
+    pb->chunks[k].wrong_back = wrong_back;
+}
+
+static void step_number(void *ctx, size_t k) {
+    range_step *st = ctx;
+    par_build *pb = st->pb;
+    size_t lo = chunk_begin(st, k), hi = chunk_begin(st, k + 1), m = pb->chunks[k].wrong_front;
+    for (size_t i = lo; i < hi && i < st->mid; i++)
+        if (!pb->left[i]) pb->front_right[m++] = (uint32_t)i;
+    m = pb->chunks[k].wrong_back;
+    for (size_t i = hi; i > lo && i > st->mid;)
+        if (pb->left[--i]) pb->back_left[m++] = (uint32_t)i;
+}
+
+static void step_swap(void *ctx, size_t k) {
+    range_step *st = ctx;
+    par_build *pb = st->pb;
+    build_prim *prims = pb->proto.prims;
+    for (size_t m = chunk_begin(st, k), end = chunk_begin(st, k + 1); m < end; m++) {
+        build_prim tmp = prims[pb->front_right[m]];
+        prims[pb->front_right[m]] = prims[pb->back_left[m]];
+        prims[pb->back_left[m]] = tmp;
+    }
+}
+
+// Segment starts ascend as mid, back_left[pairs - 1], ..., back_left[0]. Before the rotation writes, each
+// chunk of [mid, end) saves the head of the segment it begins in and the element just after it.
+static void step_save(void *ctx, size_t k) {
+    range_step *st = ctx;
+    par_build *pb = st->pb;
+    chunk *c = &pb->chunks[k];
+    size_t lo = chunk_begin(st, k), hi = chunk_begin(st, k + 1);
+    // The first m with back_left[m] <= lo (back_left descends): the last segment start at or before lo.
+    size_t l = 0, r = st->pairs;
+    while (l < r) {
+        size_t m = l + (r - l) / 2;
+        if (pb->back_left[m] <= lo) r = m;
+        else l = m + 1;
+    }
+    c->segment = l;
+    c->head = pb->proto.prims[l < st->pairs ? pb->back_left[l] : st->mid];
+    if (hi < st->end) c->next = pb->proto.prims[hi];
+}
+
+static void step_rotate(void *ctx, size_t k) {
+    range_step *st = ctx;
+    par_build *pb = st->pb;
+    build_prim *prims = pb->proto.prims;
+    const chunk *c = &pb->chunks[k];
+    size_t m = c->segment; // back_left[m - 1]: the next segment start (none when m is 0)
+    build_prim head = c->head;
+    for (size_t p = chunk_begin(st, k), hi = chunk_begin(st, k + 1); p < hi; p++) {
+        if (m > 0 && pb->back_left[m - 1] == p) { // a segment starts here: keep its head before it is overwritten
+            head = prims[p];
+            m--;
+        }
+        size_t q = p + 1;
+        bool last = q == st->end || (m > 0 && pb->back_left[m - 1] == q);
+        prims[p] = last ? head : (q < hi ? prims[q] : c->next);
+    }
+}
+
+// Partitions prims[begin, end) by the split into partition's very order; returns the split point.
+static size_t parallel_partition(par_build *pb, range_step *st, size_t begin, size_t end, const bins *b, split s) {
+    size_t left = 0;
+    for (int k = 0; k <= s.bin; k++) left += b->count[s.axis][k];
+    st->b = b;
+    st->s = s;
+    st->mid = begin + left;
+    run_chunks(pb, st, begin, end, step_classify);
+    // Number the wrong-side primitives: before mid from the left, after it from the right.
+    size_t front = 0, back = 0;
+    for (size_t k = 0; k < st->count; k++) {
+        size_t n = pb->chunks[k].wrong_front;
+        pb->chunks[k].wrong_front = front;
+        front += n;
+    }
+    for (size_t k = st->count; k-- > 0;) {
+        size_t n = pb->chunks[k].wrong_back;
+        pb->chunks[k].wrong_back = back;
+        back += n;
+    }
+    st->pairs = front; // == back: as many right-side primitives before mid as left-side ones after it
+    run_chunks(pb, st, begin, end, step_number);
+    if (st->pairs) run_chunks(pb, st, 0, st->pairs, step_swap);
+    if (st->mid < end) {
+        run_chunks(pb, st, st->mid, end, step_save);
+        run_chunks(pb, st, st->mid, end, step_rotate);
+    }
+    return st->mid;
+}
+
+static size_t top_add(par_build *pb) {
+    if (!array_reserve((void **)&pb->top, &pb->top_cap, pb->top_count + 1, sizeof *pb->top)) {
+        pb->failed = true;
+        return NO_SUBTREE;
+    }
+    memset(&pb->top[pb->top_count], 0, sizeof *pb->top);
+    pb->top[pb->top_count].subtree = NO_SUBTREE;
+    return pb->top_count++;
+}
+
+// Splits prims[begin, end) as build_range does, on every thread, down to the subtrees; returns its top_node.
+static size_t top_range(par_build *pb, size_t begin, size_t end, uint64_t depth) {
+    size_t id = pb->failed ? NO_SUBTREE : top_add(pb);
+    if (id == NO_SUBTREE) return id;
+    size_t n = end - begin;
+    if (n < pb->subtree_min) {
+        if (!array_reserve((void **)&pb->subtrees, &pb->subtree_cap, pb->subtree_count + 1, sizeof *pb->subtrees)) {
+            pb->failed = true;
+            return id;
+        }
+        pb->subtrees[pb->subtree_count] = (subtree){.begin = begin, .end = end, .depth = depth};
+        pb->top[id].subtree = pb->subtree_count++;
+        return id;
+    }
+    builder *bd = &pb->proto;
+    if (depth + 1 > bd->depth) bd->depth = depth + 1;
+    range_step st = {.pb = pb};
+    run_chunks(pb, &st, begin, end, step_bounds);
+    box3 bounds = box_empty(), cbounds = box_empty();
+    for (size_t k = 0; k < st.count; k++) {
+        box_grow(&bounds, &pb->chunks[k].bounds);
+        box_grow(&cbounds, &pb->chunks[k].cbounds);
+    }
+    node_set_box(&pb->top[id].node, &bounds);
+    bool stopped = stop_requested(bd);
+    split s = {-1, 0, INFINITY};
+    bins b;
+    if (!stopped && n > 1 && depth + 1 < BVH_MAX_DEPTH) {
+        bins_init(&b, n, &cbounds);
+        st.b = &b;
+        run_chunks(pb, &st, begin, end, step_bins);
+        for (size_t k = 0; k < st.count; k++) bins_merge(&b, &pb->chunk_bins[k]);
+        s = best_split(bd, &b, &bounds);
+    }
+    if (stopped || keep_leaf(bd, n, depth, s.cost)) {
+        node_set_leaf(bd, &pb->top[id].node, begin, n);
+        return id;
+    }
+    size_t mid = s.axis >= 0 ? parallel_partition(pb, &st, begin, end, &b, s) : begin + n / 2;
+    top_range(pb, begin, mid, depth + 1);
+    size_t right = top_range(pb, mid, end, depth + 1);
+    pb->top[id].right = right;
+    return id;
+}
+
+static int larger_subtree_first(const void *x, const void *y) {
+    const subtree *a = *(const subtree *const *)x, *b = *(const subtree *const *)y;
+    size_t na = a->end - a->begin, nb = b->end - b->begin;
+    if (na != nb) return na > nb ? -1 : 1;
+    return (a->begin > b->begin) - (a->begin < b->begin);
+}
+
+static void subtree_build(void *ctx, size_t k) {
+    subtree *t = ((subtree **)ctx)[k];
+    size_t n = t->end - t->begin;
+    t->bd.nodes = malloc((2 * n - 1) * sizeof *t->bd.nodes);
+    if (!t->bd.nodes) {
+        t->failed = true;
+        return;
+    }
+    build_range(&t->bd, t->begin, t->end, t->depth);
+    // Most of the bound of 2n - 1 nodes is unused: give it back until the copy.
+    bvh2_node *fit = realloc(t->bd.nodes, t->bd.node_count * sizeof *fit);
+    if (fit) t->bd.nodes = fit;
+}
+
+/// The node array the subtrees are copied into.
+typedef struct subtree_copy {
+    subtree *subtrees;
+    bvh2_node *nodes;
+} subtree_copy;
+
+static void subtree_place(void *ctx, size_t k) {
+    subtree_copy *cp = ctx;
+    subtree *t = &cp->subtrees[k];
+    bvh2_node *dst = cp->nodes + t->base;
+    for (size_t i = 0; i < t->bd.node_count; i++) {
+        dst[i] = t->bd.nodes[i];
+        if (dst[i].count == 0) dst[i].offset += t->base; // an inner node's second child moves with it
+    }
+    free(t->bd.nodes);
+    t->bd.nodes = NULL;
+}
+
+// Builds the tree of build_range(bd, 0, n, 0) into bd->nodes on the pool's threads; the statistics and
+// `stopped` as build_range leaves them. False when out of memory.
+static bool build_parallel(builder *bd, size_t n, thread_pool *pool, size_t parallel_min) {
+    size_t threads = (size_t)thread_pool_size(pool), fair = n / (SUBTREES_PER_THREAD * threads);
+    par_build pb = {.proto = *bd, .pool = pool};
+    pb.proto.nodes = NULL;
+    pb.subtree_min = fair > parallel_min ? fair : parallel_min;
+    pb.grain = parallel_min / CHUNK_DIVISOR ? parallel_min / CHUNK_DIVISOR : 1;
+    pb.max_chunks = CHUNKS_PER_THREAD * threads;
+    pb.chunks = malloc(pb.max_chunks * sizeof *pb.chunks);
+    pb.chunk_bins = malloc(pb.max_chunks * sizeof *pb.chunk_bins);
+    pb.left = malloc(n);
+    pb.front_right = malloc((n / 2 + 1) * sizeof *pb.front_right);
+    pb.back_left = malloc((n / 2 + 1) * sizeof *pb.back_left);
+    subtree **order = NULL;
+    pb.failed = !pb.chunks || !pb.chunk_bins || !pb.left || !pb.front_right || !pb.back_left;
+    if (!pb.failed) top_range(&pb, 0, n, 0);
+    free(pb.chunks);
+    free(pb.chunk_bins);
+    free(pb.left);
+    free(pb.front_right);
+    free(pb.back_left);
+
+    if (!pb.failed && pb.subtree_count) {
+        order = malloc(pb.subtree_count * sizeof *order);
+        pb.failed = !order;
+    }
+    if (!pb.failed && !pb.proto.stopped) {
+        for (size_t i = 0; i < pb.subtree_count; i++) {
+            subtree *t = &pb.subtrees[i];
+            t->bd = pb.proto;
+            t->bd.node_count = t->bd.leaves = t->bd.depth = 0;
+            order[i] = t;
+        }
+        qsort(order, pb.subtree_count, sizeof *order, larger_subtree_first);
+        thread_pool_run(pool, pb.subtree_count, subtree_build, order);
+    }
+    bool stopped = pb.proto.stopped;
+    for (size_t i = 0; i < pb.subtree_count; i++) {
+        pb.failed = pb.failed || pb.subtrees[i].failed;
+        stopped = stopped || pb.subtrees[i].bd.stopped;
+    }
+    if (!pb.failed && !stopped) {
+        // Number the nodes depth-first: a subtree takes as many places as it has nodes.
+        size_t next = 0;
+        for (size_t i = 0; i < pb.top_count; i++) {
+            top_node *t = &pb.top[i];
+            t->index = (uint32_t)next;
+            if (t->subtree == NO_SUBTREE) {
+                next++;
+            } else {
+                pb.subtrees[t->subtree].base = t->index;
+                next += pb.subtrees[t->subtree].bd.node_count;
+            }
+        }
+        for (size_t i = 0; i < pb.top_count; i++) {
+            top_node *t = &pb.top[i];
+            if (t->subtree != NO_SUBTREE) continue;
+            if (t->node.count == 0) t->node.offset = pb.top[t->right].index;
+            bd->nodes[t->index] = t->node;
+        }
+        subtree_copy cp = {pb.subtrees, bd->nodes};
+        thread_pool_run(pool, pb.subtree_count, subtree_place, &cp);
+        bd->node_count = next;
+        bd->leaves = pb.proto.leaves;
+        bd->depth = pb.proto.depth;
+        for (size_t i = 0; i < pb.subtree_count; i++) {
+            bd->leaves += pb.subtrees[i].bd.leaves;
+            if (pb.subtrees[i].bd.depth > bd->depth) bd->depth = pb.subtrees[i].bd.depth;
+        }
+    }
+    bd->stopped = stopped;
+    for (size_t i = 0; i < pb.subtree_count; i++) free(pb.subtrees[i].bd.nodes);
+    free(pb.subtrees);
+    free(pb.top);
+    free(order);
+    return !pb.failed;
 }
 
 /// State of the collapse into the wide BVH (arrays sized beforehand from the binary tree).
@@ -563,8 +993,17 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     int shift = wide ? (BVH_PACKET == 8 ? 3 : 2) : 0;
     builder bd = {.prims = prims, .nodes = b->nodes2, .block_shift = shift, .block_mask = ((size_t)1 << shift) - 1,
                   .max_leaf = wide ? BVH_PACKET : BIN_MAX_LEAF, .stop = in->stop};
-    if (tree) build_range(&bd, 0, tree, 0);
-    if (bd.stopped) {
+    bool built = true;
+    if (tree) {
+        // Threads for a big tree (the same tree for any number); one thread, or a pool that could not start: serially.
+        int threads = in->threads > 0 ? in->threads : thread_pool_online_cpus();
+        size_t parallel_min = in->parallel_min ? in->parallel_min : PARALLEL_MIN;
+        thread_pool *pool = threads > 1 && tree >= 2 * parallel_min ? thread_pool_start(threads) : NULL;
+        if (pool && thread_pool_size(pool) > 1) built = build_parallel(&bd, tree, pool, parallel_min);
+        else build_range(&bd, 0, tree, 0);
+        thread_pool_stop(pool);
+    }
+    if (!built || bd.stopped) {
         free(prims);
         bvh_release(b);
         return false;

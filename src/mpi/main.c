@@ -275,9 +275,11 @@ int main(int argc, char **argv) {
     }
     int region[4];
     if (st == GLINT_OK) st = tiles_resolve_region(&scene->settings, opt.region, region, &err);
+    int threads = opt.threads > 0 ? opt.threads : usable_cpus();
+    if (threads > 256) threads = 256;
     render_frame frame = {0};
     double t0 = clock_seconds(); // glint's wall time starts here too: the frame build and the render
-    if (st == GLINT_OK) st = frame_build(&frame, scene, NULL, &stopping, &err);
+    if (st == GLINT_OK) st = frame_build(&frame, scene, NULL, threads, &stopping, &err);
     int code = 0;
     if (!all_ready(st, &err, rank, size, opt.quiet, &code)) {
         frame_release(&frame);
@@ -290,8 +292,6 @@ int main(int argc, char **argv) {
     const render_settings *rs = &scene->settings;
     tiles grid;
     tiles_init(&grid, region, rs->spp);
-    int threads = opt.threads > 0 ? opt.threads : usable_cpus();
-    if (threads > 256) threads = 256;
     int *rank_threads = rank == 0 ? malloc((size_t)size * sizeof *rank_threads) : NULL;
     int all_threads = threads;
     MPI_Gather(&threads, 1, MPI_INT, rank_threads, 1, MPI_INT, 0, MPI_COMM_WORLD);

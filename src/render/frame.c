@@ -5,7 +5,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-accel *frame_accel_build(const glint_scene *s, const atomic_int *stop, glint_error *err) {
+accel *frame_accel_build(const glint_scene *s, int threads, const atomic_int *stop, glint_error *err) {
     // The accel sees meshes as bare triangle lists: their material slots are the scene's business.
     const mesh **meshes = s->mesh_count ? malloc(s->mesh_count * sizeof *meshes) : NULL;
     if (s->mesh_count && !meshes) {
@@ -27,17 +27,18 @@ accel *frame_accel_build(const glint_scene *s, const atomic_int *stop, glint_err
                       .motions = s->motions,
                       .time0 = s->camera.shutter_open,
                       .time1 = s->camera.shutter_close,
-                      .stop = stop};
+                      .stop = stop,
+                      .threads = threads};
     accel *a = accel_build(&in, s->settings.accel, err);
     free(meshes); // accel_build keeps a copy of the list
     return a;
 }
 
-glint_status frame_build(render_frame *f, const glint_scene *s, const integrator_options *o, const atomic_int *stop,
-                         glint_error *err) {
+glint_status frame_build(render_frame *f, const glint_scene *s, const integrator_options *o, int threads,
+                         const atomic_int *stop, glint_error *err) {
     f->accel = NULL;
     f->integrator = NULL;
-    f->accel = frame_accel_build(s, stop, err);
+    f->accel = frame_accel_build(s, threads, stop, err);
     if (!f->accel) return stop && atomic_load(stop) ? GLINT_ERR_INTERRUPTED : GLINT_ERR_RENDER;
     f->integrator = integrator_create(s, f->accel, o, err);
     if (!f->integrator) {

@@ -15,14 +15,14 @@ typedef struct render_frame {
     integrator *integrator;
 } render_frame;
 
-/// Builds the frame of scene s (which must outlive it); a nonzero *stop (stop may be NULL) ends the BVH build
-/// early. On failure returns GLINT_ERR_RENDER (GLINT_ERR_INTERRUPTED when stopped) with a message and leaves
-/// f empty.
-glint_status frame_build(render_frame *f, const glint_scene *s, const integrator_options *o, const atomic_int *stop,
-                         glint_error *err);
-/// The acceleration structure the scene's settings choose, over its geometry; NULL (message in *err) when out
-/// of memory. The scene must outlive it.
-accel *frame_accel_build(const glint_scene *s, const atomic_int *stop, glint_error *err);
+/// Builds the frame of scene s (which must outlive it), the BVH on `threads` threads (0: all online CPUs; the
+/// frame is the same for any number); a nonzero *stop (stop may be NULL) ends the BVH build early. On failure
+/// returns GLINT_ERR_RENDER (GLINT_ERR_INTERRUPTED when stopped) with a message and leaves f empty.
+glint_status frame_build(render_frame *f, const glint_scene *s, const integrator_options *o, int threads,
+                         const atomic_int *stop, glint_error *err);
+/// The acceleration structure the scene's settings choose, over its geometry, built on `threads` threads (0: all
+/// online CPUs); NULL (message in *err) when out of memory. The scene must outlive it.
+accel *frame_accel_build(const glint_scene *s, int threads, const atomic_int *stop, glint_error *err);
 /// Frees what the frame built and leaves it empty.
 void frame_release(render_frame *f);
 

@@ -442,8 +442,10 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
             return st;
         }
     }
+    int threads = opt && opt->threads > 0 ? opt->threads : online_cpus();
+    if (threads > MAX_THREADS) threads = MAX_THREADS;
     render_frame frame;
-    st = frame_build(&frame, s, opt ? &opt->integrator : NULL, &stop_requested, err);
+    st = frame_build(&frame, s, opt ? &opt->integrator : NULL, threads, &stop_requested, err);
     if (st == GLINT_ERR_INTERRUPTED) { // stopped while the BVH was built: no sample, a black image
         job_free(&job);
         atomic_store(&stop_requested, 0);
@@ -463,8 +465,6 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
     }
     job.integrator = frame.integrator;
     double t_built = clock_seconds();
-    int threads = opt && opt->threads > 0 ? opt->threads : online_cpus();
-    if (threads > MAX_THREADS) threads = MAX_THREADS;
 
     if (opt && opt->time_limit > 0.0) {
         job.deadline = t_built + opt->time_limit;

@@ -8,7 +8,7 @@
 
 /// Options of one render (the public glint_render_options and what only tests set).
 typedef struct render_options {
-    int threads;                   ///< worker threads; 0 = all online CPUs
+    int threads;                   ///< worker threads (the render's and the BVH build's); 0 = all online CPUs
     double time_limit;             ///< > 0: no sample pass starts after this many seconds of rendering
     int region[4];                 ///< pixels X0 <= x < X1, Y0 <= y < Y1 to render; all zero: the whole image
     unsigned aovs;                 ///< AOV planes to render beside the colour (glint_aov bits); 0: none

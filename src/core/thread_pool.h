@@ -1,0 +1,34 @@
+// thread_pool.h — a few threads that run the items of one job at a time with the calling thread (a
+// "parallel for"): for work that splits into independent pieces, such as the chunks of a BVH build.
+//
+// Usage:
+//     thread_pool *p = thread_pool_start(threads);   // NULL: out of memory (run the items serially instead)
+//     thread_pool_run(p, count, fn, ctx);            // fn(ctx, 0) ... fn(ctx, count - 1), returns when all are done
+//     thread_pool_stop(p);
+// Items are handed out in index order, each to whichever thread asks first; what an item computes must not
+// depend on which thread runs it. Idle threads sleep on a condition variable, never spin.
+#ifndef GLINT_THREAD_POOL_H
+#define GLINT_THREAD_POOL_H
+
+#include <stddef.h>
+
+/// A running pool (opaque).
+typedef struct thread_pool thread_pool;
+
+/// One item of a job: ctx is the job's, item in [0, count).
+typedef void (*thread_pool_fn)(void *ctx, size_t item);
+
+/// The online CPUs (at least 1): what a thread count of 0 means.
+int thread_pool_online_cpus(void);
+/// Starts a pool of `threads` threads counting the caller (threads - 1 are created; fewer when the system
+/// refuses more, which only costs speed). NULL when out of memory.
+thread_pool *thread_pool_start(int threads);
+/// Threads that run a job's items, the caller included.
+int thread_pool_size(const thread_pool *p);
+/// Runs fn(ctx, i) for every i in [0, count) on the pool's threads and the caller, and returns once all have
+/// returned. Called by one thread at a time (the pool's owner), never from inside an item.
+void thread_pool_run(thread_pool *p, size_t count, thread_pool_fn fn, void *ctx);
+/// Ends the pool's threads and frees it (NULL is allowed).
+void thread_pool_stop(thread_pool *p);
+
+#endif

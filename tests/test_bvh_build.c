@@ -1,0 +1,281 @@
+// test_bvh_build.c — the parallel BVH build makes the serial build's tree, byte for byte (nodes, references,
+// wide nodes and leaf packets), for any number of threads; queries on it agree with brute force; a build
+// stopped from another thread returns false and frees everything (the sanitizer build checks the leaks).
+#include "accel/accel.h"
+#include "accel/brute_force.h"
+#include "accel/bvh.h"
+#include "core/rng.h"
+
+#include "check.h"
+
+#include <math.h>
+#include <pthread.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+static const int THREAD_COUNTS[] = {1, 2, 3, 8};
+enum { THREAD_COUNT_N = sizeof THREAD_COUNTS / sizeof THREAD_COUNTS[0] };
+
+static float urand(rng *g, float lo, float hi) { return rng_range(g, lo, hi); }
+
+// A soup of n random triangles in [-10, 10]^3: mostly small, some long slivers, exact duplicates (equal
+// centroids), degenerate ones, and clusters that share one centroid (ranges that no axis can split).
+static bool make_soup(rng *g, size_t n, mesh *m) {
+    memset(m, 0, sizeof *m);
+    m->position_count = 3 * n;
+    m->triangle_count = n;
+    m->positions = malloc(3 * n * sizeof *m->positions);
+    m->triangles = malloc(n * sizeof *m->triangles);
+    if (!m->positions || !m->triangles) return false;
+    for (size_t i = 0; i < n; i++) {
+        vec3 *p = &m->positions[3 * i];
+        float kind = rng_float(g);
+        if (kind < 0.05f && i > 0) { // a copy of the previous triangle
+            for (int j = 0; j < 3; j++) p[j] = p[j - 3];
+        } else if (kind < 0.08f) { // around one point: all share a centroid
+            float s = urand(g, 0.01f, 1.0f);
+            p[0] = v3(3 + s, 3, 3);
+            p[1] = v3(3 - s, 3 + s, 3);
+            p[2] = v3(3, 3 - s, 3);
+        } else {
+            vec3 c = v3(urand(g, -10, 10), urand(g, -10, 10), urand(g, -10, 10));
+            float size = kind < 0.1f ? 5.0f : (kind < 0.12f ? 0.0f : 0.2f);
+            for (int j = 0; j < 3; j++)
+                p[j] = v3_add(c, v3(urand(g, -size, size), urand(g, -size, size), urand(g, -size, size)));
+        }
+        for (int j = 0; j < 3; j++) {
+            m->triangles[i].v[j] = (int32_t)(3 * i + (size_t)j);
+            m->triangles[i].n[j] = m->triangles[i].t[j] = -1;
+        }
+        m->triangles[i].material = -1;
+    }
+    mesh_compute_bounds(m);
+    return true;
+}
+
+// n spheres as in the book's final scene: a huge ground, small spheres on a grid with jitter, a few big
+// ones, some nested and duplicated.
+static sphere *make_spheres(rng *g, size_t n) {
+    sphere *s = malloc(n * sizeof *s);
+    if (!s) return NULL;
+    size_t side = (size_t)sqrt((double)n) + 1;
+    for (size_t i = 0; i < n; i++) {
+        float x = (float)(i % side) - (float)side / 2, z = (float)(i / side) - (float)side / 2;
+        s[i] = (sphere){v3(x + urand(g, 0, 0.9f), 0.2f, z + urand(g, 0, 0.9f)), 0.2f, 0};
+        float kind = rng_float(g);
+        if (i == 0) s[i] = (sphere){v3(0, -1000, 0), 1000.0f, 0};
+        else if (kind < 0.02f) s[i].radius = urand(g, 1.0f, 4.0f);
+        else if (kind < 0.05f) s[i] = s[i - 1];
+        else if (kind < 0.08f) s[i].radius = -0.15f;
+    }
+    return s;
+}
+
+// Whether two wide nodes hold the same bytes (the padding at their end excepted).
+static bool same_wnodes(const bvh_wnode *a, const bvh_wnode *b, size_t n) {
+    for (size_t i = 0; i < n; i++)
+        if (memcmp(a[i].box, b[i].box, sizeof a[i].box) != 0 || memcmp(a[i].child, b[i].child, sizeof a[i].child) != 0)
+            return false;
+    return true;
+}
+
+// Whether two builds are the same bytes: statistics, references, binary nodes, wide nodes and packets.
+static bool same_bvh(const bvh *a, const bvh *b) {
+    if (a->stats.nodes != b->stats.nodes || a->stats.leaves != b->stats.leaves || a->stats.depth != b->stats.depth ||
+        a->ref_count != b->ref_count || a->node2_count != b->node2_count || a->wnode_count != b->wnode_count ||
+        a->slot_count != b->slot_count || a->root != b->root || a->front != b->front)
+        return false;
+    return memcmp(a->refs, b->refs, a->ref_count * sizeof *a->refs) == 0 &&
+           (!a->node2_count || memcmp(a->nodes2, b->nodes2, a->node2_count * sizeof *a->nodes2) == 0) &&
+           same_wnodes(a->wnodes, b->wnodes, a->wnode_count) &&
+           (!a->slot_count || memcmp(a->slots, b->slots, a->slot_count * sizeof *a->slots) == 0);
+}
+
+// Builds `in` on every thread count (wide and binary) and checks that each tree is the one thread's.
+static void check_same_trees(const char *what, bvh_input in) {
+    for (int wide = 0; wide <= 1; wide++) {
+        bvh one;
+        in.threads = 1;
+        CHECK(bvh_build(&one, &in, wide));
+        for (int t = 1; t < THREAD_COUNT_N; t++) {
+            bvh many;
+            in.threads = THREAD_COUNTS[t];
+            CHECK(bvh_build(&many, &in, wide));
+            bool same = same_bvh(&one, &many);
+            CHECK(same);
+            if (!same)
+                fprintf(stderr, "%s (%s, parallel_min %zu): %d threads build another tree than 1\n", what,
+                        wide ? "wide" : "binary", in.parallel_min, THREAD_COUNTS[t]);
+            bvh_release(&many);
+        }
+        bvh_release(&one);
+    }
+}
+
+static bool same_hit(bool fa, const hit *a, bool fb, const hit *b) {
+    if (fa != fb) return false;
+    return !fa || (a->prim == b->prim && a->kind == b->kind && a->instance == b->instance &&
+                   memcmp(&a->t, &b->t, sizeof a->t) == 0 && memcmp(&a->b1, &b->b1, sizeof a->b1) == 0 &&
+                   memcmp(&a->b2, &b->b2, sizeof a->b2) == 0);
+}
+
+// Rays from around [-12, 12]^3, half of them aimed at a random point of the scene's box.
+static ray random_ray(rng *g, const mesh *m, const sphere *spheres, size_t sphere_count) {
+    ray r = {v3(urand(g, -12, 12), urand(g, 0.5f, 12), urand(g, -12, 12)), v3(0, 0, 1), 0.0f, INFINITY, 0.0f};
+    vec3 target = v3(urand(g, -10, 10), urand(g, -1, 3), urand(g, -10, 10));
+    float aim = rng_float(g);
+    if (m && aim < 0.5f) target = m->positions[rng_u32(g) % m->position_count];
+    else if (spheres && aim < 0.5f) target = spheres[1 + rng_u32(g) % (sphere_count - 1)].center;
+    else if (aim < 0.7f) r.o.y = target.y = 100.0f; // above everything, looking past it
+    r.d = v3_sub(target, r.o);
+    if (v3_len2(r.d) < 1e-6f) r.d = v3(0, 1, 0);
+    if (rng_float(g) < 0.3f) r.tmax = urand(g, 1.0f, 20.0f);
+    return r;
+}
+
+// The accel built on `threads` threads against brute force, closest and any hit, on `rays` random rays.
+static void check_queries(const char *what, const accel_input *in, int threads, int rays, uint64_t seed) {
+    glint_error err;
+    accel_input with = *in;
+    with.threads = threads;
+    accel *a = accel_build(&with, ACCEL_BVH, &err);
+    accel *a2 = accel_build(&with, ACCEL_BVH2, &err);
+    accel *an = accel_build(&with, ACCEL_NONE, &err); // brute force, flattening what the BVHs flatten
+    CHECK(a && a2 && an);
+    if (!a || !a2 || !an) {
+        accel_free(a);
+        accel_free(a2);
+        accel_free(an);
+        return;
+    }
+    rng g = rng_for_sample(seed, 1, 2);
+    int bad = 0, hits = 0;
+    for (int i = 0; i < rays; i++) {
+        ray r = random_ray(&g, in->mesh_count ? in->meshes[0] : NULL, in->spheres, in->sphere_count);
+        hit hb, hw, h2;
+        memset(&hb, 0, sizeof hb);
+        memset(&hw, 0, sizeof hw);
+        memset(&h2, 0, sizeof h2);
+        bool fb = accel_intersect(an, &r, &hb), fw = accel_intersect(a, &r, &hw), f2 = accel_intersect(a2, &r, &h2);
+        hits += fb;
+        bool ok = same_hit(fb, &hb, fw, &hw) && same_hit(fb, &hb, f2, &h2) && accel_occluded(a, &r) == fb &&
+                  accel_occluded(a2, &r) == fb;
+        if (!ok && bad++ < 3)
+            fprintf(stderr, "%s, %d threads: ray %d: brute force %d prim %u t %.9g, bvh %d prim %u t %.9g, bvh2 %d prim %u\n",
+                    what, threads, i, fb, hb.prim, (double)hb.t, fw, hw.prim, (double)hw.t, f2, h2.prim);
+    }
+    CHECK(bad == 0);
+    CHECK(hits > 0 && hits < rays); // both outcomes exercised
+    accel_free(a);
+    accel_free(a2);
+    accel_free(an);
+}
+
+// ~300k triangles with the default thresholds: the parallel top, its partition and the subtrees.
+static void check_soup(void) {
+    rng g = rng_for_sample(11, 300, 0);
+    mesh m;
+    CHECK(make_soup(&g, 300000, &m));
+    check_same_trees("soup of 300k triangles", (bvh_input){.mesh = &m});
+    const mesh *meshes[1] = {&m};
+    instance inst = {INSTANCE_MESH, 0, transform_identity(), -1, 0};
+    accel_input in = {.meshes = meshes, .mesh_count = 1, .instances = &inst, .instance_count = 1};
+    check_queries("soup of 300k triangles", &in, 3, 100, 5);
+    mesh_free(&m);
+}
+
+static void check_sphere_scene(void) {
+    rng g = rng_for_sample(12, 100, 0);
+    size_t n = 100000;
+    sphere *s = make_spheres(&g, n);
+    CHECK(s != NULL);
+    if (!s) return;
+    check_same_trees("100k spheres", (bvh_input){.spheres = s, .sphere_count = n});
+    accel_input in = {.spheres = s, .sphere_count = n};
+    check_queries("100k spheres", &in, 8, 300, 6);
+    free(s);
+}
+
+// Small scenes split in parallel down to ranges of a few primitives (parallel_min): chunks of one or two
+// primitives, wrong-side segments that cross chunks, ranges already partitioned, reversed or all on one
+// centroid.
+static void check_small(void) {
+    const size_t sizes[] = {2, 3, 7, 64, 1000, 5000};
+    const size_t mins[] = {1, 2, 8, 100};
+    for (size_t i = 0; i < sizeof sizes / sizeof *sizes; i++)
+        for (size_t j = 0; j < sizeof mins / sizeof *mins; j++) {
+            rng g = rng_for_sample(13, sizes[i], mins[j]);
+            mesh m;
+            CHECK(make_soup(&g, sizes[i], &m));
+            char what[64];
+            snprintf(what, sizeof what, "soup of %zu triangles", sizes[i]);
+            check_same_trees(what, (bvh_input){.mesh = &m, .parallel_min = mins[j]});
+            // Sorted along x, then reversed: every partition finds its sides in order, or all on the wrong one.
+            for (size_t t = 0; t < m.triangle_count; t++)
+                for (int k = 0; k < 3; k++) m.positions[3 * t + (size_t)k].x = (float)t + (float)k * 0.25f;
+            check_same_trees("sorted soup", (bvh_input){.mesh = &m, .parallel_min = mins[j]});
+            for (size_t t = 0; t < m.triangle_count; t++)
+                for (int k = 0; k < 3; k++) m.positions[3 * t + (size_t)k].x = -(float)t - (float)k * 0.25f;
+            check_same_trees("reversed soup", (bvh_input){.mesh = &m, .parallel_min = mins[j]});
+            // Every triangle on one centroid: halved ranges down to the leaves.
+            for (size_t t = 0; t < m.position_count; t++) m.positions[t] = m.positions[t % 3];
+            check_same_trees("coincident soup", (bvh_input){.mesh = &m, .parallel_min = mins[j]});
+            mesh_free(&m);
+            sphere *s = make_spheres(&g, sizes[i] + 1);
+            CHECK(s != NULL);
+            if (s) check_same_trees("spheres", (bvh_input){.spheres = s, .sphere_count = sizes[i] + 1, .parallel_min = mins[j]});
+            free(s);
+        }
+}
+
+typedef struct stopper {
+    atomic_int *stop;
+    long delay_us;
+} stopper;
+
+static void *stop_later(void *arg) {
+    const stopper *s = arg;
+    struct timespec ts = {s->delay_us / 1000000, (s->delay_us % 1000000) * 1000};
+    nanosleep(&ts, NULL);
+    atomic_store(s->stop, 1);
+    return NULL;
+}
+
+// A stop requested from another thread while the threads build: false, the bvh empty, nothing leaked.
+static void check_stop(void) {
+    rng g = rng_for_sample(14, 1, 0);
+    mesh m;
+    CHECK(make_soup(&g, 200000, &m));
+    const long delays_us[] = {0, 200, 1000, 5000, 20000};
+    int stopped = 0;
+    for (size_t i = 0; i < sizeof delays_us / sizeof *delays_us; i++) {
+        atomic_int stop = 0;
+        stopper s = {&stop, delays_us[i]};
+        pthread_t thread;
+        bool started = pthread_create(&thread, NULL, stop_later, &s) == 0;
+        CHECK(started);
+        if (!started) break;
+        if (delays_us[i] == 0) pthread_join(thread, NULL); // stopped before it starts
+        bvh b;
+        bvh_input in = {.mesh = &m, .stop = &stop, .threads = 3, .parallel_min = i % 2 ? 1000 : 0};
+        bool built = bvh_build(&b, &in, i % 2 == 0);
+        if (delays_us[i] != 0) pthread_join(thread, NULL);
+        if (!built) {
+            stopped++;
+            CHECK(b.wnodes == NULL && b.nodes2 == NULL && b.refs == NULL && b.slots == NULL);
+        } else {
+            bvh_release(&b); // finished before the stop came
+        }
+    }
+    CHECK(stopped >= 1);
+    mesh_free(&m);
+}
+
+int main(void) {
+    check_small();
+    check_soup();
+    check_sphere_scene();
+    check_stop();
+    return check_summary();
+}
