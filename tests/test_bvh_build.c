@@ -2,7 +2,6 @@
 // wide nodes and leaf packets), for any number of threads; queries on it agree with brute force; a build
 // stopped from another thread returns false and frees everything (the sanitizer build checks the leaks).
 #include "accel/accel.h"
-#include "accel/brute_force.h"
 #include "accel/bvh.h"
 #include "core/rng.h"
 
