@@ -47,10 +47,21 @@ typedef enum prim_kind {
 } prim_kind;
 
 /// A primitive of the scene: its kind and its index in the scene's array of that kind; a flattened triangle
-/// (see bvh_input.flat) also names its instance, which is HIT_NO_INSTANCE for everything else.
+/// (see bvh_input.flat) also names its instance, which is PRIM_NO_INSTANCE for everything else. Eight bytes:
+/// the build keeps one per primitive.
 typedef struct prim_ref {
-    uint32_t kind, index, instance;
+    uint32_t kind : 4;
+    uint32_t instance : 28;
+    uint32_t index;
 } prim_ref;
+
+/// prim_ref.instance of a primitive that is not a flattened triangle; instances are numbered below it.
+#define PRIM_NO_INSTANCE 0x0fffffffu
+
+/// The instance of a reference as hits name it (HIT_NO_INSTANCE for none).
+static inline uint32_t prim_ref_instance(prim_ref r) {
+    return r.instance == PRIM_NO_INSTANCE ? HIT_NO_INSTANCE : (uint32_t)r.instance;
+}
 
 /// Binary BVH node (32 bytes): box[0..2] lower and box[3..5] upper bounds; inner nodes have count 0,
 /// their first child follows them and `offset` is the second child; leaves hold refs[offset, offset + count).

@@ -64,12 +64,15 @@ static float box_half_area(const box3 *b) {
     return dx * dy + dy * dz + dz * dx;
 }
 
-/// Per-primitive build input: padded bounds and centroid.
+/// Per-primitive build input: padded bounds and reference (48 bytes: the build's largest array).
 typedef struct build_prim {
     box3 box;
-    float c[3];
     prim_ref ref;
 } build_prim;
+
+/// Centroid of a primitive's box on axis a, computed where it is needed rather than stored (16 bytes a
+/// primitive of peak memory), with the same expression everywhere.
+static inline float centroid(const build_prim *p, int a) { return 0.5f * p->box.lo[a] + 0.5f * p->box.hi[a]; }
 
 typedef struct builder {
     build_prim *prims;  ///< permuted in place into leaf order
@@ -114,7 +117,8 @@ static uint32_t new_node(builder *bd) { return (uint32_t)bd->node_count++; }
 static void range_bounds(const build_prim *prims, size_t begin, size_t end, box3 *bounds, box3 *cbounds) {
     for (size_t i = begin; i < end; i++) {
         box_grow(bounds, &prims[i].box);
-        box3 c = {{prims[i].c[0], prims[i].c[1], prims[i].c[2], 0.0f}, {prims[i].c[0], prims[i].c[1], prims[i].c[2], 0.0f}};
+        float cx = centroid(&prims[i], 0), cy = centroid(&prims[i], 1), cz = centroid(&prims[i], 2);
+        box3 c = {{cx, cy, cz, 0.0f}, {cx, cy, cz, 0.0f}};
         box_grow(cbounds, &c);
     }
 }
@@ -154,7 +158,7 @@ static void bins_add(bins *b, const build_prim *prims, size_t begin, size_t end)
     for (size_t i = begin; i < end; i++) {
         const build_prim *p = &prims[i];
         for (int a = 0; a < 3; a++) {
-            int k = bin_of(p->c[a], lo[a], scale[a], nb);
+            int k = bin_of(centroid(p, a), lo[a], scale[a], nb);
             b->count[a][k]++;
             box_grow(&b->box[a][k], &p->box);
         }
@@ -242,7 +246,7 @@ static size_t partition(build_prim *prims, size_t begin, size_t end, const bins 
     float lo = b->lo[a], scale = b->scale[a];
     size_t i = begin, j = end;
     while (i < j) {
-        if (bin_of(prims[i].c[a], lo, scale, nb) <= s.bin) {
+        if (bin_of(centroid(&prims[i], a), lo, scale, nb) <= s.bin) {
             i++;
         } else {
             build_prim tmp = prims[i];
@@ -387,7 +391,7 @@ static void step_classify(void *ctx, size_t k) {
     float lo = st->b->lo[a], scale = st->b->scale[a];
     size_t wrong_front = 0, wrong_back = 0;
     for (size_t i = chunk_begin(st, k), end = chunk_begin(st, k + 1); i < end; i++) {
-        bool left = bin_of(prims[i].c[a], lo, scale, nb) <= bin;
+        bool left = bin_of(centroid(&prims[i], a), lo, scale, nb) <= bin;
         pb->left[i] = left;
         if (i < st->mid) wrong_front += !left;
         else wrong_back += left;
@@ -727,7 +731,7 @@ static uint32_t emit_leaf(collapser *cl, const bvh2_node *leaf) {
     bvh_packet_header *last = NULL;
     cl->leaves++;
     for (size_t i = 0; i < leaf->count;) {
-        uint32_t kind = refs[i].kind, owner = refs[i].instance;
+        uint32_t kind = refs[i].kind, owner = prim_ref_instance(refs[i]);
         size_t n = packet_run(refs, i, leaf->count);
         bvh_slot *slot = &b->slots[b->slot_count];
         size_t nslots = packet_slots(kind);
@@ -861,20 +865,20 @@ static bounds3 instance_object_bounds(const bvh_input *in, const instance *inst)
 // The build input of every primitive: kind, index, padded box, centroid.
 static size_t gather_prims(const bvh_input *in, build_prim *prims) {
     size_t n = 0;
-    const uint32_t none = HIT_NO_INSTANCE;
+    const uint32_t none = PRIM_NO_INSTANCE;
     for (size_t i = 0; i < in->sphere_count; i++) {
         prims[n].box = sphere_box(&in->spheres[i]);
-        prims[n].ref = (prim_ref){PRIM_SPHERE, (uint32_t)i, none};
+        prims[n].ref = (prim_ref){.kind = PRIM_SPHERE, .index = (uint32_t)i, .instance = none};
         n++;
     }
     for (size_t i = 0; i < in->quad_count; i++) {
         prims[n].box = box_padded(quad_bounds(&in->quads[i]));
-        prims[n].ref = (prim_ref){PRIM_QUAD, (uint32_t)i, none};
+        prims[n].ref = (prim_ref){.kind = PRIM_QUAD, .index = (uint32_t)i, .instance = none};
         n++;
     }
     for (size_t i = 0; in->mesh && i < in->mesh->triangle_count; i++) {
         prims[n].box = box_padded(mesh_triangle_bounds(in->mesh, i));
-        prims[n].ref = (prim_ref){PRIM_TRIANGLE, (uint32_t)i, none};
+        prims[n].ref = (prim_ref){.kind = PRIM_TRIANGLE, .index = (uint32_t)i, .instance = none};
         n++;
     }
     for (size_t i = 0; i < in->instance_count; i++) {
@@ -883,7 +887,7 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims) {
             const mesh *m = in->flat[i];
             for (size_t k = 0; k < m->triangle_count; k++) {
                 prims[n].box = box_padded(mesh_triangle_bounds(m, k));
-                prims[n].ref = (prim_ref){PRIM_TRIANGLE, (uint32_t)k, (uint32_t)i};
+                prims[n].ref = (prim_ref){.kind = PRIM_TRIANGLE, .index = (uint32_t)k, .instance = (uint32_t)i & PRIM_NO_INSTANCE};
                 n++;
             }
             continue;
@@ -892,10 +896,10 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims) {
         if (bounds3_is_empty(ob)) continue; // an instance of an empty mesh: nothing to hit
         if (inst->motion) { // bounded over the whole shutter, and tested at each ray's time
             prims[n].box = box_padded(motion_bounds(&in->motions[inst->motion - 1], ob, in->time0, in->time1));
-            prims[n].ref = (prim_ref){PRIM_MOVING_INSTANCE, (uint32_t)i, none};
+            prims[n].ref = (prim_ref){.kind = PRIM_MOVING_INSTANCE, .index = (uint32_t)i, .instance = none};
         } else {
             prims[n].box = box_padded(mat4_apply_bounds(&inst->xf.m, ob));
-            prims[n].ref = (prim_ref){PRIM_INSTANCE, (uint32_t)i, none};
+            prims[n].ref = (prim_ref){.kind = PRIM_INSTANCE, .index = (uint32_t)i, .instance = none};
         }
         n++;
     }
@@ -906,11 +910,9 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims) {
         prims[n].box = sphere_box(&a);
         box3 bb = sphere_box(&b);
         box_grow(&prims[n].box, &bb);
-        prims[n].ref = (prim_ref){PRIM_MOVING_SPHERE, (uint32_t)i, none};
+        prims[n].ref = (prim_ref){.kind = PRIM_MOVING_SPHERE, .index = (uint32_t)i, .instance = none};
         n++;
     }
-    for (size_t i = 0; i < n; i++)
-        for (int a = 0; a < 3; a++) prims[i].c[a] = 0.5f * prims[i].box.lo[a] + 0.5f * prims[i].box.hi[a];
     return n;
 }
 
@@ -964,7 +966,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
                  in->moving_sphere_count;
     for (size_t i = 0; in->flat && i < in->instance_count; i++) cap += in->flat[i] ? in->flat[i]->triangle_count : 0;
     if (cap == 0) return true;
-    if (cap >= BVH_LEAF / 2) return false;
+    if (cap >= BVH_LEAF / 2 || in->instance_count >= PRIM_NO_INSTANCE) return false; // indices must fit their fields
 
     build_prim *prims = malloc(cap * sizeof *prims);
     if (!prims) return false;

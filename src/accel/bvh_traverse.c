@@ -154,7 +154,7 @@ static __attribute__((noinline)) hit triangle_packet_simd(const bvh_triangle_pac
 
 bool bvh_prim_hit(const bvh *b, prim_ref ref, const ray *r, tri_cache *tc, hit *best, uint32_t inst_id, bool any,
                   trav_mode mode) {
-    return prim_hit(b, ref.kind, ref.index, ref.instance, r, tc, best, inst_id, any, mode);
+    return prim_hit(b, ref.kind, ref.index, prim_ref_instance(ref), r, tc, best, inst_id, any, mode);
 }
 
 /* ------------------------------------------------------------------------------------------------ */
