@@ -4,6 +4,7 @@
 #include "core/file_read.h"
 #include "core/filepath.h"
 #include "core/strmap.h"
+#include "io/decimal.h"
 
 #include <errno.h>
 #include <math.h>
@@ -154,108 +155,11 @@ static bool token_is(const char *tok, size_t n, const char *word) {
     return n == k && memcmp(tok, word, k) == 0;
 }
 
-typedef enum num_status { NUM_OK, NUM_MALFORMED, NUM_NOT_FINITE, NUM_RANGE, NUM_NOMEM } num_status;
-
-static const double pow10_table[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                                       1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-
-// Whether rounding the double d to float could differ from rounding the exact decimal: only when d lies
-// exactly halfway between two floats (or in the subnormal range, where the halfway bits differ).
-static bool float_rounding_unsafe(double d) {
-    double a = fabs(d);
-    if (a < 0x1p-126) return true;
-    uint64_t bits;
-    memcpy(&bits, &a, sizeof bits);
-    return (bits & ((UINT64_C(1) << 29) - 1)) == (UINT64_C(1) << 28);
-}
-
-// |strtof| of a NUL-terminated copy of the token: the rare numbers the exact fast path cannot take. False
-// when there is no memory for the copy of a long token.
-static bool slow_float(const char *s, size_t n, float *out) {
-    char small[128];
-    char *buf = n < sizeof small ? small : malloc(n + 1);
-    if (!buf) return false;
-    memcpy(buf, s, n);
-    buf[n] = '\0';
-    *out = fabsf(strtof(buf, NULL));
-    if (buf != small) free(buf);
-    return true;
-}
-
-// Whether s starts with the lower-case word w, ignoring case.
-static bool starts_with_word(const char *s, size_t n, const char *w) {
-    size_t k = strlen(w);
-    if (n < k) return false;
-    for (size_t i = 0; i < k; i++)
-        if ((s[i] | 0x20) != w[i]) return false;
-    return true;
-}
-
-// The C library's spellings of NaN and infinity: nan, nan(...), inf, infinity, in any case.
-static bool is_nan_or_inf(const char *s, size_t n) {
-    if (starts_with_word(s, n, "nan")) return n == 3 || s[3] == '(';
-    return (n == 3 && starts_with_word(s, n, "inf")) || (n == 8 && starts_with_word(s, n, "infinity"));
-}
-
-// A decimal number [+-](digits[.digits] | .digits)[(e|E)[+-]digits] and nothing else, correctly rounded:
-// exact in double when it has at most 17 significant digits and a power of ten up to 22 (Clinger's fast
-// path), otherwise by strtof. No locale, no hexadecimal, no "nan" or "inf".
-static num_status parse_float(const char *s, size_t n, float *out) {
-    size_t i = 0;
-    bool neg = false;
-    if (i < n && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
-    if (is_nan_or_inf(s + i, n - i)) return NUM_NOT_FINITE;
-    uint64_t m = 0;
-    int exp10 = 0;
-    bool digits = false, exact = true;
-    for (; i < n && is_digit(s[i]); i++) {
-        digits = true;
-        if (m < UINT64_C(100000000000000000)) m = m * 10 + (uint64_t)(s[i] - '0');
-        else {
-            if (exp10 < 100000) exp10++;
-            if (s[i] != '0') exact = false;
-        }
-    }
-    if (i < n && s[i] == '.') {
-        for (i++; i < n && is_digit(s[i]); i++) {
-            digits = true;
-            if (m < UINT64_C(100000000000000000)) {
-                m = m * 10 + (uint64_t)(s[i] - '0');
-                exp10--;
-            } else if (s[i] != '0') exact = false;
-        }
-    }
-    if (digits && i < n && (s[i] == 'e' || s[i] == 'E')) {
-        i++;
-        bool eneg = false;
-        if (i < n && (s[i] == '+' || s[i] == '-')) eneg = s[i++] == '-';
-        if (i == n || !is_digit(s[i])) return NUM_MALFORMED;
-        int e = 0;
-        for (; i < n && is_digit(s[i]); i++)
-            if (e < 100000) e = e * 10 + (s[i] - '0');
-        exp10 += eneg ? -e : e;
-    }
-    if (!digits || i != n) {
-        // Microsoft's C library prints NaN and infinity as 1.#IND, 1.#QNAN, 1.#INF.
-        return memchr(s, '#', n) ? NUM_NOT_FINITE : NUM_MALFORMED;
-    }
-    float f;
-    if (m == 0) f = 0.0f;
-    else if (exact && m <= (UINT64_C(1) << 53) && exp10 >= -22 && exp10 <= 22) {
-        double d = exp10 < 0 ? (double)m / pow10_table[-exp10] : (double)m * pow10_table[exp10];
-        f = (float)d;
-        if (float_rounding_unsafe(d) && !slow_float(s, n, &f)) return NUM_NOMEM;
-    } else if (!slow_float(s, n, &f)) return NUM_NOMEM;
-    if (!isfinite(f)) return NUM_RANGE;
-    *out = neg ? -f : f;
-    return NUM_OK;
-}
-
-static bool number_error(reporter *r, num_status st, const char *tok, size_t n) {
-    if (st == NUM_NOMEM) return out_of_memory(r);
+static bool number_error(reporter *r, decimal_status st, const char *tok, size_t n) {
+    if (st == DECIMAL_NOMEM) return out_of_memory(r);
     quoted q = quote(tok, n);
-    if (st == NUM_NOT_FINITE) return fail(r, "'%s' is not a finite number, expected a decimal number", q.s);
-    if (st == NUM_RANGE) return fail(r, "number '%s' is out of the range of a float, expected a magnitude below 3.4e38", q.s);
+    if (st == DECIMAL_NOT_FINITE) return fail(r, "'%s' is not a finite number, expected a decimal number", q.s);
+    if (st == DECIMAL_RANGE) return fail(r, "number '%s' is out of the range of a float, expected a magnitude below 3.4e38", q.s);
     return fail(r, "malformed number '%s', expected a decimal number such as -1.25e3", q.s);
 }
 
@@ -266,8 +170,8 @@ static bool parse_numbers(reporter *r, cursor *c, float *v, int max, int *count)
     int k = 0;
     while (next_token(c, &tok, &n)) {
         float f;
-        num_status st = parse_float(tok, n, &f);
-        if (st != NUM_OK) return number_error(r, st, tok, n);
+        decimal_status st = decimal_parse_float(tok, n, &f);
+        if (st != DECIMAL_OK) return number_error(r, st, tok, n);
         if (k < max) v[k] = f;
         if (k < INT32_MAX) k++;
     }
@@ -495,7 +399,7 @@ static bool mtl_map_kd(mtl_parser *ps, cursor *c) {
             cursor arg = *c;
             float f;
             if (!next_token(&arg, &tok, &n)) break;
-            if (args < 0 && k > 0 && parse_float(tok, n, &f) != NUM_OK) break;
+            if (args < 0 && k > 0 && decimal_parse_float(tok, n, &f) != DECIMAL_OK) break;
             *c = arg;
         }
     }
