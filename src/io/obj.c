@@ -505,19 +505,26 @@ static bool mtl_statement(mtl_parser *ps, cursor *c) {
     return true; // accepted and ignored
 }
 
+// Reads the line that starts at s with fn(state, cursor) after checking its length; *next gets the start of
+// the next line.
+static bool read_line(const char *s, const char *end, reporter *rep, bool (*fn)(void *, cursor *), void *state,
+                      const char **next) {
+    const char *nl = memchr(s, '\n', (size_t)(end - s));
+    cursor c = {s, nl ? nl : end};
+    if ((size_t)(c.end - s) > OBJ_MAX_LINE_BYTES)
+        return fail(rep, "line is %zu bytes long, expected at most %zu (%zu MiB)", (size_t)(c.end - s),
+                    (size_t)OBJ_MAX_LINE_BYTES, (size_t)OBJ_MAX_LINE_BYTES >> 20);
+    *next = nl ? nl + 1 : end;
+    return fn(state, &c);
+}
+
 // Calls fn(state, cursor) for every line of text, keeping rep->line current; stops at the first failure.
 static bool for_each_line(const char *text, size_t length, reporter *rep, bool (*fn)(void *, cursor *), void *state) {
     const char *s = text, *end = text + length;
     rep->line = 0;
     while (s < end) {
         rep->line++;
-        const char *nl = memchr(s, '\n', (size_t)(end - s));
-        cursor c = {s, nl ? nl : end};
-        if ((size_t)(c.end - s) > OBJ_MAX_LINE_BYTES)
-            return fail(rep, "line is %zu bytes long, expected at most %zu (%zu MiB)", (size_t)(c.end - s),
-                        (size_t)OBJ_MAX_LINE_BYTES, (size_t)OBJ_MAX_LINE_BYTES >> 20);
-        if (!fn(state, &c)) return false;
-        s = nl ? nl + 1 : end;
+        if (!read_line(s, end, rep, fn, state, &s)) return false;
     }
     return true;
 }
@@ -601,17 +608,42 @@ static bool too_many(reporter *r, const char *what) {
     return fail(r, "too many %s, expected at most %d", what, MAX_ELEMENTS);
 }
 
+// Stores a position, a normal, a texture coordinate: the last step of both the statements and the fast paths.
+static bool add_position(obj_parser *ps, const float *v) {
+    mesh *m = &ps->model->mesh;
+    if (m->position_count >= MAX_ELEMENTS) return too_many(&ps->rep, "vertices");
+    if (m->position_count == ps->pos_cap &&
+        !array_reserve((void **)&m->positions, &ps->pos_cap, m->position_count + 1, sizeof *m->positions))
+        return out_of_memory(&ps->rep);
+    m->positions[m->position_count++] = v3(v[0], v[1], v[2]);
+    return true;
+}
+
+static bool add_normal(obj_parser *ps, const float *v) {
+    mesh *m = &ps->model->mesh;
+    if (m->normal_count >= MAX_ELEMENTS) return too_many(&ps->rep, "normals");
+    if (m->normal_count == ps->nrm_cap &&
+        !array_reserve((void **)&m->normals, &ps->nrm_cap, m->normal_count + 1, sizeof *m->normals))
+        return out_of_memory(&ps->rep);
+    m->normals[m->normal_count++] = v3(v[0], v[1], v[2]);
+    return true;
+}
+
+static bool add_texcoord(obj_parser *ps, const float *v, int count) {
+    mesh *m = &ps->model->mesh;
+    if (m->uv_count >= MAX_ELEMENTS) return too_many(&ps->rep, "texture coordinates");
+    if (m->uv_count == ps->uv_cap && !array_reserve((void **)&m->uvs, &ps->uv_cap, m->uv_count + 1, sizeof *m->uvs))
+        return out_of_memory(&ps->rep);
+    m->uvs[m->uv_count++] = (uv2){v[0], count > 1 ? v[1] : 0.0f};
+    return true;
+}
+
 static bool obj_vertex(obj_parser *ps, cursor *c) {
     float v[7];
     int count;
     if (!parse_numbers(&ps->rep, c, v, 7, &count)) return false;
     if (count < 3 || count > 7) return fail(&ps->rep, "'v' has %d numbers, expected 3 (x y z) to 7", count);
-    mesh *m = &ps->model->mesh;
-    if (m->position_count >= MAX_ELEMENTS) return too_many(&ps->rep, "vertices");
-    if (!array_reserve((void **)&m->positions, &ps->pos_cap, m->position_count + 1, sizeof *m->positions))
-        return out_of_memory(&ps->rep);
-    m->positions[m->position_count++] = v3(v[0], v[1], v[2]);
-    return true;
+    return add_position(ps, v);
 }
 
 static bool obj_normal(obj_parser *ps, cursor *c) {
@@ -619,12 +651,7 @@ static bool obj_normal(obj_parser *ps, cursor *c) {
     int count;
     if (!parse_numbers(&ps->rep, c, v, 3, &count)) return false;
     if (count != 3) return fail(&ps->rep, "'vn' has %d numbers, expected 3 (x y z)", count);
-    mesh *m = &ps->model->mesh;
-    if (m->normal_count >= MAX_ELEMENTS) return too_many(&ps->rep, "normals");
-    if (!array_reserve((void **)&m->normals, &ps->nrm_cap, m->normal_count + 1, sizeof *m->normals))
-        return out_of_memory(&ps->rep);
-    m->normals[m->normal_count++] = v3(v[0], v[1], v[2]);
-    return true;
+    return add_normal(ps, v);
 }
 
 static bool obj_texcoord(obj_parser *ps, cursor *c) {
@@ -632,11 +659,7 @@ static bool obj_texcoord(obj_parser *ps, cursor *c) {
     int count;
     if (!parse_numbers(&ps->rep, c, v, 3, &count)) return false;
     if (count < 1 || count > 3) return fail(&ps->rep, "'vt' has %d numbers, expected 1 to 3 (u [v [w]])", count);
-    mesh *m = &ps->model->mesh;
-    if (m->uv_count >= MAX_ELEMENTS) return too_many(&ps->rep, "texture coordinates");
-    if (!array_reserve((void **)&m->uvs, &ps->uv_cap, m->uv_count + 1, sizeof *m->uvs)) return out_of_memory(&ps->rep);
-    m->uvs[m->uv_count++] = (uv2){v[0], count > 1 ? v[1] : 0.0f};
-    return true;
+    return add_texcoord(ps, v, count);
 }
 
 // A 1-based or negative (relative) index into `count` elements -> 0-based.
@@ -687,30 +710,32 @@ static bool parse_corner(obj_parser *ps, const char *tok, size_t n, corner *out)
     return true;
 }
 
-// Whether the triangle (a, b, c) has exactly zero area: its edge cross product, in double, is zero.
-static bool zero_area(const mesh *m, const corner *a, const corner *b, const corner *c) {
-    vec3 p = m->positions[a->v], q = m->positions[b->v], r = m->positions[c->v];
+// Whether the triangle (p, q, r) has exactly zero area: its edge cross product, in double, is zero.
+static bool zero_area(vec3 p, vec3 q, vec3 r) {
     double ux = (double)q.x - p.x, uy = (double)q.y - p.y, uz = (double)q.z - p.z;
     double vx = (double)r.x - p.x, vy = (double)r.y - p.y, vz = (double)r.z - p.z;
     return uy * vz - uz * vy == 0.0 && uz * vx - ux * vz == 0.0 && ux * vy - uy * vx == 0.0;
 }
 
-// Appends triangle (a, b, c) unless it has no area (degenerate pieces of a valid polygon are dropped silently).
-static bool emit(obj_parser *ps, const corner *a, const corner *b, const corner *c) {
+// Appends triangle (a, b, c) at positions (p, q, r), and grows the mesh's box by it while its corners are at
+// hand (the box mesh_compute_bounds would compute, union for union in the same order).
+static bool append_triangle(obj_parser *ps, const corner *a, const corner *b, const corner *c, vec3 p, vec3 q, vec3 r) {
     mesh *m = &ps->model->mesh;
-    if (zero_area(m, a, b, c)) return true;
     if (m->triangle_count >= MAX_ELEMENTS) return too_many(&ps->rep, "triangles");
-    if (!array_reserve((void **)&m->triangles, &ps->tri_cap, m->triangle_count + 1, sizeof *m->triangles))
+    if (m->triangle_count == ps->tri_cap &&
+        !array_reserve((void **)&m->triangles, &ps->tri_cap, m->triangle_count + 1, sizeof *m->triangles))
         return out_of_memory(&ps->rep);
     mesh_triangle *t = &m->triangles[m->triangle_count++];
-    const corner *k[3] = {a, b, c};
-    for (int i = 0; i < 3; i++) {
-        t->v[i] = k[i]->v;
-        t->t[i] = k[i]->t;
-        t->n[i] = k[i]->n;
-    }
-    t->material = ps->material;
+    *t = (mesh_triangle){{a->v, b->v, c->v}, {a->n, b->n, c->n}, {a->t, b->t, c->t}, ps->material};
+    m->bounds = bounds3_union(m->bounds, tri_bounds(p, q, r));
     return true;
+}
+
+// Appends triangle (a, b, c) unless it has no area (degenerate pieces of a valid polygon are dropped silently).
+static bool emit(obj_parser *ps, const corner *a, const corner *b, const corner *c) {
+    const vec3 *pos = ps->model->mesh.positions;
+    vec3 p = pos[a->v], q = pos[b->v], r = pos[c->v];
+    return zero_area(p, q, r) || append_triangle(ps, a, b, c, p, q, r);
 }
 
 static void zero_area_face(obj_parser *ps) {
@@ -807,11 +832,12 @@ static bool triangulate(obj_parser *ps, size_t n) {
     const mesh *m = &ps->model->mesh;
     const corner *k = ps->corners;
     if (n == 3) {
-        if (zero_area(m, &k[0], &k[1], &k[2])) {
+        vec3 p = m->positions[k[0].v], q = m->positions[k[1].v], r = m->positions[k[2].v];
+        if (zero_area(p, q, r)) {
             zero_area_face(ps);
             return true;
         }
-        return emit(ps, &k[0], &k[1], &k[2]);
+        return append_triangle(ps, &k[0], &k[1], &k[2], p, q, r);
     }
     // Newell's normal: robust for non-planar faces, zero when the face has no area.
     double nx = 0, ny = 0, nz = 0;
@@ -873,6 +899,99 @@ static bool obj_face(obj_parser *ps, cursor *c) {
     }
     if (n < 3) return fail(&ps->rep, "face has %zu vertices, expected at least 3", n);
     return triangulate(ps, n);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Fast paths: the plain lines that make up nearly all of a large file (`v`, `vn`, `vt` with numbers, `f`
+// with corners v, v/vt, v//vn or v/vt/vn) read in one pass over their bytes, without cutting the line into
+// tokens first. Whatever else a line holds (a comment, an unusual number, an index out of range, too many
+// numbers, any error) sends it, untouched, to the statements above, which read it again and say what is
+// wrong: a fast path only ever accepts what they accept, and stores it through the same functions.
+
+typedef enum fast_result {
+    FAST_NO,  // not a line for a fast path: nothing was done, read it as a statement
+    FAST_OK,  // read and stored
+    FAST_FAIL // stored part of it and failed (out of memory, too many triangles): the message is set
+} fast_result;
+
+// Up to `max` numbers to the end of the line; *stop gets the end of the line (its '\n', or `end`).
+static inline bool fast_numbers(const char *p, const char *end, float *v, int max, int *count, const char **stop) {
+    int k = 0;
+    for (;;) {
+        while (p < end && is_space(*p)) p++;
+        if (p == end || *p == '\n') break;
+        if (k == max || !(p = decimal_scan_float(p, end, &v[k]))) return false;
+        k++;
+        if (p < end && !is_space(*p) && *p != '\n') return false; // "1.5x", "1.#INF", "2#comment"
+    }
+    *count = k;
+    *stop = p;
+    return true;
+}
+
+// A face index (1-based, or negative: relative) into `count` elements -> 0-based; NULL for anything else,
+// including indices out of range and more than 10 digits.
+static inline const char *fast_index(const char *p, const char *end, size_t count, int32_t *out) {
+    bool neg = p < end && *p == '-';
+    p += neg;
+    const char *first = p;
+    uint64_t v = 0;
+    while (p < end && (unsigned char)(*p - '0') < 10 && p - first < 10) v = v * 10 + (uint64_t)(*p++ - '0');
+    if (p == first || (p < end && (unsigned char)(*p - '0') < 10) || v == 0 || v > count) return NULL;
+    *out = (int32_t)(neg ? count - v : v - 1);
+    return p;
+}
+
+// The corners of a face into ps->corners; *stop gets the end of the line.
+static bool fast_corners(obj_parser *ps, const char *p, const char *end, size_t *count, const char **stop) {
+    const mesh *m = &ps->model->mesh;
+    size_t n = 0;
+    for (;;) {
+        while (p < end && is_space(*p)) p++;
+        if (p == end || *p == '\n') break;
+        if (n == OBJ_MAX_FACE_CORNERS ||
+            (n == ps->corner_cap && !array_reserve((void **)&ps->corners, &ps->corner_cap, n + 1, sizeof *ps->corners)))
+            return false;
+        corner *k = &ps->corners[n++];
+        k->t = k->n = -1;
+        if (!(p = fast_index(p, end, m->position_count, &k->v))) return false;
+        if (p < end && *p == '/') {
+            p++;
+            if ((p == end || *p != '/') && !(p = fast_index(p, end, m->uv_count, &k->t))) return false;
+            if (p < end && *p == '/' && !(p = fast_index(p + 1, end, m->normal_count, &k->n))) return false;
+        }
+        if (p < end && !is_space(*p) && *p != '\n') return false; // "1/2/3/4", "1x", "1#comment"
+    }
+    *count = n;
+    *stop = p;
+    return n >= 3;
+}
+
+// The line at s by a fast path, if it is one of theirs; *next gets the start of the next line.
+static fast_result fast_line(obj_parser *ps, const char *s, const char *end, const char **next) {
+    if (end - s < 3) return FAST_NO;
+    enum { VERTEX, NORMAL, TEXCOORD, FACE } kind;
+    if (s[0] == 'v' && is_space(s[1])) kind = VERTEX;
+    else if (s[0] == 'f' && is_space(s[1])) kind = FACE;
+    else if (s[0] == 'v' && s[1] == 'n' && is_space(s[2])) kind = NORMAL;
+    else if (s[0] == 'v' && s[1] == 't' && is_space(s[2])) kind = TEXCOORD;
+    else return FAST_NO;
+    const char *stop;
+    float v[7];
+    int count = 0;
+    size_t corners = 0;
+    bool ok = kind == FACE     ? fast_corners(ps, s + 2, end, &corners, &stop)
+              : kind == VERTEX ? fast_numbers(s + 2, end, v, 7, &count, &stop) && count >= 3
+              : kind == NORMAL ? fast_numbers(s + 3, end, v, 3, &count, &stop) && count == 3
+                               : fast_numbers(s + 3, end, v, 3, &count, &stop) && count >= 1;
+    // A line longer than the limit is an error however well formed: the statement reader says so.
+    if (!ok || (size_t)(stop - s) > OBJ_MAX_LINE_BYTES) return FAST_NO;
+    *next = stop < end ? stop + 1 : end;
+    ok = kind == FACE     ? triangulate(ps, corners)
+         : kind == VERTEX ? add_position(ps, v)
+         : kind == NORMAL ? add_normal(ps, v)
+                          : add_texcoord(ps, v, count);
+    return ok ? FAST_OK : FAST_FAIL;
 }
 
 static bool obj_usemtl(obj_parser *ps, cursor *c) {
@@ -1011,6 +1130,18 @@ static bool obj_statement(obj_parser *ps, cursor *c) {
 
 static bool obj_line(void *state, cursor *c) { return obj_statement(state, c); }
 
+// Every line of an OBJ text: by a fast path when it takes the line, else as a statement.
+static bool obj_lines(obj_parser *ps, const char *text, size_t length) {
+    const char *s = text, *end = text + length;
+    ps->rep.line = 0;
+    while (s < end) {
+        ps->rep.line++;
+        fast_result r = fast_line(ps, s, end, &s);
+        if (r == FAST_FAIL || (r == FAST_NO && !read_line(s, end, &ps->rep, obj_line, ps, &s))) return false;
+    }
+    return true;
+}
+
 void obj_model_free(obj_model *m) {
     mesh_free(&m->mesh);
     obj_materials_free(m->materials, m->material_count);
@@ -1055,14 +1186,13 @@ glint_status obj_parse(const char *name, const char *text, size_t length, const 
     ps.material = -1;
     ps.dir = name;
     ps.dir_len = filepath_dir_length(name);
-    bool ok = for_each_line(text, length, &ps.rep, obj_line, &ps);
+    bool ok = obj_lines(&ps, text, length);
     if (ok) ok = resolve_materials(&ps);
     if (ok) {
         if (out->zero_area_faces > 1)
             warn_at(&ps.rep, 0, "%zu zero-area faces skipped in total (the first on line %ld)", out->zero_area_faces,
                     ps.first_zero_line);
         if (out->mesh.triangle_count == 0) warn_at(&ps.rep, 0, "no faces; the mesh is empty");
-        mesh_compute_bounds(&out->mesh);
     }
     free(ps.corners);
     free(ps.px);
