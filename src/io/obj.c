@@ -22,6 +22,8 @@
 #endif
 
 enum { MAX_ELEMENTS = INT32_MAX, QUOTE_MAX = 40, MAX_IGNORED_KEYWORDS = 16 };
+/// Bytes of an OBJ file read at a time: small enough to stay in the cache while it is parsed.
+enum { OBJ_READ_BLOCK = 256 << 10 };
 
 // ---------------------------------------------------------------------------------------------------------
 // Messages
@@ -228,9 +230,9 @@ static char *join_path(const char *dir, size_t dir_len, const char *name, size_t
     return p;
 }
 
-// The whole of a regular file of at most `max` bytes, NUL-terminated; NULL on failure, with *errnum a
-// filepath_problem value (ENOMEM when memory ran out, EFBIG when the file is larger than max).
-static char *read_file(const char *path, size_t max, size_t *len, int *errnum) {
+// A regular file of at most `max` bytes opened for reading; NULL on failure, with *errnum a filepath_problem
+// value (EFBIG when the file is larger than max). *size gets its size.
+static FILE *open_file(const char *path, size_t max, size_t *size, int *errnum) {
     struct stat st;
     *errnum = filepath_problem(path, &st);
     if (*errnum) return NULL;
@@ -239,12 +241,19 @@ static char *read_file(const char *path, size_t max, size_t *len, int *errnum) {
         return NULL;
     }
     FILE *f = fopen(path, "rb");
-    if (!f) {
-        *errnum = errno ? errno : EIO;
-        return NULL;
-    }
+    if (!f) *errnum = errno ? errno : EIO;
+    *size = (size_t)st.st_size;
+    return f;
+}
+
+// The whole of a regular file of at most `max` bytes, NUL-terminated; NULL on failure, with *errnum a
+// filepath_problem value (ENOMEM when memory ran out, EFBIG when the file is larger than max).
+static char *read_file(const char *path, size_t max, size_t *len, int *errnum) {
+    size_t size;
+    FILE *f = open_file(path, max, &size, errnum);
+    if (!f) return NULL;
     // The size is known: one allocation holds the file; should it grow meanwhile, it is read on up to max + 1 bytes.
-    char *buf = file_read_stream(f, (size_t)st.st_size, max, len, errnum);
+    char *buf = file_read_stream(f, size, max, len, errnum);
     fclose(f);
     return buf;
 }
@@ -505,15 +514,18 @@ static bool mtl_statement(mtl_parser *ps, cursor *c) {
     return true; // accepted and ignored
 }
 
+static bool line_too_long(reporter *rep, size_t length) {
+    return fail(rep, "line is %zu bytes long, expected at most %zu (%zu MiB)", length, (size_t)OBJ_MAX_LINE_BYTES,
+                (size_t)OBJ_MAX_LINE_BYTES >> 20);
+}
+
 // Reads the line that starts at s with fn(state, cursor) after checking its length; *next gets the start of
 // the next line.
 static bool read_line(const char *s, const char *end, reporter *rep, bool (*fn)(void *, cursor *), void *state,
                       const char **next) {
     const char *nl = memchr(s, '\n', (size_t)(end - s));
     cursor c = {s, nl ? nl : end};
-    if ((size_t)(c.end - s) > OBJ_MAX_LINE_BYTES)
-        return fail(rep, "line is %zu bytes long, expected at most %zu (%zu MiB)", (size_t)(c.end - s),
-                    (size_t)OBJ_MAX_LINE_BYTES, (size_t)OBJ_MAX_LINE_BYTES >> 20);
+    if ((size_t)(c.end - s) > OBJ_MAX_LINE_BYTES) return line_too_long(rep, (size_t)(c.end - s));
     *next = nl ? nl + 1 : end;
     return fn(state, &c);
 }
@@ -1130,10 +1142,10 @@ static bool obj_statement(obj_parser *ps, cursor *c) {
 
 static bool obj_line(void *state, cursor *c) { return obj_statement(state, c); }
 
-// Every line of an OBJ text: by a fast path when it takes the line, else as a statement.
+// Every line of (a part of) an OBJ text, counting on from ps->rep.line: by a fast path when it takes the
+// line, else as a statement.
 static bool obj_lines(obj_parser *ps, const char *text, size_t length) {
     const char *s = text, *end = text + length;
-    ps->rep.line = 0;
     while (s < end) {
         ps->rep.line++;
         fast_result r = fast_line(ps, s, end, &s);
@@ -1171,66 +1183,137 @@ static bool resolve_materials(obj_parser *ps) {
     return true;
 }
 
-glint_status obj_parse(const char *name, const char *text, size_t length, const obj_options *opt, obj_model *out,
-                       glint_error *err) {
+// Readies the parser for the first line of file `name`.
+static void obj_begin(obj_parser *ps, const char *name, const obj_options *opt, obj_model *out, glint_error *err) {
     memset(out, 0, sizeof *out);
     out->mesh.bounds = bounds3_empty();
-    obj_parser ps;
-    memset(&ps, 0, sizeof ps);
-    ps.rep.name = name;
-    ps.rep.opt = opt;
-    ps.rep.err = err;
-    ps.rep.warnings = &out->warning_count;
-    ps.model = out;
-    ps.opt = opt;
-    ps.material = -1;
-    ps.dir = name;
-    ps.dir_len = filepath_dir_length(name);
-    bool ok = obj_lines(&ps, text, length);
-    if (ok) ok = resolve_materials(&ps);
+    memset(ps, 0, sizeof *ps);
+    ps->rep.name = name;
+    ps->rep.opt = opt;
+    ps->rep.err = err;
+    ps->rep.warnings = &out->warning_count;
+    ps->model = out;
+    ps->opt = opt;
+    ps->material = -1;
+    ps->dir = name;
+    ps->dir_len = filepath_dir_length(name);
+}
+
+// After the last line (ok) or a failure (!ok): gives the materials their definitions, says what is left to
+// say, frees the parser's scratch, and on failure the model too.
+static glint_status obj_end(obj_parser *ps, bool ok) {
+    obj_model *out = ps->model;
+    if (ok) ok = resolve_materials(ps);
     if (ok) {
         if (out->zero_area_faces > 1)
-            warn_at(&ps.rep, 0, "%zu zero-area faces skipped in total (the first on line %ld)", out->zero_area_faces,
-                    ps.first_zero_line);
-        if (out->mesh.triangle_count == 0) warn_at(&ps.rep, 0, "no faces; the mesh is empty");
+            warn_at(&ps->rep, 0, "%zu zero-area faces skipped in total (the first on line %ld)", out->zero_area_faces,
+                    ps->first_zero_line);
+        if (out->mesh.triangle_count == 0) warn_at(&ps->rep, 0, "no faces; the mesh is empty");
     }
-    free(ps.corners);
-    free(ps.px);
-    free(ps.py);
-    free(ps.next);
-    free(ps.prev);
-    strmap_free(&ps.slots);
-    strmap_free(&ps.def_names);
-    obj_materials_free(ps.defs, ps.def_count);
+    free(ps->corners);
+    free(ps->px);
+    free(ps->py);
+    free(ps->next);
+    free(ps->prev);
+    strmap_free(&ps->slots);
+    strmap_free(&ps->def_names);
+    obj_materials_free(ps->defs, ps->def_count);
     // The model keeps the list of libraries read: they are inputs of the scene as much as the OBJ file.
-    out->libraries = ps.libs;
-    out->library_count = ps.lib_count;
+    out->libraries = ps->libs;
+    out->library_count = ps->lib_count;
     if (!ok) {
         obj_model_free(out);
-        return ps.rep.nomem ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
+        return ps->rep.nomem ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
     }
     return GLINT_OK;
+}
+
+glint_status obj_parse(const char *name, const char *text, size_t length, const obj_options *opt, obj_model *out,
+                       glint_error *err) {
+    obj_parser ps;
+    obj_begin(&ps, name, opt, out, err);
+    return obj_end(&ps, obj_lines(&ps, text, length));
+}
+
+// Reads the open OBJ file f block by block and parses the complete lines of each block as it arrives, exactly
+// as obj_parse parses them: a large file is never held whole, which spares copying it into fresh memory (a
+// page fault every 4 KiB) and reading it back from far away. False on a parse failure (message set, *errnum
+// 0) or a read failure (*errnum: the read's errno, EFBIG past OBJ_MAX_FILE_BYTES, ENOMEM).
+static bool obj_read_stream(obj_parser *ps, FILE *f, int *errnum) {
+    *errnum = 0;
+    size_t cap = OBJ_READ_BLOCK, have = 0, total = 0; // have: bytes of buf not parsed yet, a part of a line
+    char *buf = malloc(cap);
+    bool ok = buf != NULL, eof = false;
+    if (!ok) *errnum = ENOMEM;
+    while (ok && !eof) {
+        if (have == cap) {
+            // The buffer is one unfinished line: grow it, up to one byte more than a line may hold.
+            if (cap > OBJ_MAX_LINE_BYTES) break;
+            size_t bigger = cap > OBJ_MAX_LINE_BYTES / 2 ? OBJ_MAX_LINE_BYTES + 1 : cap * 2;
+            char *grown = realloc(buf, bigger);
+            if (!grown) {
+                *errnum = ENOMEM;
+                ok = false;
+                break;
+            }
+            buf = grown;
+            cap = bigger;
+        }
+        size_t got = fread(buf + have, 1, cap - have, f);
+        eof = got < cap - have;
+        if (eof && ferror(f)) *errnum = errno ? errno : EIO;
+        else if ((total += got) > OBJ_MAX_FILE_BYTES) *errnum = EFBIG;
+        if (*errnum) {
+            ok = false;
+            break;
+        }
+        have += got;
+        // Parse up to the last line end; at the end of the file, the last line too.
+        size_t upto = have;
+        while (!eof && upto > 0 && buf[upto - 1] != '\n') upto--;
+        ok = obj_lines(ps, buf, upto);
+        memmove(buf, buf + upto, have - upto);
+        have -= upto;
+    }
+    if (ok && !eof) {
+        // A line longer than the limit: an error that gives its length, so read on to its end.
+        size_t length = have;
+        char *nl = NULL;
+        for (size_t got = 1; !nl && got > 0 && length <= OBJ_MAX_FILE_BYTES;) {
+            got = fread(buf, 1, cap, f);
+            nl = memchr(buf, '\n', got);
+            length += nl ? (size_t)(nl - buf) : got;
+        }
+        ps->rep.line++;
+        ok = line_too_long(&ps->rep, length);
+    }
+    free(buf);
+    return ok;
+}
+
+// The message of a file that cannot be read.
+static glint_status obj_file_failure(const char *path, int e, glint_error *err) {
+    glint_status st = e == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
+    if (!err) return st;
+    if (e == ENOMEM) snprintf(err->message, sizeof err->message, "%s: out of memory reading the file", path);
+    else if (e == EFBIG)
+        snprintf(err->message, sizeof err->message, "%s: the OBJ file is larger than %zu bytes (%zu GiB)", path,
+                 (size_t)OBJ_MAX_FILE_BYTES, (size_t)OBJ_MAX_FILE_BYTES >> 30);
+    else snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, filepath_problem_text(e));
+    return st;
 }
 
 glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, glint_error *err) {
     memset(out, 0, sizeof *out);
     out->mesh.bounds = bounds3_empty();
-    size_t len;
+    size_t size;
     int e;
-    char *text = read_file(path, OBJ_MAX_FILE_BYTES, &len, &e);
-    if (!text) {
-        if (!err) return e == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
-        if (e == ENOMEM) {
-            snprintf(err->message, sizeof err->message, "%s: out of memory reading the file", path);
-            return GLINT_ERR_RENDER;
-        }
-        if (e == EFBIG)
-            snprintf(err->message, sizeof err->message, "%s: the OBJ file is larger than %zu bytes (%zu GiB)", path,
-                     (size_t)OBJ_MAX_FILE_BYTES, (size_t)OBJ_MAX_FILE_BYTES >> 30);
-        else snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, filepath_problem_text(e));
-        return GLINT_ERR_INPUT;
-    }
-    glint_status st = obj_parse(path, text, len, opt, out, err);
-    free(text);
-    return st;
+    FILE *f = open_file(path, OBJ_MAX_FILE_BYTES, &size, &e);
+    if (!f) return obj_file_failure(path, e, err);
+    obj_parser ps;
+    obj_begin(&ps, path, opt, out, err);
+    bool ok = obj_read_stream(&ps, f, &e);
+    fclose(f);
+    glint_status st = obj_end(&ps, ok);
+    return ok || !e ? st : obj_file_failure(path, e, err);
 }
