@@ -1,7 +1,8 @@
 // test_decimal.c — decimal numbers read as float: the fast path (decimal_scan_float) and the whole reader
 // (decimal_parse_float) give strtof's float bit for bit on edge cases and on a million random numbers of
 // every shape (exporters' fixed point, round-trip floats, long mantissas, halfway cases, subnormals, the
-// edge of the float range); the fast path takes the common shapes and leaves the rest; errors are classified.
+// edge of the float range); the fast path takes the common shapes and leaves the rest; errors are classified;
+// runs of digits read eight bytes at a time stop where the digits do.
 #include "check.h"
 #include "core/rng.h"
 #include "io/decimal.h"
@@ -208,6 +209,31 @@ static void test_refusals(void) {
         CHECK(decimal_scan_float(slow[i], slow[i] + strlen(slow[i]), &f) == NULL);
 }
 
+// Runs of digits, read eight bytes at a time where eight can be read: every length from 0 to 30, ending at
+// `end` or on each kind of byte that is not a digit (those just below and above '0'..'9' in ASCII, and bytes
+// whose high nibble is 3 or that carry when 6 is added), at every distance from `end`.
+static void test_digit_runs(rng *r) {
+    static const unsigned char stops[] = {' ', '\n', '.', '/', '\0', 0x2a, 0x2f, 0x3a, 0x3f, 0x40, 0x20, 0xfa, 0xff, 0xb0, 0x39 + 0x80, 'e'};
+    char buf[64];
+    int bad = 0;
+    for (int len = 0; len <= 30; len++)
+        for (size_t s = 0; s <= sizeof stops; s++)     // s == sizeof stops: the run ends at `end`
+            for (int tail = 0; tail < 12; tail++) {    // bytes after the stop that may be read
+                int k = 0;
+                for (int i = 0; i < len; i++) buf[k++] = (char)('0' + rng_u32(r) % 10);
+                if (s < sizeof stops) buf[k++] = (char)stops[s];
+                for (int i = 0; i < tail; i++) buf[k++] = (char)(rng_u32(r) % 256);
+                const char *end = s < sizeof stops ? buf + k : buf + len;
+                uint64_t want = 7, got = 7; // a value already there is carried on
+                for (int i = 0; i < len; i++) want = want * 10 + (uint64_t)(buf[i] - '0');
+                const char *stop = decimal_scan_digits(buf, end, &got);
+                if (stop != buf + len || got != want) {
+                    if (bad++ < 5) fprintf(stderr, "  run of %d digits, stop byte %zu, %d bytes after: read %td\n", len, s, tail, stop - buf);
+                }
+            }
+    CHECK(bad == 0);
+}
+
 int main(void) {
     rng r = rng_for_sample(11, 4, 0);
     test_edge_cases();
@@ -215,6 +241,7 @@ int main(void) {
     test_random(&r);
     test_round_trips();
     test_refusals();
+    test_digit_runs(&r);
     printf("fast path took %ld of %ld numbers\n", fast_taken, fast_offered);
     return check_summary();
 }

@@ -1,5 +1,6 @@
 // mesh.c — bounds, shading data, smooth vertex normals and baked transforms of triangle meshes.
 #include "geometry/mesh.h"
+#include "core/prefetch.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -59,12 +60,6 @@ mesh_shading mesh_shade(const mesh *m, size_t tri, const tri_hit *h) {
 // its arrays, and waiting for each one in turn would cost more than the arithmetic.
 enum { NORMALS_PREFETCH_AHEAD = 8 };
 
-#if defined(__GNUC__)
-#define PREFETCH(p, write) __builtin_prefetch((p), (write))
-#else
-#define PREFETCH(p, write) ((void)(p))
-#endif
-
 bool mesh_compute_normals(mesh *m) {
     size_t np = m->position_count, nt = m->triangle_count;
     if (np == 0) return true;
@@ -81,8 +76,8 @@ bool mesh_compute_normals(mesh *m) {
         if (i + NORMALS_PREFETCH_AHEAD < nt) {
             const int32_t *ahead = tris[i + NORMALS_PREFETCH_AHEAD].v;
             for (int k = 0; k < 3; k++) {
-                PREFETCH(&pos[ahead[k]], 0);
-                PREFETCH(&acc[ahead[k]], 1);
+                prefetch_read(&pos[ahead[k]]);
+                prefetch_write(&acc[ahead[k]]);
             }
         }
         mesh_triangle *t = &tris[i];

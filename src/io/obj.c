@@ -1,8 +1,10 @@
-// obj.c — the OBJ/MTL reader: one pass over the text, no allocation per line, faces triangulated as read.
+// obj.c — the OBJ/MTL reader: one pass over the text (an OBJ file read in blocks), no allocation per line, plain
+// v/vn/vt/f lines read by fast paths, faces triangulated as read.
 #include "io/obj.h"
 #include "core/array.h"
 #include "core/file_read.h"
 #include "core/filepath.h"
+#include "core/prefetch.h"
 #include "core/strmap.h"
 #include "io/decimal.h"
 
@@ -593,6 +595,15 @@ typedef struct corner {
     int32_t v, t, n;
 } corner;
 
+/// Triangles the fast path has read and not yet added, so that their corners' positions, far apart in a
+/// large mesh, reach the cache while the next lines are read.
+enum { QUEUED_TRIANGLES = 8 };
+
+typedef struct queued_triangle {
+    corner k[3];
+    long line;
+} queued_triangle;
+
 typedef struct obj_parser {
     reporter rep;
     obj_model *model;
@@ -614,6 +625,8 @@ typedef struct obj_parser {
     size_t dir_len;
     long first_zero_line;
     bool warned_fan, warned_bad_polygon;
+    queued_triangle queue[QUEUED_TRIANGLES]; // a ring, oldest at queue_head
+    int queue_head, queue_count;
 } obj_parser;
 
 static bool too_many(reporter *r, const char *what) {
@@ -839,18 +852,22 @@ static bool fan(obj_parser *ps, size_t n) {
     return true;
 }
 
+// A face of three corners: skipped, with a warning, when it has no area.
+static bool triangle_face(obj_parser *ps, const corner *k) {
+    const vec3 *pos = ps->model->mesh.positions;
+    vec3 p = pos[k[0].v], q = pos[k[1].v], r = pos[k[2].v];
+    if (zero_area(p, q, r)) {
+        zero_area_face(ps);
+        return true;
+    }
+    return append_triangle(ps, &k[0], &k[1], &k[2], p, q, r);
+}
+
 // Splits the face's n corners into triangles: fan when convex, ear clipping when concave.
 static bool triangulate(obj_parser *ps, size_t n) {
     const mesh *m = &ps->model->mesh;
     const corner *k = ps->corners;
-    if (n == 3) {
-        vec3 p = m->positions[k[0].v], q = m->positions[k[1].v], r = m->positions[k[2].v];
-        if (zero_area(p, q, r)) {
-            zero_area_face(ps);
-            return true;
-        }
-        return append_triangle(ps, &k[0], &k[1], &k[2], p, q, r);
-    }
+    if (n == 3) return triangle_face(ps, k);
     // Newell's normal: robust for non-planar faces, zero when the face has no area.
     double nx = 0, ny = 0, nz = 0;
     for (size_t i = 0; i < n; i++) {
@@ -948,8 +965,8 @@ static inline const char *fast_index(const char *p, const char *end, size_t coun
     p += neg;
     const char *first = p;
     uint64_t v = 0;
-    while (p < end && (unsigned char)(*p - '0') < 10 && p - first < 10) v = v * 10 + (uint64_t)(*p++ - '0');
-    if (p == first || (p < end && (unsigned char)(*p - '0') < 10) || v == 0 || v > count) return NULL;
+    p = decimal_scan_digits(p, end, &v);
+    if (p == first || p - first > 10 || v == 0 || v > count) return NULL;
     *out = (int32_t)(neg ? count - v : v - 1);
     return p;
 }
@@ -979,6 +996,38 @@ static bool fast_corners(obj_parser *ps, const char *p, const char *end, size_t 
     return n >= 3;
 }
 
+// Adds the oldest queued triangle, as the line that read it.
+static bool add_oldest_queued(obj_parser *ps) {
+    const queued_triangle *t = &ps->queue[ps->queue_head];
+    ps->queue_head = (ps->queue_head + 1) % QUEUED_TRIANGLES;
+    ps->queue_count--;
+    long line = ps->rep.line;
+    ps->rep.line = t->line;
+    bool ok = triangle_face(ps, t->k);
+    ps->rep.line = line;
+    return ok;
+}
+
+// Adds every queued triangle, in the order of their lines: before any other line is read, so that triangles,
+// warnings and errors come in the order of the file.
+static bool add_queued(obj_parser *ps) {
+    while (ps->queue_count > 0)
+        if (!add_oldest_queued(ps)) return false;
+    return true;
+}
+
+// Queues a triangle read on the current line and starts fetching its corners; the oldest is added when
+// the queue is full.
+static bool queue_triangle(obj_parser *ps, const corner *k) {
+    if (ps->queue_count == QUEUED_TRIANGLES && !add_oldest_queued(ps)) return false;
+    queued_triangle *t = &ps->queue[(ps->queue_head + ps->queue_count++) % QUEUED_TRIANGLES];
+    memcpy(t->k, k, sizeof t->k);
+    t->line = ps->rep.line;
+    const vec3 *pos = ps->model->mesh.positions;
+    for (int i = 0; i < 3; i++) prefetch_read(&pos[k[i].v]);
+    return true;
+}
+
 // The line at s by a fast path, if it is one of theirs; *next gets the start of the next line.
 static fast_result fast_line(obj_parser *ps, const char *s, const char *end, const char **next) {
     if (end - s < 3) return FAST_NO;
@@ -999,6 +1048,8 @@ static fast_result fast_line(obj_parser *ps, const char *s, const char *end, con
     // A line longer than the limit is an error however well formed: the statement reader says so.
     if (!ok || (size_t)(stop - s) > OBJ_MAX_LINE_BYTES) return FAST_NO;
     *next = stop < end ? stop + 1 : end;
+    if (kind == FACE && corners == 3) return queue_triangle(ps, ps->corners) ? FAST_OK : FAST_FAIL;
+    if (!add_queued(ps)) return FAST_FAIL;
     ok = kind == FACE     ? triangulate(ps, corners)
          : kind == VERTEX ? add_position(ps, v)
          : kind == NORMAL ? add_normal(ps, v)
@@ -1149,9 +1200,10 @@ static bool obj_lines(obj_parser *ps, const char *text, size_t length) {
     while (s < end) {
         ps->rep.line++;
         fast_result r = fast_line(ps, s, end, &s);
-        if (r == FAST_FAIL || (r == FAST_NO && !read_line(s, end, &ps->rep, obj_line, ps, &s))) return false;
+        if (r == FAST_FAIL || (r == FAST_NO && (!add_queued(ps) || !read_line(s, end, &ps->rep, obj_line, ps, &s))))
+            return false;
     }
-    return true;
+    return add_queued(ps);
 }
 
 void obj_model_free(obj_model *m) {
