@@ -742,6 +742,21 @@ static bool zero_area(vec3 p, vec3 q, vec3 r) {
     return uy * vz - uz * vy == 0.0 && uz * vx - ux * vz == 0.0 && ux * vy - uy * vx == 0.0;
 }
 
+// f_min and f_max (core/vec.h) for operands that are not NaN, as every coordinate read is: without their NaN
+// rule the comparison compiles to one minss or maxss instead of a branch that random data mispredicts.
+static inline float min_not_nan(float a, float b) { return a < b ? a : b; }
+static inline float max_not_nan(float a, float b) { return a > b ? a : b; }
+
+// bounds3_union(box, tri_bounds(p, q, r)), operand for operand, for points without NaN.
+static inline bounds3 box_add_triangle(bounds3 box, vec3 p, vec3 q, vec3 r) {
+    vec3 lo = v3(min_not_nan(p.x, min_not_nan(q.x, r.x)), min_not_nan(p.y, min_not_nan(q.y, r.y)),
+                 min_not_nan(p.z, min_not_nan(q.z, r.z)));
+    vec3 hi = v3(max_not_nan(p.x, max_not_nan(q.x, r.x)), max_not_nan(p.y, max_not_nan(q.y, r.y)),
+                 max_not_nan(p.z, max_not_nan(q.z, r.z)));
+    return (bounds3){v3(min_not_nan(box.lo.x, lo.x), min_not_nan(box.lo.y, lo.y), min_not_nan(box.lo.z, lo.z)),
+                     v3(max_not_nan(box.hi.x, hi.x), max_not_nan(box.hi.y, hi.y), max_not_nan(box.hi.z, hi.z))};
+}
+
 // Appends triangle (a, b, c) at positions (p, q, r), and grows the mesh's box by it while its corners are at
 // hand (the box mesh_compute_bounds would compute, union for union in the same order).
 static bool append_triangle(obj_parser *ps, const corner *a, const corner *b, const corner *c, vec3 p, vec3 q, vec3 r) {
@@ -752,7 +767,7 @@ static bool append_triangle(obj_parser *ps, const corner *a, const corner *b, co
         return out_of_memory(&ps->rep);
     mesh_triangle *t = &m->triangles[m->triangle_count++];
     *t = (mesh_triangle){{a->v, b->v, c->v}, {a->n, b->n, c->n}, {a->t, b->t, c->t}, ps->material};
-    m->bounds = bounds3_union(m->bounds, tri_bounds(p, q, r));
+    m->bounds = box_add_triangle(m->bounds, p, q, r);
     return true;
 }
 
