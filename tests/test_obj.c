@@ -766,6 +766,322 @@ static void test_numbers_match_strtof(void) {
     free(tokens);
 }
 
+// ---- reading a file in blocks; the mesh against a plain strtof reader ---------------------------------
+
+// A growable text for the tests below.
+typedef struct text_buf {
+    char *s;
+    size_t n, cap;
+} text_buf;
+
+static void put_n(text_buf *t, const char *s, size_t k) {
+    if (t->n + k + 1 > t->cap) {
+        size_t cap = (t->n + k + 1) * 2;
+        char *grown = realloc(t->s, cap);
+        if (!grown) return;
+        t->s = grown;
+        t->cap = cap;
+    }
+    memcpy(t->s + t->n, s, k);
+    t->n += k;
+    t->s[t->n] = '\0';
+}
+
+static void put(text_buf *t, const char *s) { put_n(t, s, strlen(s)); }
+
+// Whether two loads hold the same bytes: every array, the box, the material slots, the counts.
+static bool same_model(const obj_model *a, const obj_model *b) {
+    const mesh *x = &a->mesh, *y = &b->mesh;
+    bool same = x->position_count == y->position_count && x->normal_count == y->normal_count &&
+                x->uv_count == y->uv_count && x->triangle_count == y->triangle_count &&
+                a->material_count == b->material_count && a->warning_count == b->warning_count &&
+                a->zero_area_faces == b->zero_area_faces && memcmp(&x->bounds, &y->bounds, sizeof x->bounds) == 0;
+    same = same && (!x->position_count || !memcmp(x->positions, y->positions, x->position_count * sizeof *x->positions));
+    same = same && (!x->normal_count || !memcmp(x->normals, y->normals, x->normal_count * sizeof *x->normals));
+    same = same && (!x->uv_count || !memcmp(x->uvs, y->uvs, x->uv_count * sizeof *x->uvs));
+    same = same && (!x->triangle_count || !memcmp(x->triangles, y->triangles, x->triangle_count * sizeof *x->triangles));
+    for (size_t i = 0; same && i < a->material_count; i++)
+        same = strcmp(a->materials[i].name, b->materials[i].name) == 0 && a->materials[i].line == b->materials[i].line;
+    return same;
+}
+
+// A file of line 1 "v 0 0 0", line 2 a comment of `length` bytes, then `tail`.
+static bool write_long_line(const char *path, size_t length, const char *tail) {
+    size_t n = 8 + length + strlen(tail);
+    char *text = malloc(n);
+    if (!text) return false;
+    memcpy(text, "v 0 0 0\n", 8);
+    text[8] = '#';
+    memset(text + 9, 'x', length - 1);
+    memcpy(text + 8 + length, tail, strlen(tail));
+    bool ok = tmp_write(path, text, n);
+    free(text);
+    return ok;
+}
+
+// obj_load reads a file in blocks of a few hundred KiB and parses each block's complete lines as it comes:
+// whatever falls on a block's edge (a line, a CRLF, a line longer than a block, the last line without an
+// end), the model, the warnings and the errors are those of obj_parse over the whole text.
+static void test_blocks_match_whole_text(void) {
+    text_buf t = {0};
+    rng r = rng_for_sample(77, 1, 0);
+    char line[256];
+    int nv = 0, nt = 0, nn = 0;
+    for (int i = 0; i < 60000; i++) {
+        uint32_t u = rng_u32(&r) % 100;
+        const char *eol = u % 7 == 0 ? "\r\n" : "\n";
+        if (u < 40 || nv < 3) {
+            snprintf(line, sizeof line, "v %.6f %.9g %g%s", (double)rng_range(&r, -9, 9), (double)rng_range(&r, -1, 1),
+                     (double)rng_float(&r), eol);
+            nv++;
+        } else if (u < 45) {
+            snprintf(line, sizeof line, "vt %.4f %.4f%s", (double)rng_float(&r), (double)rng_float(&r), eol);
+            nt++;
+        } else if (u < 50) {
+            snprintf(line, sizeof line, "vn %.3f 0.5 %.3f%s", (double)rng_range(&r, -1, 1), (double)rng_range(&r, -1, 1), eol);
+            nn++;
+        } else if (u < 90) {
+            int a = 1 + (int)(rng_u32(&r) % (uint32_t)nv), b = 1 + (int)(rng_u32(&r) % (uint32_t)nv);
+            int c = -1 - (int)(rng_u32(&r) % 3);
+            if (nt && nn) snprintf(line, sizeof line, "f %d/%d/%d %d//%d %d/-1%s", a, 1 + a % nt, 1 + a % nn, b, 1 + b % nn, c, eol);
+            else snprintf(line, sizeof line, "f %d %d %d%s", a, b, c, eol);
+        } else if (u < 93) {
+            snprintf(line, sizeof line, "usemtl m%u%s", rng_u32(&r) % 4, eol);
+        } else if (u < 96) {
+            snprintf(line, sizeof line, "# comment %u%s", rng_u32(&r), eol);
+        } else if (u < 98) {
+            snprintf(line, sizeof line, "%s", eol);
+        } else {
+            snprintf(line, sizeof line, "f %d %d %d 1 # a quad%s", nv, nv - 1, nv - 2, eol);
+        }
+        put(&t, line);
+        if (i == 30000) {
+            // A face of 200000 corners (1.4 MB: several blocks) around a circle.
+            for (int k = 0; k < 200000; k++) {
+                double a = 6.283185307179586 * k / 200000;
+                snprintf(line, sizeof line, "v %.7f %.7f 0\n", cos(a), sin(a));
+                put(&t, line);
+            }
+            nv += 200000;
+            put(&t, "f");
+            for (int k = 0; k < 200000; k++) {
+                snprintf(line, sizeof line, " %d", k - 200000);
+                put(&t, line);
+            }
+            put(&t, "\n");
+        }
+    }
+    put(&t, "f 1 2 3"); // no line end
+    const char *path = tmp_path("blocks.obj");
+    CHECK(t.s && tmp_write(path, t.s, t.n));
+    if (!t.s) return;
+    obj_model whole, blocks;
+    warnings w1, w2;
+    glint_error err;
+    memset(&w1, 0, sizeof w1);
+    obj_options opt = {collect, &w1, false};
+    CHECK(obj_parse(path, t.s, t.n, &opt, &whole, &err) == GLINT_OK);
+    CHECK(load(path, &blocks, &w2, &err) == GLINT_OK);
+    CHECK(whole.mesh.triangle_count > 200000 && whole.mesh.uv_count > 0 && whole.material_count == 4);
+    CHECK(same_model(&whole, &blocks));
+    CHECK(w1.count == w2.count && w1.count > 0);
+    for (int i = 0; i < w1.count && i < 16; i++) CHECK(same_string(w2.msg[i], w1.msg[i]));
+    obj_model_free(&whole);
+    obj_model_free(&blocks);
+
+    // An error far into the file names the same line, whichever the block.
+    static const char *const bad[] = {"f 1 2 999999999\n", "v 1 2 nan\n", "vn 1 2\n", "f 1 2\n", "vt 1.#INF 0\n",
+                                      "f 1/1/1/1 2 3\n", "v 1 2 3 4 5 6 7 8\n"};
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        size_t cut = t.n / 2 + i * 100000;
+        while (t.s[cut - 1] != '\n') cut++;
+        text_buf b = {0};
+        put_n(&b, t.s, cut);
+        put(&b, bad[i]);
+        put(&b, t.s + cut);
+        CHECK(b.s && tmp_write(path, b.s, b.n));
+        glint_error e1, e2;
+        CHECK(b.s && obj_parse(path, b.s, b.n, NULL, &whole, &e1) == GLINT_ERR_INPUT);
+        CHECK(load(path, &blocks, &w2, &e2) == GLINT_ERR_INPUT);
+        CHECK(same_string(e2.message, e1.message));
+        free(b.s);
+    }
+    free(t.s);
+
+    // Lines at the limit: one of OBJ_MAX_LINE_BYTES bytes is read; one byte more is an error that gives the
+    // line's whole length, whether the line ends, ends the file, or goes on for long after the limit.
+    CHECK(write_long_line(path, OBJ_MAX_LINE_BYTES, "\nv 1 1 1\n"));
+    CHECK(load(path, &blocks, &w2, &err) == GLINT_OK && blocks.mesh.position_count == 2);
+    obj_model_free(&blocks);
+    CHECK(write_long_line(path, OBJ_MAX_LINE_BYTES, ""));
+    CHECK(load(path, &blocks, &w2, &err) == GLINT_OK && blocks.mesh.position_count == 1);
+    obj_model_free(&blocks);
+    static const struct { size_t length; const char *tail; const char *message; } too_long[] = {
+        {OBJ_MAX_LINE_BYTES + 1, "\nv 1 1 1\n", "@/blocks.obj:2: line is 33554433 bytes long, expected at most 33554432 (32 MiB)"},
+        {OBJ_MAX_LINE_BYTES + 1, "", "@/blocks.obj:2: line is 33554433 bytes long, expected at most 33554432 (32 MiB)"},
+        {OBJ_MAX_LINE_BYTES + 3000000, "\r\n", "@/blocks.obj:2: line is 36554433 bytes long, expected at most 33554432 (32 MiB)"},
+    };
+    for (size_t i = 0; i < sizeof too_long / sizeof too_long[0]; i++) {
+        CHECK(write_long_line(path, too_long[i].length, too_long[i].tail));
+        CHECK(load(path, &blocks, &w2, &err) == GLINT_ERR_INPUT);
+        CHECK(same_string(err.message, expand(too_long[i].message)));
+    }
+    remove(path);
+}
+
+// The plain reading of an OBJ file of triangles: strtof for every number, strtol for every index, smooth
+// normals summed and normalised one loop at a time, the box over the triangles' corners. The fast reader
+// must give these arrays bit for bit.
+typedef struct plain_mesh {
+    vec3 *p, *n;
+    uv2 *t;
+    mesh_triangle *tri;
+    size_t np, nn, nt, ntri;
+    bounds3 box;
+} plain_mesh;
+
+static int32_t plain_index(const char *s, const char **end, size_t count) {
+    char *e;
+    long i = strtol(s, &e, 10);
+    *end = e;
+    return (int32_t)(i < 0 ? (long)count + i : i - 1);
+}
+
+static void plain_read(const char *text, plain_mesh *m, size_t cap) {
+    memset(m, 0, sizeof *m);
+    m->p = calloc(cap, sizeof *m->p);
+    m->n = calloc(2 * cap, sizeof *m->n);
+    m->t = calloc(cap, sizeof *m->t);
+    m->tri = calloc(cap, sizeof *m->tri);
+    m->box = bounds3_empty();
+    if (!m->p || !m->n || !m->t || !m->tri) return;
+    for (const char *s = text; *s;) {
+        char *end;
+        if (s[0] == 'v' && s[1] == ' ') {
+            float x = strtof(s + 2, &end), y = strtof(end, &end), z = strtof(end, &end);
+            m->p[m->np++] = v3(x, y, z);
+        } else if (s[0] == 'v' && s[1] == 'n') {
+            float x = strtof(s + 3, &end), y = strtof(end, &end), z = strtof(end, &end);
+            m->n[m->nn++] = v3(x, y, z);
+        } else if (s[0] == 'v' && s[1] == 't') {
+            float u = strtof(s + 3, &end), v = strtof(end, &end);
+            m->t[m->nt++] = (uv2){u, v};
+        } else if (s[0] == 'f') {
+            mesh_triangle tr = {{0, 0, 0}, {-1, -1, -1}, {-1, -1, -1}, -1};
+            const char *q = s + 1;
+            for (int k = 0; k < 3; k++) {
+                tr.v[k] = plain_index(q, &q, m->np);
+                if (q[0] == '/' && q[1] != '/') tr.t[k] = plain_index(q + 1, &q, m->nt);
+                if (q[0] == '/' && q[1] == '/') q++;
+                if (q[0] == '/') tr.n[k] = plain_index(q + 1, &q, m->nn);
+            }
+            vec3 a = m->p[tr.v[0]], b = m->p[tr.v[1]], c = m->p[tr.v[2]];
+            double u[3] = {(double)b.x - a.x, (double)b.y - a.y, (double)b.z - a.z};
+            double w[3] = {(double)c.x - a.x, (double)c.y - a.y, (double)c.z - a.z};
+            if (u[1] * w[2] - u[2] * w[1] != 0 || u[2] * w[0] - u[0] * w[2] != 0 || u[0] * w[1] - u[1] * w[0] != 0) {
+                m->tri[m->ntri++] = tr;
+                m->box = bounds3_union(m->box, tri_bounds(a, b, c));
+            }
+        }
+        s = strchr(s, '\n');
+        s = s ? s + 1 : "";
+    }
+    // Smooth normals as mesh_compute_normals defines them, one loop at a time.
+    vec3 *acc = m->n + m->nn;
+    for (size_t i = 0; i < m->np; i++) acc[i] = v3s(0.0f);
+    for (size_t i = 0; i < m->ntri; i++) {
+        const int32_t *v = m->tri[i].v;
+        vec3 fn = v3_cross(v3_sub(m->p[v[1]], m->p[v[0]]), v3_sub(m->p[v[2]], m->p[v[0]]));
+        if (v3_is_finite(fn))
+            for (int k = 0; k < 3; k++) acc[v[k]] = v3_add(acc[v[k]], fn);
+    }
+    for (size_t i = 0; i < m->np; i++) {
+        float len = v3_len(acc[i]);
+        vec3 u = len > 0.0f && isfinite(len) ? v3_scale(acc[i], 1.0f / len) : v3s(0.0f);
+        acc[i] = len > 0.0f && isfinite(len) && v3_is_finite(u) ? u : v3s(0.0f);
+    }
+    for (size_t i = 0; i < m->ntri; i++) {
+        mesh_triangle *tr = &m->tri[i];
+        if (tr->n[0] < 0 || tr->n[1] < 0 || tr->n[2] < 0)
+            for (int k = 0; k < 3; k++) tr->n[k] = (int32_t)m->nn + tr->v[k];
+    }
+    m->nn += m->np;
+}
+
+// A file of the shapes large meshes come in (exporters' %.6f, round-trip %.9g, exponents, integers, every
+// face form, relative indices, CRLF) loads, smooth normals included, to exactly what the plain reader reads.
+static void test_mesh_matches_plain_reader(void) {
+    enum { VERTICES = 40000, TRIANGLES = 80000 };
+    text_buf t = {0};
+    rng r = rng_for_sample(5, 5, 0);
+    char line[256];
+    for (int i = 0; i < VERTICES; i++) {
+        float x = rng_range(&r, -100, 100), y = rng_range(&r, -1, 1), z = rng_range(&r, 0, 1e-3f);
+        switch (i % 5) {
+        case 0: snprintf(line, sizeof line, "v %.6f %.6f %.6f\n", (double)x, (double)y, (double)z); break;
+        case 1: snprintf(line, sizeof line, "v %.9g %.9g %.9g\r\n", (double)x, (double)y, (double)z); break;
+        case 2: snprintf(line, sizeof line, "v %.7e  %.3e\t%.12e\n", (double)x, (double)y, (double)z); break;
+        case 3: snprintf(line, sizeof line, "v %d %.17g %.20f\n", (int)x, (double)y, (double)z); break;
+        default: snprintf(line, sizeof line, "v %g %g %g 0.5 0.25 1\n", (double)x, (double)y, (double)z); break;
+        }
+        put(&t, line);
+        if (i % 2 == 0) {
+            snprintf(line, sizeof line, "vt %.6f %.6f\nvn %.6f %.6f %.6f\n", (double)rng_float(&r), (double)rng_float(&r),
+                     (double)rng_range(&r, -1, 1), (double)rng_range(&r, -1, 1), (double)rng_range(&r, -1, 1));
+            put(&t, line);
+        }
+    }
+    int nvt = VERTICES / 2;
+    for (int i = 0; i < TRIANGLES; i++) {
+        int v[3], k[3];
+        for (int j = 0; j < 3; j++) {
+            // Three different corners: random points are then never in line, and every face is a triangle.
+            do v[j] = 1 + (int)(rng_u32(&r) % VERTICES);
+            while ((j > 0 && v[j] == v[0]) || (j > 1 && v[j] == v[1]));
+            k[j] = 1 + (int)(rng_u32(&r) % (uint32_t)nvt);
+        }
+        switch (i % 5) {
+        case 0: snprintf(line, sizeof line, "f %d %d %d\n", v[0], v[1], v[2]); break;
+        case 1: snprintf(line, sizeof line, "f %d/%d %d/%d %d/%d\n", v[0], k[0], v[1], k[1], v[2], k[2]); break;
+        case 2: snprintf(line, sizeof line, "f %d//%d %d//%d %d//%d\r\n", v[0], k[0], v[1], k[1], v[2], k[2]); break;
+        case 3:
+            snprintf(line, sizeof line, "f %d/%d/%d %d/%d/%d %d/%d/%d\n", v[0], k[0], k[1], v[1], k[1], k[2], v[2], k[2], k[0]);
+            break;
+        default:
+            snprintf(line, sizeof line, "f %d/-%d/%d %d %d\n", v[0] - VERTICES - 1, k[0], k[2], v[1], v[2] - VERTICES - 1);
+            break;
+        }
+        put(&t, line);
+    }
+    put(&t, "f 1 1 2\n"); // no area: skipped
+    CHECK(t.s && tmp_write(tmp_path("plain.obj"), t.s, t.n));
+    if (!t.s) return;
+    plain_mesh want;
+    plain_read(t.s, &want, (size_t)TRIANGLES + 1);
+    obj_model m;
+    warnings w;
+    glint_error err;
+    CHECK(load(tmp_path("plain.obj"), &m, &w, &err) == GLINT_OK);
+    CHECK(m.zero_area_faces == 1 && w.count == 1);
+    CHECK(mesh_compute_normals(&m.mesh));
+    const mesh *g = &m.mesh;
+    CHECK(g->position_count == want.np && g->uv_count == want.nt && g->normal_count == want.nn &&
+          g->triangle_count == want.ntri && want.ntri == TRIANGLES);
+    if (g->position_count == want.np && g->uv_count == want.nt && g->normal_count == want.nn && g->triangle_count == want.ntri) {
+        CHECK(memcmp(g->positions, want.p, want.np * sizeof *want.p) == 0);
+        CHECK(memcmp(g->uvs, want.t, want.nt * sizeof *want.t) == 0);
+        CHECK(memcmp(g->normals, want.n, want.nn * sizeof *want.n) == 0);
+        CHECK(memcmp(g->triangles, want.tri, want.ntri * sizeof *want.tri) == 0);
+        CHECK(memcmp(&g->bounds, &want.box, sizeof want.box) == 0);
+    }
+    obj_model_free(&m);
+    free(want.p);
+    free(want.n);
+    free(want.t);
+    free(want.tri);
+    free(t.s);
+}
+
 int main(void) {
     if (!tmpdir_make("glint-test-obj")) return 1;
     test_cornell_original();
@@ -784,6 +1100,8 @@ int main(void) {
     test_materials_in_obj();
     test_comments_and_blanks();
     test_numbers_match_strtof();
+    test_blocks_match_whole_text();
+    test_mesh_matches_plain_reader();
     tmpdir_remove();
     return check_summary();
 }

@@ -1,9 +1,12 @@
-// obj.c — the OBJ/MTL reader: one pass over the text, no allocation per line, faces triangulated as read.
+// obj.c — the OBJ/MTL reader: one pass over the text (an OBJ file read in blocks), no allocation per line, plain
+// v/vn/vt/f lines read by fast paths, faces triangulated as read.
 #include "io/obj.h"
 #include "core/array.h"
 #include "core/file_read.h"
 #include "core/filepath.h"
+#include "core/prefetch.h"
 #include "core/strmap.h"
+#include "io/decimal.h"
 
 #include <errno.h>
 #include <math.h>
@@ -21,6 +24,8 @@
 #endif
 
 enum { MAX_ELEMENTS = INT32_MAX, QUOTE_MAX = 40, MAX_IGNORED_KEYWORDS = 16 };
+/// Bytes of an OBJ file read at a time: small enough to stay in the cache while it is parsed.
+enum { OBJ_READ_BLOCK = 256 << 10 };
 
 // ---------------------------------------------------------------------------------------------------------
 // Messages
@@ -154,108 +159,11 @@ static bool token_is(const char *tok, size_t n, const char *word) {
     return n == k && memcmp(tok, word, k) == 0;
 }
 
-typedef enum num_status { NUM_OK, NUM_MALFORMED, NUM_NOT_FINITE, NUM_RANGE, NUM_NOMEM } num_status;
-
-static const double pow10_table[23] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,  1e8,  1e9,  1e10, 1e11,
-                                       1e12, 1e13, 1e14, 1e15, 1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
-
-// Whether rounding the double d to float could differ from rounding the exact decimal: only when d lies
-// exactly halfway between two floats (or in the subnormal range, where the halfway bits differ).
-static bool float_rounding_unsafe(double d) {
-    double a = fabs(d);
-    if (a < 0x1p-126) return true;
-    uint64_t bits;
-    memcpy(&bits, &a, sizeof bits);
-    return (bits & ((UINT64_C(1) << 29) - 1)) == (UINT64_C(1) << 28);
-}
-
-// |strtof| of a NUL-terminated copy of the token: the rare numbers the exact fast path cannot take. False
-// when there is no memory for the copy of a long token.
-static bool slow_float(const char *s, size_t n, float *out) {
-    char small[128];
-    char *buf = n < sizeof small ? small : malloc(n + 1);
-    if (!buf) return false;
-    memcpy(buf, s, n);
-    buf[n] = '\0';
-    *out = fabsf(strtof(buf, NULL));
-    if (buf != small) free(buf);
-    return true;
-}
-
-// Whether s starts with the lower-case word w, ignoring case.
-static bool starts_with_word(const char *s, size_t n, const char *w) {
-    size_t k = strlen(w);
-    if (n < k) return false;
-    for (size_t i = 0; i < k; i++)
-        if ((s[i] | 0x20) != w[i]) return false;
-    return true;
-}
-
-// The C library's spellings of NaN and infinity: nan, nan(...), inf, infinity, in any case.
-static bool is_nan_or_inf(const char *s, size_t n) {
-    if (starts_with_word(s, n, "nan")) return n == 3 || s[3] == '(';
-    return (n == 3 && starts_with_word(s, n, "inf")) || (n == 8 && starts_with_word(s, n, "infinity"));
-}
-
-// A decimal number [+-](digits[.digits] | .digits)[(e|E)[+-]digits] and nothing else, correctly rounded:
-// exact in double when it has at most 17 significant digits and a power of ten up to 22 (Clinger's fast
-// path), otherwise by strtof. No locale, no hexadecimal, no "nan" or "inf".
-static num_status parse_float(const char *s, size_t n, float *out) {
-    size_t i = 0;
-    bool neg = false;
-    if (i < n && (s[i] == '+' || s[i] == '-')) neg = s[i++] == '-';
-    if (is_nan_or_inf(s + i, n - i)) return NUM_NOT_FINITE;
-    uint64_t m = 0;
-    int exp10 = 0;
-    bool digits = false, exact = true;
-    for (; i < n && is_digit(s[i]); i++) {
-        digits = true;
-        if (m < UINT64_C(100000000000000000)) m = m * 10 + (uint64_t)(s[i] - '0');
-        else {
-            if (exp10 < 100000) exp10++;
-            if (s[i] != '0') exact = false;
-        }
-    }
-    if (i < n && s[i] == '.') {
-        for (i++; i < n && is_digit(s[i]); i++) {
-            digits = true;
-            if (m < UINT64_C(100000000000000000)) {
-                m = m * 10 + (uint64_t)(s[i] - '0');
-                exp10--;
-            } else if (s[i] != '0') exact = false;
-        }
-    }
-    if (digits && i < n && (s[i] == 'e' || s[i] == 'E')) {
-        i++;
-        bool eneg = false;
-        if (i < n && (s[i] == '+' || s[i] == '-')) eneg = s[i++] == '-';
-        if (i == n || !is_digit(s[i])) return NUM_MALFORMED;
-        int e = 0;
-        for (; i < n && is_digit(s[i]); i++)
-            if (e < 100000) e = e * 10 + (s[i] - '0');
-        exp10 += eneg ? -e : e;
-    }
-    if (!digits || i != n) {
-        // Microsoft's C library prints NaN and infinity as 1.#IND, 1.#QNAN, 1.#INF.
-        return memchr(s, '#', n) ? NUM_NOT_FINITE : NUM_MALFORMED;
-    }
-    float f;
-    if (m == 0) f = 0.0f;
-    else if (exact && m <= (UINT64_C(1) << 53) && exp10 >= -22 && exp10 <= 22) {
-        double d = exp10 < 0 ? (double)m / pow10_table[-exp10] : (double)m * pow10_table[exp10];
-        f = (float)d;
-        if (float_rounding_unsafe(d) && !slow_float(s, n, &f)) return NUM_NOMEM;
-    } else if (!slow_float(s, n, &f)) return NUM_NOMEM;
-    if (!isfinite(f)) return NUM_RANGE;
-    *out = neg ? -f : f;
-    return NUM_OK;
-}
-
-static bool number_error(reporter *r, num_status st, const char *tok, size_t n) {
-    if (st == NUM_NOMEM) return out_of_memory(r);
+static bool number_error(reporter *r, decimal_status st, const char *tok, size_t n) {
+    if (st == DECIMAL_NOMEM) return out_of_memory(r);
     quoted q = quote(tok, n);
-    if (st == NUM_NOT_FINITE) return fail(r, "'%s' is not a finite number, expected a decimal number", q.s);
-    if (st == NUM_RANGE) return fail(r, "number '%s' is out of the range of a float, expected a magnitude below 3.4e38", q.s);
+    if (st == DECIMAL_NOT_FINITE) return fail(r, "'%s' is not a finite number, expected a decimal number", q.s);
+    if (st == DECIMAL_RANGE) return fail(r, "number '%s' is out of the range of a float, expected a magnitude below 3.4e38", q.s);
     return fail(r, "malformed number '%s', expected a decimal number such as -1.25e3", q.s);
 }
 
@@ -266,8 +174,8 @@ static bool parse_numbers(reporter *r, cursor *c, float *v, int max, int *count)
     int k = 0;
     while (next_token(c, &tok, &n)) {
         float f;
-        num_status st = parse_float(tok, n, &f);
-        if (st != NUM_OK) return number_error(r, st, tok, n);
+        decimal_status st = decimal_parse_float(tok, n, &f);
+        if (st != DECIMAL_OK) return number_error(r, st, tok, n);
         if (k < max) v[k] = f;
         if (k < INT32_MAX) k++;
     }
@@ -324,9 +232,9 @@ static char *join_path(const char *dir, size_t dir_len, const char *name, size_t
     return p;
 }
 
-// The whole of a regular file of at most `max` bytes, NUL-terminated; NULL on failure, with *errnum a
-// filepath_problem value (ENOMEM when memory ran out, EFBIG when the file is larger than max).
-static char *read_file(const char *path, size_t max, size_t *len, int *errnum) {
+// A regular file of at most `max` bytes opened for reading; NULL on failure, with *errnum a filepath_problem
+// value (EFBIG when the file is larger than max). *size gets its size.
+static FILE *open_file(const char *path, size_t max, size_t *size, int *errnum) {
     struct stat st;
     *errnum = filepath_problem(path, &st);
     if (*errnum) return NULL;
@@ -335,12 +243,19 @@ static char *read_file(const char *path, size_t max, size_t *len, int *errnum) {
         return NULL;
     }
     FILE *f = fopen(path, "rb");
-    if (!f) {
-        *errnum = errno ? errno : EIO;
-        return NULL;
-    }
+    if (!f) *errnum = errno ? errno : EIO;
+    *size = (size_t)st.st_size;
+    return f;
+}
+
+// The whole of a regular file of at most `max` bytes, NUL-terminated; NULL on failure, with *errnum a
+// filepath_problem value (ENOMEM when memory ran out, EFBIG when the file is larger than max).
+static char *read_file(const char *path, size_t max, size_t *len, int *errnum) {
+    size_t size;
+    FILE *f = open_file(path, max, &size, errnum);
+    if (!f) return NULL;
     // The size is known: one allocation holds the file; should it grow meanwhile, it is read on up to max + 1 bytes.
-    char *buf = file_read_stream(f, (size_t)st.st_size, max, len, errnum);
+    char *buf = file_read_stream(f, size, max, len, errnum);
     fclose(f);
     return buf;
 }
@@ -495,7 +410,7 @@ static bool mtl_map_kd(mtl_parser *ps, cursor *c) {
             cursor arg = *c;
             float f;
             if (!next_token(&arg, &tok, &n)) break;
-            if (args < 0 && k > 0 && parse_float(tok, n, &f) != NUM_OK) break;
+            if (args < 0 && k > 0 && decimal_parse_float(tok, n, &f) != DECIMAL_OK) break;
             *c = arg;
         }
     }
@@ -601,19 +516,29 @@ static bool mtl_statement(mtl_parser *ps, cursor *c) {
     return true; // accepted and ignored
 }
 
+static bool line_too_long(reporter *rep, size_t length) {
+    return fail(rep, "line is %zu bytes long, expected at most %zu (%zu MiB)", length, (size_t)OBJ_MAX_LINE_BYTES,
+                (size_t)OBJ_MAX_LINE_BYTES >> 20);
+}
+
+// Reads the line that starts at s with fn(state, cursor) after checking its length; *next gets the start of
+// the next line.
+static bool read_line(const char *s, const char *end, reporter *rep, bool (*fn)(void *, cursor *), void *state,
+                      const char **next) {
+    const char *nl = memchr(s, '\n', (size_t)(end - s));
+    cursor c = {s, nl ? nl : end};
+    if ((size_t)(c.end - s) > OBJ_MAX_LINE_BYTES) return line_too_long(rep, (size_t)(c.end - s));
+    *next = nl ? nl + 1 : end;
+    return fn(state, &c);
+}
+
 // Calls fn(state, cursor) for every line of text, keeping rep->line current; stops at the first failure.
 static bool for_each_line(const char *text, size_t length, reporter *rep, bool (*fn)(void *, cursor *), void *state) {
     const char *s = text, *end = text + length;
     rep->line = 0;
     while (s < end) {
         rep->line++;
-        const char *nl = memchr(s, '\n', (size_t)(end - s));
-        cursor c = {s, nl ? nl : end};
-        if ((size_t)(c.end - s) > OBJ_MAX_LINE_BYTES)
-            return fail(rep, "line is %zu bytes long, expected at most %zu (%zu MiB)", (size_t)(c.end - s),
-                        (size_t)OBJ_MAX_LINE_BYTES, (size_t)OBJ_MAX_LINE_BYTES >> 20);
-        if (!fn(state, &c)) return false;
-        s = nl ? nl + 1 : end;
+        if (!read_line(s, end, rep, fn, state, &s)) return false;
     }
     return true;
 }
@@ -670,6 +595,15 @@ typedef struct corner {
     int32_t v, t, n;
 } corner;
 
+/// Triangles the fast path has read and not yet added, so that their corners' positions, far apart in a
+/// large mesh, reach the cache while the next lines are read.
+enum { QUEUED_TRIANGLES = 8 };
+
+typedef struct queued_triangle {
+    corner k[3];
+    long line;
+} queued_triangle;
+
 typedef struct obj_parser {
     reporter rep;
     obj_model *model;
@@ -691,10 +625,42 @@ typedef struct obj_parser {
     size_t dir_len;
     long first_zero_line;
     bool warned_fan, warned_bad_polygon;
+    queued_triangle queue[QUEUED_TRIANGLES]; // a ring, oldest at queue_head
+    int queue_head, queue_count;
 } obj_parser;
 
 static bool too_many(reporter *r, const char *what) {
     return fail(r, "too many %s, expected at most %d", what, MAX_ELEMENTS);
+}
+
+// Stores a position, a normal, a texture coordinate: the last step of both the statements and the fast paths.
+static bool add_position(obj_parser *ps, const float *v) {
+    mesh *m = &ps->model->mesh;
+    if (m->position_count >= MAX_ELEMENTS) return too_many(&ps->rep, "vertices");
+    if (m->position_count == ps->pos_cap &&
+        !array_reserve((void **)&m->positions, &ps->pos_cap, m->position_count + 1, sizeof *m->positions))
+        return out_of_memory(&ps->rep);
+    m->positions[m->position_count++] = v3(v[0], v[1], v[2]);
+    return true;
+}
+
+static bool add_normal(obj_parser *ps, const float *v) {
+    mesh *m = &ps->model->mesh;
+    if (m->normal_count >= MAX_ELEMENTS) return too_many(&ps->rep, "normals");
+    if (m->normal_count == ps->nrm_cap &&
+        !array_reserve((void **)&m->normals, &ps->nrm_cap, m->normal_count + 1, sizeof *m->normals))
+        return out_of_memory(&ps->rep);
+    m->normals[m->normal_count++] = v3(v[0], v[1], v[2]);
+    return true;
+}
+
+static bool add_texcoord(obj_parser *ps, const float *v, int count) {
+    mesh *m = &ps->model->mesh;
+    if (m->uv_count >= MAX_ELEMENTS) return too_many(&ps->rep, "texture coordinates");
+    if (m->uv_count == ps->uv_cap && !array_reserve((void **)&m->uvs, &ps->uv_cap, m->uv_count + 1, sizeof *m->uvs))
+        return out_of_memory(&ps->rep);
+    m->uvs[m->uv_count++] = (uv2){v[0], count > 1 ? v[1] : 0.0f};
+    return true;
 }
 
 static bool obj_vertex(obj_parser *ps, cursor *c) {
@@ -702,12 +668,7 @@ static bool obj_vertex(obj_parser *ps, cursor *c) {
     int count;
     if (!parse_numbers(&ps->rep, c, v, 7, &count)) return false;
     if (count < 3 || count > 7) return fail(&ps->rep, "'v' has %d numbers, expected 3 (x y z) to 7", count);
-    mesh *m = &ps->model->mesh;
-    if (m->position_count >= MAX_ELEMENTS) return too_many(&ps->rep, "vertices");
-    if (!array_reserve((void **)&m->positions, &ps->pos_cap, m->position_count + 1, sizeof *m->positions))
-        return out_of_memory(&ps->rep);
-    m->positions[m->position_count++] = v3(v[0], v[1], v[2]);
-    return true;
+    return add_position(ps, v);
 }
 
 static bool obj_normal(obj_parser *ps, cursor *c) {
@@ -715,12 +676,7 @@ static bool obj_normal(obj_parser *ps, cursor *c) {
     int count;
     if (!parse_numbers(&ps->rep, c, v, 3, &count)) return false;
     if (count != 3) return fail(&ps->rep, "'vn' has %d numbers, expected 3 (x y z)", count);
-    mesh *m = &ps->model->mesh;
-    if (m->normal_count >= MAX_ELEMENTS) return too_many(&ps->rep, "normals");
-    if (!array_reserve((void **)&m->normals, &ps->nrm_cap, m->normal_count + 1, sizeof *m->normals))
-        return out_of_memory(&ps->rep);
-    m->normals[m->normal_count++] = v3(v[0], v[1], v[2]);
-    return true;
+    return add_normal(ps, v);
 }
 
 static bool obj_texcoord(obj_parser *ps, cursor *c) {
@@ -728,11 +684,7 @@ static bool obj_texcoord(obj_parser *ps, cursor *c) {
     int count;
     if (!parse_numbers(&ps->rep, c, v, 3, &count)) return false;
     if (count < 1 || count > 3) return fail(&ps->rep, "'vt' has %d numbers, expected 1 to 3 (u [v [w]])", count);
-    mesh *m = &ps->model->mesh;
-    if (m->uv_count >= MAX_ELEMENTS) return too_many(&ps->rep, "texture coordinates");
-    if (!array_reserve((void **)&m->uvs, &ps->uv_cap, m->uv_count + 1, sizeof *m->uvs)) return out_of_memory(&ps->rep);
-    m->uvs[m->uv_count++] = (uv2){v[0], count > 1 ? v[1] : 0.0f};
-    return true;
+    return add_texcoord(ps, v, count);
 }
 
 // A 1-based or negative (relative) index into `count` elements -> 0-based.
@@ -783,30 +735,47 @@ static bool parse_corner(obj_parser *ps, const char *tok, size_t n, corner *out)
     return true;
 }
 
-// Whether the triangle (a, b, c) has exactly zero area: its edge cross product, in double, is zero.
-static bool zero_area(const mesh *m, const corner *a, const corner *b, const corner *c) {
-    vec3 p = m->positions[a->v], q = m->positions[b->v], r = m->positions[c->v];
+// Whether the triangle (p, q, r) has exactly zero area: its edge cross product, in double, is zero.
+static bool zero_area(vec3 p, vec3 q, vec3 r) {
     double ux = (double)q.x - p.x, uy = (double)q.y - p.y, uz = (double)q.z - p.z;
     double vx = (double)r.x - p.x, vy = (double)r.y - p.y, vz = (double)r.z - p.z;
     return uy * vz - uz * vy == 0.0 && uz * vx - ux * vz == 0.0 && ux * vy - uy * vx == 0.0;
 }
 
-// Appends triangle (a, b, c) unless it has no area (degenerate pieces of a valid polygon are dropped silently).
-static bool emit(obj_parser *ps, const corner *a, const corner *b, const corner *c) {
+// f_min and f_max (core/vec.h) for operands that are not NaN, as every coordinate read is: without their NaN
+// rule the comparison compiles to one minss or maxss instead of a branch that random data mispredicts.
+static inline float min_not_nan(float a, float b) { return a < b ? a : b; }
+static inline float max_not_nan(float a, float b) { return a > b ? a : b; }
+
+// bounds3_union(box, tri_bounds(p, q, r)), operand for operand, for points without NaN.
+static inline bounds3 box_add_triangle(bounds3 box, vec3 p, vec3 q, vec3 r) {
+    vec3 lo = v3(min_not_nan(p.x, min_not_nan(q.x, r.x)), min_not_nan(p.y, min_not_nan(q.y, r.y)),
+                 min_not_nan(p.z, min_not_nan(q.z, r.z)));
+    vec3 hi = v3(max_not_nan(p.x, max_not_nan(q.x, r.x)), max_not_nan(p.y, max_not_nan(q.y, r.y)),
+                 max_not_nan(p.z, max_not_nan(q.z, r.z)));
+    return (bounds3){v3(min_not_nan(box.lo.x, lo.x), min_not_nan(box.lo.y, lo.y), min_not_nan(box.lo.z, lo.z)),
+                     v3(max_not_nan(box.hi.x, hi.x), max_not_nan(box.hi.y, hi.y), max_not_nan(box.hi.z, hi.z))};
+}
+
+// Appends triangle (a, b, c) at positions (p, q, r), and grows the mesh's box by it while its corners are at
+// hand (the box mesh_compute_bounds would compute, union for union in the same order).
+static bool append_triangle(obj_parser *ps, const corner *a, const corner *b, const corner *c, vec3 p, vec3 q, vec3 r) {
     mesh *m = &ps->model->mesh;
-    if (zero_area(m, a, b, c)) return true;
     if (m->triangle_count >= MAX_ELEMENTS) return too_many(&ps->rep, "triangles");
-    if (!array_reserve((void **)&m->triangles, &ps->tri_cap, m->triangle_count + 1, sizeof *m->triangles))
+    if (m->triangle_count == ps->tri_cap &&
+        !array_reserve((void **)&m->triangles, &ps->tri_cap, m->triangle_count + 1, sizeof *m->triangles))
         return out_of_memory(&ps->rep);
     mesh_triangle *t = &m->triangles[m->triangle_count++];
-    const corner *k[3] = {a, b, c};
-    for (int i = 0; i < 3; i++) {
-        t->v[i] = k[i]->v;
-        t->t[i] = k[i]->t;
-        t->n[i] = k[i]->n;
-    }
-    t->material = ps->material;
+    *t = (mesh_triangle){{a->v, b->v, c->v}, {a->n, b->n, c->n}, {a->t, b->t, c->t}, ps->material};
+    m->bounds = box_add_triangle(m->bounds, p, q, r);
     return true;
+}
+
+// Appends triangle (a, b, c) unless it has no area (degenerate pieces of a valid polygon are dropped silently).
+static bool emit(obj_parser *ps, const corner *a, const corner *b, const corner *c) {
+    const vec3 *pos = ps->model->mesh.positions;
+    vec3 p = pos[a->v], q = pos[b->v], r = pos[c->v];
+    return zero_area(p, q, r) || append_triangle(ps, a, b, c, p, q, r);
 }
 
 static void zero_area_face(obj_parser *ps) {
@@ -898,17 +867,22 @@ static bool fan(obj_parser *ps, size_t n) {
     return true;
 }
 
+// A face of three corners: skipped, with a warning, when it has no area.
+static bool triangle_face(obj_parser *ps, const corner *k) {
+    const vec3 *pos = ps->model->mesh.positions;
+    vec3 p = pos[k[0].v], q = pos[k[1].v], r = pos[k[2].v];
+    if (zero_area(p, q, r)) {
+        zero_area_face(ps);
+        return true;
+    }
+    return append_triangle(ps, &k[0], &k[1], &k[2], p, q, r);
+}
+
 // Splits the face's n corners into triangles: fan when convex, ear clipping when concave.
 static bool triangulate(obj_parser *ps, size_t n) {
     const mesh *m = &ps->model->mesh;
     const corner *k = ps->corners;
-    if (n == 3) {
-        if (zero_area(m, &k[0], &k[1], &k[2])) {
-            zero_area_face(ps);
-            return true;
-        }
-        return emit(ps, &k[0], &k[1], &k[2]);
-    }
+    if (n == 3) return triangle_face(ps, k);
     // Newell's normal: robust for non-planar faces, zero when the face has no area.
     double nx = 0, ny = 0, nz = 0;
     for (size_t i = 0; i < n; i++) {
@@ -969,6 +943,133 @@ static bool obj_face(obj_parser *ps, cursor *c) {
     }
     if (n < 3) return fail(&ps->rep, "face has %zu vertices, expected at least 3", n);
     return triangulate(ps, n);
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Fast paths: the plain lines that make up nearly all of a large file (`v`, `vn`, `vt` with numbers, `f`
+// with corners v, v/vt, v//vn or v/vt/vn) read in one pass over their bytes, without cutting the line into
+// tokens first. Whatever else a line holds (a comment, an unusual number, an index out of range, too many
+// numbers, any error) sends it, untouched, to the statements above, which read it again and say what is
+// wrong: a fast path only ever accepts what they accept, and stores it through the same functions.
+
+typedef enum fast_result {
+    FAST_NO,  // not a line for a fast path: nothing was done, read it as a statement
+    FAST_OK,  // read and stored
+    FAST_FAIL // stored part of it and failed (out of memory, too many triangles): the message is set
+} fast_result;
+
+// Up to `max` numbers to the end of the line; *stop gets the end of the line (its '\n', or `end`).
+static inline bool fast_numbers(const char *p, const char *end, float *v, int max, int *count, const char **stop) {
+    int k = 0;
+    for (;;) {
+        while (p < end && is_space(*p)) p++;
+        if (p == end || *p == '\n') break;
+        if (k == max || !(p = decimal_scan_float(p, end, &v[k]))) return false;
+        k++;
+        if (p < end && !is_space(*p) && *p != '\n') return false; // "1.5x", "1.#INF", "2#comment"
+    }
+    *count = k;
+    *stop = p;
+    return true;
+}
+
+// A face index (1-based, or negative: relative) into `count` elements -> 0-based; NULL for anything else,
+// including indices out of range and more than 10 digits.
+static inline const char *fast_index(const char *p, const char *end, size_t count, int32_t *out) {
+    bool neg = p < end && *p == '-';
+    p += neg;
+    const char *first = p;
+    uint64_t v = 0;
+    p = decimal_scan_digits(p, end, &v);
+    if (p == first || p - first > 10 || v == 0 || v > count) return NULL;
+    *out = (int32_t)(neg ? count - v : v - 1);
+    return p;
+}
+
+// The corners of a face into ps->corners; *stop gets the end of the line.
+static bool fast_corners(obj_parser *ps, const char *p, const char *end, size_t *count, const char **stop) {
+    const mesh *m = &ps->model->mesh;
+    size_t n = 0;
+    for (;;) {
+        while (p < end && is_space(*p)) p++;
+        if (p == end || *p == '\n') break;
+        if (n == OBJ_MAX_FACE_CORNERS ||
+            (n == ps->corner_cap && !array_reserve((void **)&ps->corners, &ps->corner_cap, n + 1, sizeof *ps->corners)))
+            return false;
+        corner *k = &ps->corners[n++];
+        k->t = k->n = -1;
+        if (!(p = fast_index(p, end, m->position_count, &k->v))) return false;
+        if (p < end && *p == '/') {
+            p++;
+            if ((p == end || *p != '/') && !(p = fast_index(p, end, m->uv_count, &k->t))) return false;
+            if (p < end && *p == '/' && !(p = fast_index(p + 1, end, m->normal_count, &k->n))) return false;
+        }
+        if (p < end && !is_space(*p) && *p != '\n') return false; // "1/2/3/4", "1x", "1#comment"
+    }
+    *count = n;
+    *stop = p;
+    return n >= 3;
+}
+
+// Adds the oldest queued triangle, as the line that read it.
+static bool add_oldest_queued(obj_parser *ps) {
+    const queued_triangle *t = &ps->queue[ps->queue_head];
+    ps->queue_head = (ps->queue_head + 1) % QUEUED_TRIANGLES;
+    ps->queue_count--;
+    long line = ps->rep.line;
+    ps->rep.line = t->line;
+    bool ok = triangle_face(ps, t->k);
+    ps->rep.line = line;
+    return ok;
+}
+
+// Adds every queued triangle, in the order of their lines: before any other line is read, so that triangles,
+// warnings and errors come in the order of the file.
+static bool add_queued(obj_parser *ps) {
+    while (ps->queue_count > 0)
+        if (!add_oldest_queued(ps)) return false;
+    return true;
+}
+
+// Queues a triangle read on the current line and starts fetching its corners; the oldest is added when
+// the queue is full.
+static bool queue_triangle(obj_parser *ps, const corner *k) {
+    if (ps->queue_count == QUEUED_TRIANGLES && !add_oldest_queued(ps)) return false;
+    queued_triangle *t = &ps->queue[(ps->queue_head + ps->queue_count++) % QUEUED_TRIANGLES];
+    memcpy(t->k, k, sizeof t->k);
+    t->line = ps->rep.line;
+    const vec3 *pos = ps->model->mesh.positions;
+    for (int i = 0; i < 3; i++) prefetch_read(&pos[k[i].v]);
+    return true;
+}
+
+// The line at s by a fast path, if it is one of theirs; *next gets the start of the next line.
+static fast_result fast_line(obj_parser *ps, const char *s, const char *end, const char **next) {
+    if (end - s < 3) return FAST_NO;
+    enum { VERTEX, NORMAL, TEXCOORD, FACE } kind;
+    if (s[0] == 'v' && is_space(s[1])) kind = VERTEX;
+    else if (s[0] == 'f' && is_space(s[1])) kind = FACE;
+    else if (s[0] == 'v' && s[1] == 'n' && is_space(s[2])) kind = NORMAL;
+    else if (s[0] == 'v' && s[1] == 't' && is_space(s[2])) kind = TEXCOORD;
+    else return FAST_NO;
+    const char *stop;
+    float v[7];
+    int count = 0;
+    size_t corners = 0;
+    bool ok = kind == FACE     ? fast_corners(ps, s + 2, end, &corners, &stop)
+              : kind == VERTEX ? fast_numbers(s + 2, end, v, 7, &count, &stop) && count >= 3
+              : kind == NORMAL ? fast_numbers(s + 3, end, v, 3, &count, &stop) && count == 3
+                               : fast_numbers(s + 3, end, v, 3, &count, &stop) && count >= 1;
+    // A line longer than the limit is an error however well formed: the statement reader says so.
+    if (!ok || (size_t)(stop - s) > OBJ_MAX_LINE_BYTES) return FAST_NO;
+    *next = stop < end ? stop + 1 : end;
+    if (kind == FACE && corners == 3) return queue_triangle(ps, ps->corners) ? FAST_OK : FAST_FAIL;
+    if (!add_queued(ps)) return FAST_FAIL;
+    ok = kind == FACE     ? triangulate(ps, corners)
+         : kind == VERTEX ? add_position(ps, v)
+         : kind == NORMAL ? add_normal(ps, v)
+                          : add_texcoord(ps, v, count);
+    return ok ? FAST_OK : FAST_FAIL;
 }
 
 static bool obj_usemtl(obj_parser *ps, cursor *c) {
@@ -1107,6 +1208,19 @@ static bool obj_statement(obj_parser *ps, cursor *c) {
 
 static bool obj_line(void *state, cursor *c) { return obj_statement(state, c); }
 
+// Every line of (a part of) an OBJ text, counting on from ps->rep.line: by a fast path when it takes the
+// line, else as a statement.
+static bool obj_lines(obj_parser *ps, const char *text, size_t length) {
+    const char *s = text, *end = text + length;
+    while (s < end) {
+        ps->rep.line++;
+        fast_result r = fast_line(ps, s, end, &s);
+        if (r == FAST_FAIL || (r == FAST_NO && (!add_queued(ps) || !read_line(s, end, &ps->rep, obj_line, ps, &s))))
+            return false;
+    }
+    return add_queued(ps);
+}
+
 void obj_model_free(obj_model *m) {
     mesh_free(&m->mesh);
     obj_materials_free(m->materials, m->material_count);
@@ -1136,67 +1250,137 @@ static bool resolve_materials(obj_parser *ps) {
     return true;
 }
 
-glint_status obj_parse(const char *name, const char *text, size_t length, const obj_options *opt, obj_model *out,
-                       glint_error *err) {
+// Readies the parser for the first line of file `name`.
+static void obj_begin(obj_parser *ps, const char *name, const obj_options *opt, obj_model *out, glint_error *err) {
     memset(out, 0, sizeof *out);
     out->mesh.bounds = bounds3_empty();
-    obj_parser ps;
-    memset(&ps, 0, sizeof ps);
-    ps.rep.name = name;
-    ps.rep.opt = opt;
-    ps.rep.err = err;
-    ps.rep.warnings = &out->warning_count;
-    ps.model = out;
-    ps.opt = opt;
-    ps.material = -1;
-    ps.dir = name;
-    ps.dir_len = filepath_dir_length(name);
-    bool ok = for_each_line(text, length, &ps.rep, obj_line, &ps);
-    if (ok) ok = resolve_materials(&ps);
+    memset(ps, 0, sizeof *ps);
+    ps->rep.name = name;
+    ps->rep.opt = opt;
+    ps->rep.err = err;
+    ps->rep.warnings = &out->warning_count;
+    ps->model = out;
+    ps->opt = opt;
+    ps->material = -1;
+    ps->dir = name;
+    ps->dir_len = filepath_dir_length(name);
+}
+
+// After the last line (ok) or a failure (!ok): gives the materials their definitions, says what is left to
+// say, frees the parser's scratch, and on failure the model too.
+static glint_status obj_end(obj_parser *ps, bool ok) {
+    obj_model *out = ps->model;
+    if (ok) ok = resolve_materials(ps);
     if (ok) {
         if (out->zero_area_faces > 1)
-            warn_at(&ps.rep, 0, "%zu zero-area faces skipped in total (the first on line %ld)", out->zero_area_faces,
-                    ps.first_zero_line);
-        if (out->mesh.triangle_count == 0) warn_at(&ps.rep, 0, "no faces; the mesh is empty");
-        mesh_compute_bounds(&out->mesh);
+            warn_at(&ps->rep, 0, "%zu zero-area faces skipped in total (the first on line %ld)", out->zero_area_faces,
+                    ps->first_zero_line);
+        if (out->mesh.triangle_count == 0) warn_at(&ps->rep, 0, "no faces; the mesh is empty");
     }
-    free(ps.corners);
-    free(ps.px);
-    free(ps.py);
-    free(ps.next);
-    free(ps.prev);
-    strmap_free(&ps.slots);
-    strmap_free(&ps.def_names);
-    obj_materials_free(ps.defs, ps.def_count);
+    free(ps->corners);
+    free(ps->px);
+    free(ps->py);
+    free(ps->next);
+    free(ps->prev);
+    strmap_free(&ps->slots);
+    strmap_free(&ps->def_names);
+    obj_materials_free(ps->defs, ps->def_count);
     // The model keeps the list of libraries read: they are inputs of the scene as much as the OBJ file.
-    out->libraries = ps.libs;
-    out->library_count = ps.lib_count;
+    out->libraries = ps->libs;
+    out->library_count = ps->lib_count;
     if (!ok) {
         obj_model_free(out);
-        return ps.rep.nomem ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
+        return ps->rep.nomem ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
     }
     return GLINT_OK;
+}
+
+glint_status obj_parse(const char *name, const char *text, size_t length, const obj_options *opt, obj_model *out,
+                       glint_error *err) {
+    obj_parser ps;
+    obj_begin(&ps, name, opt, out, err);
+    return obj_end(&ps, obj_lines(&ps, text, length));
+}
+
+// Reads the open OBJ file f block by block and parses the complete lines of each block as it arrives, exactly
+// as obj_parse parses them: a large file is never held whole, which spares copying it into fresh memory (a
+// page fault every 4 KiB) and reading it back from far away. False on a parse failure (message set, *errnum
+// 0) or a read failure (*errnum: the read's errno, EFBIG past OBJ_MAX_FILE_BYTES, ENOMEM).
+static bool obj_read_stream(obj_parser *ps, FILE *f, int *errnum) {
+    *errnum = 0;
+    size_t cap = OBJ_READ_BLOCK, have = 0, total = 0; // have: bytes of buf not parsed yet, a part of a line
+    char *buf = malloc(cap);
+    bool ok = buf != NULL, eof = false;
+    if (!ok) *errnum = ENOMEM;
+    while (ok && !eof) {
+        if (have == cap) {
+            // The buffer is one unfinished line: grow it, up to one byte more than a line may hold.
+            if (cap > OBJ_MAX_LINE_BYTES) break;
+            size_t bigger = cap > OBJ_MAX_LINE_BYTES / 2 ? OBJ_MAX_LINE_BYTES + 1 : cap * 2;
+            char *grown = realloc(buf, bigger);
+            if (!grown) {
+                *errnum = ENOMEM;
+                ok = false;
+                break;
+            }
+            buf = grown;
+            cap = bigger;
+        }
+        size_t got = fread(buf + have, 1, cap - have, f);
+        eof = got < cap - have;
+        if (eof && ferror(f)) *errnum = errno ? errno : EIO;
+        else if ((total += got) > OBJ_MAX_FILE_BYTES) *errnum = EFBIG;
+        if (*errnum) {
+            ok = false;
+            break;
+        }
+        have += got;
+        // Parse up to the last line end; at the end of the file, the last line too.
+        size_t upto = have;
+        while (!eof && upto > 0 && buf[upto - 1] != '\n') upto--;
+        ok = obj_lines(ps, buf, upto);
+        memmove(buf, buf + upto, have - upto);
+        have -= upto;
+    }
+    if (ok && !eof) {
+        // A line longer than the limit: an error that gives its length, so read on to its end.
+        size_t length = have;
+        char *nl = NULL;
+        for (size_t got = 1; !nl && got > 0 && length <= OBJ_MAX_FILE_BYTES;) {
+            got = fread(buf, 1, cap, f);
+            nl = memchr(buf, '\n', got);
+            length += nl ? (size_t)(nl - buf) : got;
+        }
+        ps->rep.line++;
+        ok = line_too_long(&ps->rep, length);
+    }
+    free(buf);
+    return ok;
+}
+
+// The message of a file that cannot be read.
+static glint_status obj_file_failure(const char *path, int e, glint_error *err) {
+    glint_status st = e == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
+    if (!err) return st;
+    if (e == ENOMEM) snprintf(err->message, sizeof err->message, "%s: out of memory reading the file", path);
+    else if (e == EFBIG)
+        snprintf(err->message, sizeof err->message, "%s: the OBJ file is larger than %zu bytes (%zu GiB)", path,
+                 (size_t)OBJ_MAX_FILE_BYTES, (size_t)OBJ_MAX_FILE_BYTES >> 30);
+    else snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, filepath_problem_text(e));
+    return st;
 }
 
 glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, glint_error *err) {
     memset(out, 0, sizeof *out);
     out->mesh.bounds = bounds3_empty();
-    size_t len;
+    size_t size;
     int e;
-    char *text = read_file(path, OBJ_MAX_FILE_BYTES, &len, &e);
-    if (!text) {
-        if (!err) return e == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
-        if (e == ENOMEM) {
-            snprintf(err->message, sizeof err->message, "%s: out of memory reading the file", path);
-            return GLINT_ERR_RENDER;
-        }
-        if (e == EFBIG)
-            snprintf(err->message, sizeof err->message, "%s: the OBJ file is larger than %zu bytes (%zu GiB)", path,
-                     (size_t)OBJ_MAX_FILE_BYTES, (size_t)OBJ_MAX_FILE_BYTES >> 30);
-        else snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, filepath_problem_text(e));
-        return GLINT_ERR_INPUT;
-    }
-    glint_status st = obj_parse(path, text, len, opt, out, err);
-    free(text);
-    return st;
+    FILE *f = open_file(path, OBJ_MAX_FILE_BYTES, &size, &e);
+    if (!f) return obj_file_failure(path, e, err);
+    obj_parser ps;
+    obj_begin(&ps, path, opt, out, err);
+    bool ok = obj_read_stream(&ps, f, &e);
+    fclose(f);
+    glint_status st = obj_end(&ps, ok);
+    return ok || !e ? st : obj_file_failure(path, e, err);
 }
