@@ -174,11 +174,14 @@ static bool wait_for_tile(render_job *job, int tile, int pass) {
     int64_t began = lane ? trace_clock() : 0;
     pthread_mutex_lock(&job->lock);
     atomic_fetch_add(&job->waiters, 1);
-    while (atomic_load(&job->tile_passes[tile]) < pass && !atomic_load(&job->stopping))
+    bool waited = false;
+    while (atomic_load(&job->tile_passes[tile]) < pass && !atomic_load(&job->stopping)) {
+        waited = true;
         pthread_cond_wait(&job->tile_finished, &job->lock);
+    }
     atomic_fetch_sub(&job->waiters, 1);
     pthread_mutex_unlock(&job->lock);
-    if (lane) trace_wait(lane, began, "the tile's previous pass", tile, pass);
+    if (lane && waited) trace_wait(lane, began, "the tile's previous pass", tile, pass);
     return atomic_load(&job->tile_passes[tile]) >= pass;
 }
 
@@ -209,11 +212,14 @@ static bool wait_for_pass(render_job *job, int pass) {
     int64_t began = lane ? trace_clock() : 0;
     pthread_mutex_lock(&job->lock);
     atomic_fetch_add(&job->waiters, 1);
-    while (atomic_load(&job->tiles_done[pass]) < job->grid.tile_count && !atomic_load(&job->stopping))
+    bool waited = false;
+    while (atomic_load(&job->tiles_done[pass]) < job->grid.tile_count && !atomic_load(&job->stopping)) {
+        waited = true;
         pthread_cond_wait(&job->tile_finished, &job->lock);
+    }
     atomic_fetch_sub(&job->waiters, 1);
     pthread_mutex_unlock(&job->lock);
-    if (lane) trace_wait(lane, began, "the pass's end (checkpoint)", -1, pass);
+    if (lane && waited) trace_wait(lane, began, "the pass's end (checkpoint)", -1, pass);
     return atomic_load(&job->tiles_done[pass]) >= job->grid.tile_count;
 }
 
@@ -237,7 +243,9 @@ static bool pass_may_run(render_job *job, int pass, int tile) {
     int64_t began = lane ? trace_clock() : 0;
     pthread_mutex_lock(&job->lock);
     atomic_fetch_add(&job->waiters, 1);
+    bool waited = false;
     while ((d = atomic_load(&job->pass_decision[pass])) == 0 && !atomic_load(&job->stopping) && !stop_is_requested()) {
+        waited = true;
         // A stop request sets a flag and wakes nobody: look at it again every 50 ms.
         struct timespec until;
         clock_gettime(CLOCK_REALTIME, &until);
@@ -247,7 +255,7 @@ static bool pass_may_run(render_job *job, int pass, int tile) {
     }
     atomic_fetch_sub(&job->waiters, 1);
     pthread_mutex_unlock(&job->lock);
-    if (lane) trace_wait(lane, began, "the pass's start", -1, pass);
+    if (lane && waited) trace_wait(lane, began, "the pass's start", -1, pass);
     return d == PASS_RUN;
 }
 

@@ -72,6 +72,10 @@ expect 2 "glint: --trace: warn.obj: cannot write: the scene reads it (a mesh, te
 check "refused: no image, and the read-only file is untouched" test ! -e x.png -a ! -s ro.json
 cd "$TMP" || exit 1
 check "no temporary file is left" no_temp_files "$TMP"
+# tools/trace_plot.py draws it: a box per tile pass, a row label per thread.
+check "tools/trace_plot.py draws the trace as an SVG" python3 "$SRC/tools/trace_plot.py" "$TMP/t2.json" "$TMP/t2.svg"
+check "the drawing has a box per tile pass and the rows' names" test "$(grep -c '^<rect.*<title>tile ' "$TMP/t2.svg")" -eq 48 -a \
+    "$(grep -c '>worker 1</text>' "$TMP/t2.svg")" -eq 1
 check "--help lists --trace" bash -c "'$GLINT' --help | grep -q -- '--trace FILE'"
 
 summary
