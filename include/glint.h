@@ -234,6 +234,35 @@ GLINT_API void glint_image_free(glint_image *img);
 /// different full sizes, overlapping parts, or a pixel no part covers; GLINT_ERR_RENDER for I/O and memory.
 GLINT_API glint_status glint_merge(const char *output, const char *const *parts, size_t count, glint_error *err);
 
+/// Opaque: a timeline of the library's work, for seeing where the threads' time goes (load balance, stalls). It
+/// records what happens on the threads attached to it (glint_trace_attach) and on the worker threads of the
+/// renders they run: scene loading (JSON parse, OBJ meshes, textures, environment map), the BVH build, each tile
+/// pass on each worker (with its x, y, w, h, pass), each sample pass, waits between passes, checkpoint and
+/// image writes. glint_trace_write saves it as Chrome trace-event JSON, the format Perfetto
+/// (https://ui.perfetto.dev) and chrome://tracing open. A thread with no trace attached records nothing and pays
+/// one test of a pointer per tile; the images are the same bytes with or without a trace. Free with
+/// glint_trace_free.
+typedef struct glint_trace glint_trace;
+
+/// A new, empty trace whose time 0 is now; NULL when out of memory.
+GLINT_API glint_trace *glint_trace_new(void);
+/// From now on the library's work on the calling thread is recorded in trace, on a timeline row (a "thread")
+/// named thread_name, such as "main"; a render started on this thread adds the rows "worker 1", "worker 2", ...
+/// for its other threads (its calling thread is its worker 0) and "sample passes". Attaching a thread again to
+/// the same trace keeps its row; trace NULL detaches it. GLINT_ERR_RENDER when memory runs out.
+GLINT_API glint_status glint_trace_attach(glint_trace *trace, const char *thread_name, glint_error *err);
+/// Checks before a render that a trace can be written at path: GLINT_ERR_RENDER ("PATH: cannot write: reason")
+/// for a missing or unwritable directory or a read-only file.
+GLINT_API glint_status glint_trace_check_path(const char *path, glint_error *err);
+/// Writes the trace to path as JSON ({"traceEvents":[...],"displayTimeUnit":"ms"}: complete events, "ph":"X",
+/// with ts and dur in microseconds since glint_trace_new, and thread_name metadata), as glint_image_write writes
+/// images: a temporary file linked into place, nothing left behind on failure. Call it when the renders it
+/// records have returned. GLINT_ERR_RENDER when the file cannot be written, or when memory ran out while events
+/// were recorded (a timeline with holes is not written).
+GLINT_API glint_status glint_trace_write(glint_trace *trace, const char *path, glint_error *err);
+/// Frees a trace (NULL is allowed) and detaches the calling thread from it; detach any other thread first.
+GLINT_API void glint_trace_free(glint_trace *trace);
+
 /// The library's version, GLINT_VERSION when the header and the library agree.
 GLINT_API const char *glint_version(void);
 

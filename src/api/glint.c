@@ -1,6 +1,7 @@
 // glint.c — every function of the public API (include/glint.h), and nothing else: each one checks or adapts
 // its arguments and hands over to the module that does the work (as Lua keeps its whole API in lapi.c).
 #include "glint.h"
+#include "core/trace.h"
 #include "film/film.h"
 #include "io/image_merge.h"
 #include "io/image_write.h"
@@ -20,11 +21,20 @@ void glint_overrides_init(glint_overrides *o) {
     o->output_encoding = NULL;
 }
 
+// "scene load" on the calling thread's trace row, from `began` to now.
+static void trace_scene_load(trace_lane *lane, int64_t began, const char *name) {
+    trace_add(lane, &(trace_event){"scene load", "load", began, trace_clock(), 1, {{"file", 0, name}}});
+}
+
 glint_status glint_scene_load(const char *path, glint_scene **out, glint_error *err) {
     glint_error scratch;
     if (!err) err = &scratch;
     if (!out) return glint_scene_parse(path, NULL, 0, out, err);
-    return scene_file_load(path, out, err);
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
+    glint_status st = scene_file_load(path, out, err);
+    if (lane) trace_scene_load(lane, began, path);
+    return st;
 }
 
 glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err) {
@@ -34,7 +44,11 @@ glint_status glint_scene_parse(const char *name, const char *text, size_t length
         snprintf(err->message, sizeof err->message, "glint_scene_parse: no place to store the scene");
         return GLINT_ERR_INPUT;
     }
-    return scene_file_parse(name ? name : "<scene>", text, text ? length : 0, out, err);
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
+    glint_status st = scene_file_parse(name ? name : "<scene>", text, text ? length : 0, out, err);
+    if (lane) trace_scene_load(lane, began, name ? name : "<scene>");
+    return st;
 }
 
 glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err) {
@@ -122,3 +136,46 @@ glint_status glint_merge(const char *output, const char *const *parts, size_t co
     glint_error scratch;
     return image_merge(output, parts, count, err ? err : &scratch);
 }
+
+glint_trace *glint_trace_new(void) { return trace_new(); }
+
+glint_status glint_trace_attach(glint_trace *t, const char *thread_name, glint_error *err) {
+    glint_error scratch;
+    if (!err) err = &scratch;
+    trace_lane *now = trace_current();
+    if (!t || (now && trace_lane_owner(now) == t)) { // detach, or stay on the row the thread has
+        if (!t) trace_set_current(NULL);
+        return GLINT_OK;
+    }
+    trace_lane *lane = trace_lane_open(t, thread_name ? thread_name : "thread");
+    if (!lane) {
+        snprintf(err->message, sizeof err->message, "out of memory for a row of the trace");
+        return GLINT_ERR_RENDER;
+    }
+    trace_set_current(lane);
+    return GLINT_OK;
+}
+
+glint_status glint_trace_check_path(const char *path, glint_error *err) {
+    glint_error scratch;
+    return image_check_file(path, err ? err : &scratch);
+}
+
+static int write_trace_file(FILE *f, const void *user, char *why, size_t why_size) {
+    (void)why;
+    (void)why_size;
+    return trace_write_json(user, f);
+}
+
+glint_status glint_trace_write(glint_trace *t, const char *path, glint_error *err) {
+    glint_error scratch;
+    if (!err) err = &scratch;
+    if (!trace_complete(t)) {
+        snprintf(err->message, sizeof err->message, "%s: cannot write the trace: memory ran out while it was "
+                 "recorded, so events are missing", path);
+        return GLINT_ERR_RENDER;
+    }
+    return image_write_file(path, write_trace_file, t, err);
+}
+
+void glint_trace_free(glint_trace *t) { trace_free(t); }

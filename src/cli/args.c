@@ -14,7 +14,7 @@
 typedef enum option_id {
     OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_TIME_LIMIT, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED,
     OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_PREVIEW, OPT_CHECKPOINT, OPT_RESUME,
-    OPT_QUIET, OPT_HELP, OPT_VERSION
+    OPT_TRACE, OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
 typedef struct option_spec {
@@ -44,6 +44,7 @@ static const option_spec OPTIONS[] = {
     {"preview", 0, false, OPT_PREVIEW, 1, 0},
     {"checkpoint", 0, true, OPT_CHECKPOINT, 1, 0},
     {"resume", 0, true, OPT_RESUME, 1, 0},
+    {"trace", 0, true, OPT_TRACE, 1, 0},
     {"quiet", 'q', false, OPT_QUIET, 1, 0},
     {"help", 'h', false, OPT_HELP, 1, 0},
     {"version", 'V', false, OPT_VERSION, 1, 0},
@@ -133,6 +134,10 @@ static void print_usage(const cli_program *prog, FILE *f) {
             "                     --checkpoint names another file): the image is exactly that of an\n"
             "                     uninterrupted render. --spp may grow; the scene's files and every other\n"
             "                     setting must be those of the checkpoint, or it is refused (status 2)\n"
+            "      --trace FILE   write a timeline of the threads' work to FILE (Chrome trace-event JSON, for\n"
+            "                     https://ui.perfetto.dev or chrome://tracing): scene loading, BVH build, every\n"
+            "                     tile pass on every worker, sample passes, waits, checkpoint and image writes.\n"
+            "                     Written after the image; the image is the same with or without it\n"
             "  -q, --quiet        no progress bar, statistics line or warnings; errors are still printed\n"
             "  -h, --help         print this help and exit\n"
             "  -V, --version      print the version and exit\n");
@@ -300,6 +305,13 @@ static cli_action apply_option(const cli_program *prog, const option_spec *spec,
         }
         if (spec->id == OPT_CHECKPOINT) o->checkpoint = value;
         else o->resume = value;
+        break;
+    case OPT_TRACE:
+        if (value[0] == '\0' || strcmp(value, "-") == 0) {
+            say(prog, "--trace: '%s' is not a file name, expected the JSON file to write the trace to\n", value);
+            return CLI_EXIT_USAGE;
+        }
+        o->trace = value;
         break;
     case OPT_QUIET: o->quiet = true; break;
     case OPT_HELP: print_usage(prog, stdout); return CLI_EXIT_OK;

@@ -27,6 +27,7 @@ typedef struct cli_options {
     char aov_output[CLI_AOV_COUNT][4096];
     const char *checkpoint; ///< --checkpoint FILE (the --resume file when only that is given), or NULL
     const char *resume;     ///< --resume FILE, or NULL
+    const char *trace;      ///< --trace FILE: the timeline of the threads' work, as Chrome trace-event JSON; or NULL
     bool quiet, ascii_ppm, half;
     bool preview;           ///< --preview: show the image in a window as it converges
 } cli_options;

@@ -102,10 +102,16 @@ typedef struct render_call {
     glint_render_stats stats;
     glint_error err;
     glint_status status;
+    glint_trace *trace; ///< the render's thread records into it (NULL: no trace)
 } render_call;
 
 static void render_call_run(void *arg) {
     render_call *c = arg;
+    // A no-op on the main thread, which is attached already; the preview's render thread gets a row of its own.
+    if (c->trace && glint_trace_attach(c->trace, "render", &c->err) != GLINT_OK) {
+        c->status = GLINT_ERR_RENDER;
+        return;
+    }
     c->status = glint_render(c->scene, c->options, c->progress, c->user, &c->image, &c->stats, &c->err);
 }
 
@@ -132,45 +138,64 @@ static bool same_file(const char *a, const char *b) {
     return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
 }
 
-int main(int argc, char **argv) {
-    if (argc > 1 && strcmp(argv[1], "merge") == 0) return cli_merge(argc, argv);
-    cli_options opt;
-    cli_action action = cli_parse(&CLI_GLINT, argc, argv, &opt);
-    if (action != CLI_RUN) return (int)action;
+// Why `path` (--checkpoint, --trace) cannot be written: one of the files the render reads or writes, which
+// would be lost; NULL when it is none of them.
+static const char *clobbers(const char *path, const cli_options *opt, const char *const *outputs, int output_count) {
+    for (int i = 0; i < output_count; i++)
+        if (same_file(path, outputs[i])) return i == 0 ? "the output image" : "an AOV file";
+    if (cli_output_is_scene(path, opt->scene_path)) return "the scene file";
+    return NULL;
+}
 
+// Everything after the command line: load, render, write the image and the trace (NULL: none); the exit status.
+static int run(const cli_options *opt, glint_trace *trace) {
     glint_error err;
-    glint_format format = opt.ascii_ppm ? GLINT_FORMAT_PPM_ASCII : opt.half ? GLINT_FORMAT_EXR_HALF : GLINT_FORMAT_AUTO;
+    glint_format format = opt->ascii_ppm ? GLINT_FORMAT_PPM_ASCII : opt->half ? GLINT_FORMAT_EXR_HALF : GLINT_FORMAT_AUTO;
     // Before the render, not after it: a typo in -o must not cost a long render.
     // Every file the render will write: the image, and the AOV files beside a PFM.
-    const char *outputs[1 + CLI_AOV_COUNT] = {opt.output};
+    const char *outputs[1 + CLI_AOV_COUNT] = {opt->output};
     int output_count = 1;
     for (int i = 0; i < CLI_AOV_COUNT; i++)
-        if (opt.aov_output[i][0]) outputs[output_count++] = opt.aov_output[i];
+        if (opt->aov_output[i][0]) outputs[output_count++] = opt->aov_output[i];
     for (int i = 0; i < output_count; i++) {
         glint_status st = glint_image_check_path(outputs[i], i == 0 ? format : GLINT_FORMAT_PFM, &err);
         if (st != GLINT_OK) {
             fprintf(stderr, "glint: %s\n", err.message);
             return exit_code(st);
         }
-        if (cli_output_is_scene(outputs[i], opt.scene_path)) {
+        if (cli_output_is_scene(outputs[i], opt->scene_path)) {
             fprintf(stderr, "glint: %s: cannot write: it is the scene file, which would be lost\n", outputs[i]);
             return exit_code(GLINT_ERR_INPUT);
         }
     }
-    if (opt.checkpoint && (same_file(opt.checkpoint, opt.output) || cli_output_is_scene(opt.checkpoint, opt.scene_path))) {
-        fprintf(stderr, "glint: --checkpoint: %s: cannot write: it is the %s, which would be lost\n", opt.checkpoint,
-                same_file(opt.checkpoint, opt.output) ? "output image" : "scene file");
+    if (opt->checkpoint && (same_file(opt->checkpoint, opt->output) || cli_output_is_scene(opt->checkpoint, opt->scene_path))) {
+        fprintf(stderr, "glint: --checkpoint: %s: cannot write: it is the %s, which would be lost\n", opt->checkpoint,
+                same_file(opt->checkpoint, opt->output) ? "output image" : "scene file");
         return exit_code(GLINT_ERR_INPUT);
+    }
+    if (opt->trace) {
+        glint_status st = glint_trace_check_path(opt->trace, &err);
+        if (st != GLINT_OK) {
+            fprintf(stderr, "glint: --trace: %s\n", err.message);
+            return exit_code(st);
+        }
+        const char *clobbered = clobbers(opt->trace, opt, outputs, output_count);
+        if (!clobbered && opt->checkpoint && same_file(opt->trace, opt->checkpoint)) clobbered = "the checkpoint";
+        if (!clobbered && opt->resume && same_file(opt->trace, opt->resume)) clobbered = "the checkpoint";
+        if (clobbered) {
+            fprintf(stderr, "glint: --trace: %s: cannot write: it is %s, which would be lost\n", opt->trace, clobbered);
+            return exit_code(GLINT_ERR_INPUT);
+        }
     }
     glint_status st;
 
-    quiet_signals = opt.quiet;
+    quiet_signals = opt->quiet;
     atomic_store(&loading, 1);
     install_signal_handlers();
     glint_scene *scene = NULL;
-    st = cli_load_scene(opt.scene_path, &scene, &err);
+    st = cli_load_scene(opt->scene_path, &scene, &err);
     atomic_store(&loading, 0);
-    if (st == GLINT_OK) st = glint_scene_override(scene, &opt.overrides, &err);
+    if (st == GLINT_OK) st = glint_scene_override(scene, &opt->overrides, &err);
     if (st != GLINT_OK) {
         fprintf(stderr, "glint: %s\n", err.message);
         glint_scene_free(scene);
@@ -184,35 +209,38 @@ int main(int argc, char **argv) {
             glint_scene_free(scene);
             return exit_code(GLINT_ERR_INPUT);
         }
-    if (opt.checkpoint && glint_scene_reads_file(scene, opt.checkpoint)) {
-        fprintf(stderr, "glint: --checkpoint: %s: cannot write: the scene reads it (a mesh, texture or environment "
-                        "map), which would be lost\n", opt.checkpoint);
-        glint_scene_free(scene);
-        return exit_code(GLINT_ERR_INPUT);
+    for (int i = 0; i < 2; i++) {
+        const char *flag = i == 0 ? "--checkpoint" : "--trace", *path = i == 0 ? opt->checkpoint : opt->trace;
+        if (path && glint_scene_reads_file(scene, path)) {
+            fprintf(stderr, "glint: %s: %s: cannot write: the scene reads it (a mesh, texture or environment map), "
+                            "which would be lost\n", flag, path);
+            glint_scene_free(scene);
+            return exit_code(GLINT_ERR_INPUT);
+        }
     }
     // The library never prints: what it worked around in mesh files is reported here, unless --quiet.
-    for (size_t i = 0; !opt.quiet && i < glint_scene_warning_count(scene); i++)
+    for (size_t i = 0; !opt->quiet && i < glint_scene_warning_count(scene); i++)
         fprintf(stderr, "glint: %s\n", glint_scene_warning(scene, i));
     if (atomic_load(&first_signal)) { // stopped before the render began: there is nothing to write
         glint_scene_free(scene);
-        if (!opt.quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
+        if (!opt->quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
         return interrupted_status();
     }
 
     cli_progress bar = {.start = cli_now(), .drawn = false};
-    bool show_progress = !opt.quiet && isatty(STDERR_FILENO);
-    glint_render_options ropt = {.threads = opt.threads, .time_limit = (double)opt.time_limit};
-    memcpy(ropt.region, opt.region, sizeof ropt.region);
-    ropt.aovs = opt.aovs;
-    ropt.checkpoint = opt.checkpoint;
-    ropt.resume = opt.resume;
-    cli_preview *preview = opt.preview ? open_preview(&opt, scene) : NULL;
+    bool show_progress = !opt->quiet && isatty(STDERR_FILENO);
+    glint_render_options ropt = {.threads = opt->threads, .time_limit = (double)opt->time_limit};
+    memcpy(ropt.region, opt->region, sizeof ropt.region);
+    ropt.aovs = opt->aovs;
+    ropt.checkpoint = opt->checkpoint;
+    ropt.resume = opt->resume;
+    cli_preview *preview = opt->preview ? open_preview(opt, scene) : NULL;
     if (preview) {
         ropt.live_image = cli_preview_live_image;
         ropt.live_user = preview;
     }
     render_call call = {.scene = scene, .options = &ropt, .progress = show_progress ? cli_progress_draw : NULL,
-                        .user = &bar};
+                        .user = &bar, .trace = trace};
     if (preview) cli_preview_run(preview, render_call_run, &call);
     else render_call_run(&call);
     glint_image *img = call.image;
@@ -233,32 +261,43 @@ int main(int argc, char **argv) {
     }
     bool interrupted = st == GLINT_ERR_INTERRUPTED;
     uint64_t samples_kept = stats.samples + stats.samples_resumed; // a resumed render keeps what it resumed
-    if (!opt.quiet) cli_print_stats(&CLI_GLINT, &stats, interrupted && samples_kept == 0 ? NULL : opt.output);
+    if (!opt->quiet) cli_print_stats(&CLI_GLINT, &stats, interrupted && samples_kept == 0 ? NULL : opt->output);
     // A render that lost more than a small share of its samples is wrong, but its image is still written.
     bool lost = cli_warn_discarded(&CLI_GLINT, &stats);
-    if (st == GLINT_OK && stats.spp_done < stats.spp && !opt.quiet)
-        fprintf(stderr, "glint: time limit of %ld s reached: %d of %d samples per pixel rendered\n", opt.time_limit,
+    if (st == GLINT_OK && stats.spp_done < stats.spp && !opt->quiet)
+        fprintf(stderr, "glint: time limit of %ld s reached: %d of %d samples per pixel rendered\n", opt->time_limit,
                 stats.spp_done, stats.spp);
 
     if (interrupted && samples_kept == 0) {
-        if (!opt.quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
+        if (!opt->quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
         glint_image_free(img);
         return interrupted_status();
     }
-    if (interrupted && !opt.quiet) cli_print_interrupted(&CLI_GLINT, img, samples_kept, opt.output);
+    if (interrupted && !opt->quiet) cli_print_interrupted(&CLI_GLINT, img, samples_kept, opt->output);
 
-    if (strcmp(opt.output, "-") != 0) block_stop_signals();
-    st = glint_image_write(img, opt.output, format, &err);
+    if (strcmp(opt->output, "-") != 0) block_stop_signals();
+    st = glint_image_write(img, opt->output, format, &err);
     for (int i = 0; st == GLINT_OK && i < CLI_AOV_COUNT; i++)
-        if (opt.aov_output[i][0]) st = glint_image_write_aov(img, (glint_aov)(1u << i), opt.aov_output[i], &err);
+        if (opt->aov_output[i][0]) st = glint_image_write_aov(img, (glint_aov)(1u << i), opt->aov_output[i], &err);
     if (st != GLINT_OK) {
         fprintf(stderr, "glint: %s\n", err.message);
         glint_image_free(img);
         cli_preview_close(preview);
         return exit_code(st);
     }
+    // The trace last, so that it shows the image being written.
+    if (trace) {
+        block_stop_signals(); // a rename never races an abort (standard output left them unblocked)
+        st = glint_trace_write(trace, opt->trace, &err);
+        if (st != GLINT_OK) {
+            fprintf(stderr, "glint: --trace: %s\n", err.message);
+            glint_image_free(img);
+            cli_preview_close(preview);
+            return interrupted ? interrupted_status() : exit_code(st);
+        }
+    }
     if (cli_preview_is_open(preview)) { // the image is written; the window stays until the user closes it
-        if (!opt.quiet) fprintf(stderr, "glint: the preview window stays open until it is closed (or Esc)\n");
+        if (!opt->quiet) fprintf(stderr, "glint: the preview window stays open until it is closed (or Esc)\n");
         char status[128];
         snprintf(status, sizeof status, "done, %d spp - Esc closes", stats.spp_done);
         unblock_stop_signals();
@@ -268,4 +307,24 @@ int main(int argc, char **argv) {
     cli_preview_close(preview);
     if (atomic_load(&first_signal)) return interrupted_status(); // Ctrl-C while the window waited
     return interrupted ? interrupted_status() : lost ? 1 : 0;
+}
+
+int main(int argc, char **argv) {
+    if (argc > 1 && strcmp(argv[1], "merge") == 0) return cli_merge(argc, argv);
+    cli_options opt;
+    cli_action action = cli_parse(&CLI_GLINT, argc, argv, &opt);
+    if (action != CLI_RUN) return (int)action;
+    glint_trace *trace = NULL;
+    if (opt.trace) {
+        glint_error err;
+        trace = glint_trace_new();
+        if (!trace || glint_trace_attach(trace, "main", &err) != GLINT_OK) {
+            fprintf(stderr, "glint: --trace: out of memory for the trace\n");
+            glint_trace_free(trace);
+            return exit_code(GLINT_ERR_RENDER);
+        }
+    }
+    int status = run(&opt, trace);
+    glint_trace_free(trace);
+    return status;
 }

@@ -3,6 +3,7 @@
 // O_TMPFILE is Linux's: <fcntl.h> declares it only for _GNU_SOURCE (without it, the named fallback is used).
 #define _GNU_SOURCE
 #include "io/image_write.h"
+#include "core/trace.h"
 #include "film/film.h"
 #include "io/exr_write.h"
 #include "io/image_png.h"
@@ -458,11 +459,26 @@ glint_status image_write_file(const char *path, image_file_writer fill, const vo
     return rc == 0 ? GLINT_OK : cannot_write(path, rc, why, err);
 }
 
+// Writes the image (aov < 0; "-": standard output) or one AOV plane, as an "image write" event on the calling
+// thread's trace when there is one.
+static glint_status write_traced(const glint_image *img, const char *path, glint_format format, int aov,
+                                 glint_error *err) {
+    static const char *const formats[] = {"auto", "PNG", "PPM", "PPM (ASCII)", "PFM", "EXR", "EXR (half)", "HDR"};
+    static const char *const aovs[FILM_AOV_COUNT] = {"albedo", "normal", "depth"};
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
+    glint_status st = strcmp(path, "-") == 0 ? write_stdout(img, format, err) : write_file(img, path, format, aov, err);
+    if (lane)
+        trace_add(lane, &(trace_event){"image write", "io", began, trace_clock(), 3,
+                                       {{"file", 0, path}, {"format", 0, (unsigned)format < sizeof formats / sizeof *formats ? formats[format] : "?"},
+                                        {"plane", 0, aov >= 0 && aov < FILM_AOV_COUNT ? aovs[aov] : "colour"}}});
+    return st;
+}
+
 glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
     glint_status st = resolve_format(path, format, &format, err);
     if (st != GLINT_OK) return st;
-    if (strcmp(path, "-") == 0) return write_stdout(img, format, err);
-    return write_file(img, path, format, -1, err);
+    return write_traced(img, path, format, -1, err);
 }
 
 glint_status image_write_aov(const glint_image *img, int aov, const char *path, glint_error *err) {
@@ -480,7 +496,7 @@ glint_status image_write_aov(const glint_image *img, int aov, const char *path, 
                  "for it (glint_render_options.aovs)", path, aov >= 0 && aov < FILM_AOV_COUNT ? names[aov] : "such");
         return GLINT_ERR_INPUT;
     }
-    return write_file(img, path, format, aov, err);
+    return write_traced(img, path, format, aov, err);
 }
 
 glint_status image_check_path(const char *path, glint_format format, glint_error *err) {

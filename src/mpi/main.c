@@ -247,7 +247,7 @@ int main(int argc, char **argv) {
     if (action != CLI_RUN) return leave((int)action);
     // Options of the glint program that the ranks' protocol does not carry (yet): refused, not ignored.
     const char *unsupported = opt.aovs ? "--aov" : opt.preview ? "--preview" : opt.resume ? "--resume"
-                              : opt.checkpoint ? "--checkpoint" : NULL;
+                              : opt.checkpoint ? "--checkpoint" : opt.trace ? "--trace" : NULL;
     if (unsupported) {
         if (rank == 0) fprintf(stderr, "glint-mpi: %s is not supported by glint-mpi (use glint)\n", unsupported);
         return leave(2);

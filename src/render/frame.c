@@ -1,9 +1,25 @@
 // frame.c — building the render frame: the scene's geometry handed to the accel as plain arrays, then the
 // integrator over the scene and that accel.
 #include "render/frame.h"
+#include "core/trace.h"
 
 #include <stdio.h>
 #include <stdlib.h>
+
+// "BVH build" on the trace: what was built over how much.
+static void trace_accel_build(trace_lane *lane, const glint_scene *s, int64_t began) {
+    static const char *const kinds[] = {"bvh", "bvh2", "none"};
+    size_t triangles = 0;
+    for (size_t i = 0; i < s->mesh_count; i++) triangles += s->meshes[i].geometry.triangle_count;
+    accel_kind k = s->settings.accel;
+    trace_add(lane, &(trace_event){k == ACCEL_NONE ? "accel build" : "BVH build", "render", began, trace_clock(), 6,
+                                   {{"accel", 0, kinds[k]},
+                                    {"spheres", (int64_t)(s->sphere_count + s->moving_sphere_count), NULL},
+                                    {"quads", (int64_t)s->quad_count, NULL},
+                                    {"meshes", (int64_t)s->mesh_count, NULL},
+                                    {"triangles", (int64_t)triangles, NULL},
+                                    {"instances", (int64_t)s->instance_count, NULL}}});
+}
 
 accel *frame_accel_build(const glint_scene *s, int threads, const atomic_int *stop, glint_error *err) {
     // The accel sees meshes as bare triangle lists: their material slots are the scene's business.
@@ -29,7 +45,10 @@ accel *frame_accel_build(const glint_scene *s, int threads, const atomic_int *st
                       .time1 = s->camera.shutter_close,
                       .stop = stop,
                       .threads = threads};
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     accel *a = accel_build(&in, s->settings.accel, err);
+    if (lane) trace_accel_build(lane, s, began);
     free(meshes); // accel_build keeps a copy of the list
     return a;
 }
@@ -40,7 +59,12 @@ glint_status frame_build(render_frame *f, const glint_scene *s, const integrator
     f->integrator = NULL;
     f->accel = frame_accel_build(s, threads, stop, err);
     if (!f->accel) return stop && atomic_load(stop) ? GLINT_ERR_INTERRUPTED : GLINT_ERR_RENDER;
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     f->integrator = integrator_create(s, f->accel, o, err);
+    // The light index, the environment's sampling distribution and the camera: a step of its own on the timeline.
+    if (lane) trace_add(lane, &(trace_event){.name = "integrator setup", .category = "render", .start = began,
+                                             .end = trace_clock()});
     if (!f->integrator) {
         frame_release(f);
         return GLINT_ERR_RENDER;

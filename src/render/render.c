@@ -3,6 +3,7 @@
 // count gives the same bytes, and a stop request leaves every pixel at the mean of its completed samples.
 #include "render/render.h"
 #include "core/clock.h"
+#include "core/trace.h"
 #include "film/film.h"
 #include "io/image_write.h"
 #include "render/checkpoint.h"
@@ -59,6 +60,8 @@ typedef struct render_job {
     atomic_int tiles_done[MAX_PASSES]; ///< with checkpoints: tiles that have finished each pass
     atomic_int failed;             ///< a checkpoint could not be written: the render stops, with `failure`
     glint_error failure;
+    // Traced renders only: when each pass's first tile began and its last one ended (trace_clock; 0: not yet).
+    _Atomic int64_t pass_began[MAX_PASSES], pass_ended[MAX_PASSES];
     pthread_mutex_t lock;
     pthread_cond_t tile_finished;
 } render_job;
@@ -68,6 +71,7 @@ typedef struct worker {
     thread_stats stats;                           ///< the worker's counters, copied here when it ends
     _Alignas(64) _Atomic uint64_t samples_done;   ///< read by the progress thread while the worker runs
     render_job *job;
+    trace_lane *lane;                             ///< the worker's row of the trace; NULL: not traced
     pthread_t thread;
 } worker;
 
@@ -146,6 +150,13 @@ static bool render_tile(render_job *job, int tile, int pass, thread_stats *ts, _
     return render_rect(job, rect, job->grid.pass_start[pass], job->grid.pass_start[pass + 1], ts, progress, &ft);
 }
 
+// "wait" on the trace: a worker idle from `began` until now, for `what` (tile -1: the whole pass).
+static void trace_wait(trace_lane *lane, int64_t began, const char *what, int tile, int pass) {
+    trace_event e = {"wait", "render", began, trace_clock(), 2, {{"for", 0, what}, {"pass", pass, NULL}}};
+    if (tile >= 0) e.args[e.arg_count++] = (trace_arg){"tile", tile, NULL};
+    trace_add(lane, &e);
+}
+
 // Wakes the workers waiting for a tile; the waiters count (sequentially consistent, as is the tile store
 // before it) spares the mutex when, as nearly always, nobody waits.
 static void wake_waiters(render_job *job) {
@@ -159,12 +170,18 @@ static void wake_waiters(render_job *job) {
 // when fewer tiles than threads remain between a tile's consecutive passes.
 static bool wait_for_tile(render_job *job, int tile, int pass) {
     if (atomic_load(&job->tile_passes[tile]) >= pass) return true;
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     pthread_mutex_lock(&job->lock);
     atomic_fetch_add(&job->waiters, 1);
-    while (atomic_load(&job->tile_passes[tile]) < pass && !atomic_load(&job->stopping))
+    bool waited = false;
+    while (atomic_load(&job->tile_passes[tile]) < pass && !atomic_load(&job->stopping)) {
+        waited = true;
         pthread_cond_wait(&job->tile_finished, &job->lock);
+    }
     atomic_fetch_sub(&job->waiters, 1);
     pthread_mutex_unlock(&job->lock);
+    if (lane && waited) trace_wait(lane, began, "the tile's previous pass", tile, pass);
     return atomic_load(&job->tile_passes[tile]) >= pass;
 }
 
@@ -176,9 +193,14 @@ static bool job_write_checkpoint(render_job *job) {
     for (size_t i = 0; i < pixels; i++) complete = job->counts[i] < complete ? job->counts[i] : complete;
     checkpoint_plane planes[] = {{"count", CHECKPOINT_U32, 1, job->counts}, {"rgb", CHECKPOINT_F64, 3, job->film.sums}};
     glint_error e;
-    if (checkpoint_write(job->checkpoint, &job->identity, job->film.spp, (int)complete, planes,
-                         sizeof planes / sizeof planes[0], &e) == GLINT_OK)
-        return true;
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
+    glint_status st = checkpoint_write(job->checkpoint, &job->identity, job->film.spp, (int)complete, planes,
+                                       sizeof planes / sizeof planes[0], &e);
+    if (lane)
+        trace_add(lane, &(trace_event){"checkpoint write", "io", began, trace_clock(), 2,
+                                       {{"file", 0, job->checkpoint}, {"spp", complete, NULL}}});
+    if (st == GLINT_OK) return true;
     if (atomic_exchange(&job->failed, 1) == 0) job->failure = e;
     render_request_stop();
     return false;
@@ -186,12 +208,18 @@ static bool job_write_checkpoint(render_job *job) {
 
 // Blocks until every tile has finished `pass`; false when the render is stopping instead.
 static bool wait_for_pass(render_job *job, int pass) {
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     pthread_mutex_lock(&job->lock);
     atomic_fetch_add(&job->waiters, 1);
-    while (atomic_load(&job->tiles_done[pass]) < job->grid.tile_count && !atomic_load(&job->stopping))
+    bool waited = false;
+    while (atomic_load(&job->tiles_done[pass]) < job->grid.tile_count && !atomic_load(&job->stopping)) {
+        waited = true;
         pthread_cond_wait(&job->tile_finished, &job->lock);
+    }
     atomic_fetch_sub(&job->waiters, 1);
     pthread_mutex_unlock(&job->lock);
+    if (lane && waited) trace_wait(lane, began, "the pass's end (checkpoint)", -1, pass);
     return atomic_load(&job->tiles_done[pass]) >= job->grid.tile_count;
 }
 
@@ -211,9 +239,13 @@ static bool pass_may_run(render_job *job, int pass, int tile) {
         return d == PASS_RUN;
     }
     int d;
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     pthread_mutex_lock(&job->lock);
     atomic_fetch_add(&job->waiters, 1);
+    bool waited = false;
     while ((d = atomic_load(&job->pass_decision[pass])) == 0 && !atomic_load(&job->stopping) && !stop_is_requested()) {
+        waited = true;
         // A stop request sets a flag and wakes nobody: look at it again every 50 ms.
         struct timespec until;
         clock_gettime(CLOCK_REALTIME, &until);
@@ -223,7 +255,29 @@ static bool pass_may_run(render_job *job, int pass, int tile) {
     }
     atomic_fetch_sub(&job->waiters, 1);
     pthread_mutex_unlock(&job->lock);
+    if (lane && waited) trace_wait(lane, began, "the pass's start", -1, pass);
     return d == PASS_RUN;
+}
+
+// Keeps *a at most (below true) or at least (below false) v.
+static void atomic_bound(_Atomic int64_t *a, int64_t v, bool below) {
+    int64_t now = atomic_load_explicit(a, memory_order_relaxed);
+    while ((now == 0 || (below ? v < now : v > now)) &&
+           !atomic_compare_exchange_weak_explicit(a, &now, v, memory_order_relaxed, memory_order_relaxed)) {}
+}
+
+// "tile" on the worker's row of the trace, and the pass's extent so far.
+static void trace_tile(render_job *job, trace_lane *lane, int tile, int pass, int64_t began, bool done) {
+    int r[4];
+    tiles_rect(&job->grid, tile, r);
+    int64_t ended = trace_clock();
+    trace_event e = {"tile", "render", began, ended, 6,
+                     {{"x", r[0], NULL}, {"y", r[1], NULL}, {"w", r[2] - r[0], NULL}, {"h", r[3] - r[1], NULL},
+                      {"pass", pass, NULL}, {"samples", tiles_pass_samples(&job->grid, pass), NULL}}};
+    if (!done) e.args[e.arg_count++] = (trace_arg){"stopped", 1, NULL};
+    trace_add(lane, &e);
+    atomic_bound(&job->pass_began[pass], began, true);
+    atomic_bound(&job->pass_ended[pass], ended, false);
 }
 
 static void *worker_main(void *arg) {
@@ -231,6 +285,7 @@ static void *worker_main(void *arg) {
     render_job *job = w->job;
     thread_stats local = {0}; // on this thread's stack: the hot counters are never shared
     int items = job->grid.pass_count * job->grid.tile_count;
+    trace_set_current(w->lane); // for what records deeper down: checkpoints, waits
     for (;;) {
         if (stop_is_requested()) break;
         int item = atomic_fetch_add(&job->next_item, 1);
@@ -238,7 +293,11 @@ static void *worker_main(void *arg) {
         int pass = item / job->grid.tile_count, tile = item % job->grid.tile_count;
         if (job->gated && pass > 0 && !pass_may_run(job, pass, tile)) break;
         if (!wait_for_tile(job, tile, pass)) break;
-        if (!render_tile(job, tile, pass, &local, &w->samples_done)) break;
+        // Tracing off: one test of a pointer before and after each tile pass, nothing per sample.
+        int64_t began = w->lane ? trace_clock() : 0;
+        bool done = render_tile(job, tile, pass, &local, &w->samples_done);
+        if (w->lane) trace_tile(job, w->lane, tile, pass, began, done);
+        if (!done) break;
         atomic_store(&job->tile_passes[tile], pass + 1);
         if (job->checkpoint) atomic_fetch_add(&job->tiles_done[pass], 1);
         wake_waiters(job);
@@ -345,6 +404,8 @@ static bool job_init(render_job *job, const glint_scene *s, const integrator *it
     for (int p = 0; p < MAX_PASSES; p++) {
         atomic_init(&job->pass_decision[p], 0);
         atomic_init(&job->tiles_done[p], 0);
+        atomic_init(&job->pass_began[p], 0);
+        atomic_init(&job->pass_ended[p], 0);
     }
     if (!film_init(&job->film, region, rs->width, rs->height, rs->spp, job->grid.pass_count, rs->transform, aovs))
         return false;
@@ -389,7 +450,10 @@ static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *
     if (!opt->resume) return GLINT_OK;
     checkpoint_plane planes[] = {{"count", CHECKPOINT_U32, 1, job->counts}, {"rgb", CHECKPOINT_F64, 3, job->film.sums}};
     int made_for = 0;
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     st = checkpoint_read(opt->resume, &job->identity, planes, sizeof planes / sizeof planes[0], &made_for, err);
+    if (lane) trace_add(lane, &(trace_event){"checkpoint read", "io", began, trace_clock(), 1, {{"file", 0, opt->resume}}});
     if (st != GLINT_OK) return st;
     uint32_t most = 0;
     uint64_t total = 0;
@@ -409,8 +473,55 @@ static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *
     return GLINT_OK;
 }
 
+// Gives the render's other threads rows of the calling thread's trace, "worker 1", ... (the caller is worker 0),
+// and a row for the sample passes; in this order, so that their thread ids are too. Nothing when not traced.
+static trace_lane *trace_open_lanes(worker *workers, int threads) {
+    trace_lane *lane = trace_current();
+    workers[0].lane = lane;
+    if (!lane) return NULL;
+    for (int i = 1; i < threads; i++) {
+        char name[32];
+        snprintf(name, sizeof name, "worker %d", i);
+        workers[i].lane = trace_lane_open(trace_lane_owner(lane), name);
+    }
+    return trace_lane_open(trace_lane_owner(lane), "sample passes");
+}
+
+// "pass" on the passes' row: from its first tile's start to its last tile's end, for the passes that began.
+static void trace_passes(const render_job *job, trace_lane *passes) {
+    int complete = job->grid.pass_count;
+    for (int i = 0; i < job->grid.tile_count; i++) {
+        int p = atomic_load(&job->tile_passes[i]);
+        complete = p < complete ? p : complete;
+    }
+    for (int p = 0; p < job->grid.pass_count; p++) {
+        int64_t began = atomic_load(&job->pass_began[p]), ended = atomic_load(&job->pass_ended[p]);
+        if (began == 0) continue;
+        trace_add(passes, &(trace_event){"pass", "render", began, ended, 4,
+                                         {{"pass", p, NULL}, {"first sample", job->grid.pass_start[p], NULL},
+                                          {"samples", tiles_pass_samples(&job->grid, p), NULL},
+                                          {"complete", p < complete, NULL}}});
+    }
+}
+
+static glint_status render_run(const glint_scene *s, const render_options *opt, glint_progress_fn progress,
+                               void *user, glint_image **out, glint_render_stats *stats, glint_error *err);
+
+// The render, as one "render" event on the calling thread's row of the trace when there is one.
 glint_status render_scene(const glint_scene *s, const render_options *opt, glint_progress_fn progress, void *user,
                           glint_image **out, glint_render_stats *stats, glint_error *err) {
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
+    glint_status st = render_run(s, opt, progress, user, out, stats, err);
+    if (lane)
+        trace_add(lane, &(trace_event){"render", "render", began, trace_clock(), 4,
+                                       {{"width", s->settings.width, NULL}, {"height", s->settings.height, NULL},
+                                        {"spp", s->settings.spp, NULL}, {"status", st, NULL}}});
+    return st;
+}
+
+static glint_status render_run(const glint_scene *s, const render_options *opt, glint_progress_fn progress,
+                               void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
     *out = NULL;
     double t0 = clock_seconds();
     int region[4];
@@ -483,6 +594,7 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
         workers[i].job = &job;
         atomic_init(&workers[i].samples_done, 0);
     }
+    trace_lane *passes_lane = trace_open_lanes(workers, threads);
 
     glint_live_image_fn live_image = opt ? opt->live_image : NULL;
     progress_state prog = {.job = &job, .workers = workers, .worker_count = threads, .fn = progress, .user = user,
@@ -498,6 +610,7 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
     worker_main(&workers[0]);
     for (int i = 1; i <= started; i++) pthread_join(workers[i].thread, NULL);
     if (prog_running) progress_stop(&prog, prog_thread);
+    if (passes_lane) trace_passes(&job, passes_lane);
 
     thread_stats total = {0};
     for (int i = 0; i <= started; i++) {

@@ -6,6 +6,7 @@
 #include "core/array.h"
 #include "core/file_read.h"
 #include "core/hash.h"
+#include "core/trace.h"
 #include "core/filepath.h"
 #include "io/exr_read.h"
 #include "io/hdr_read.h"
@@ -386,7 +387,11 @@ static bool read_envmap(sf_loader *ld, const jr_obj *o) {
     }
     image_rgb img;
     glint_error err;
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     glint_status st = read_hdr_image(path, &img, &err);
+    if (lane)
+        trace_add(lane, &(trace_event){"environment map read", "load", began, trace_clock(), 1, {{"file", 0, path}}});
     // The reader's message names the resolved path; the scene's message names the file as written instead.
     size_t n = strlen(path);
     const char *why = strncmp(err.message, path, n) == 0 && err.message[n] == ':' ? err.message + n + 2 : err.message;
@@ -556,6 +561,8 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
     if (!text) text = "";
     json_index ix;
     json_scan_error se;
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     json_result jr = json_scan(text, length, &ix, &se);
     if (jr != JSON_SCAN_OK) {
         size_t line, col;
@@ -569,6 +576,8 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
     size_t bom = length >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(text + bom, length - bom, &end, 0);
+    if (lane)
+        trace_add(lane, &(trace_event){"JSON parse", "load", began, trace_clock(), 1, {{"bytes", (int64_t)length, NULL}}});
     sf_loader ld;
     memset(&ld, 0, sizeof ld);
     ld.r = (json_reader){name, text, length, &ix, err, GLINT_ERR_INPUT};

@@ -3,6 +3,7 @@
 #include "scene/scene_file.h"
 #include "core/array.h"
 #include "core/filepath.h"
+#include "core/trace.h"
 #include "io/image_read.h"
 
 #include <float.h>
@@ -37,7 +38,10 @@ bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *
     // The file is decoded here (io/), and the texture module only takes the pixels.
     image_rgb img;
     glint_error err;
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     glint_status st = image_read(path, decode, &img, &err);
+    if (lane) trace_add(lane, &(trace_event){"texture read", "load", began, trace_clock(), 1, {{"file", 0, path}}});
     if (st != GLINT_OK) {
         char note[420], shown[304];
         jr_fail_at(&ld->r, where, "%simage file \"%s\"%s: %s", prefix, filepath_tail(written, 300, shown, sizeof shown),

@@ -4,6 +4,7 @@
 #include "scene/scene_file.h"
 #include "core/array.h"
 #include "core/filepath.h"
+#include "core/trace.h"
 #include "io/obj.h"
 
 #include <stdio.h>
@@ -94,7 +95,13 @@ static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id i
     glint_error err;
     obj_options opt = {collect_warning, ld, false};
     char got[96], note[420];
+    trace_lane *lane = trace_current();
+    int64_t began = lane ? trace_clock() : 0;
     glint_status st = obj_load(path, &opt, &model, &err);
+    if (lane)
+        trace_add(lane, &(trace_event){"OBJ read", "load", began, trace_clock(), 2,
+                                       {{"file", 0, path},
+                                        {"triangles", st == GLINT_OK ? (int64_t)model.mesh.triangle_count : 0, NULL}}});
     if (st != GLINT_OK) {
         jr_fail_at(&ld->r, jr_offset(&ld->r, file.tok), "mesh file %s%s: %s", jr_describe_path(&ld->r, file, got, sizeof got),
                    sf_resolved_note(file.item->valuestring, path, note, sizeof note), err.message);

@@ -65,7 +65,7 @@ check "--spp 0: exit 2 (got $rc)" test $rc -eq 2
 check "--spp 0: glint's message, once" test "$(grep -c 'glint-mpi' "$TMP/err")" -eq 1 -a \
     "$(grep -c "^glint-mpi: --spp: 0 is out of range, expected an integer in \[1, 1000000\]$" "$TMP/err")" -eq 1
 # glint's options that the ranks do not carry are refused, not ignored.
-for flag in "--aov depth" --preview "--checkpoint $TMP/c.ckp" "--resume $TMP/c.ckp"; do
+for flag in "--aov depth" --preview "--checkpoint $TMP/c.ckp" "--resume $TMP/c.ckp" "--trace $TMP/t.json"; do
     # shellcheck disable=SC2086 # the flag and its value are two words
     "${MPIRUN[@]}" -np 2 "$GLINT_MPI" $flag -o "$TMP/x.exr" "$DATA/tiny.json" >"$TMP/out" 2>"$TMP/err"
     rc=$?
