@@ -126,15 +126,23 @@ static glint_image *render(glint_scene *s) {
     return img;
 }
 
-// Whether two images hold the same linear floats, bit for bit (the 8-bit output is then the same too).
-static bool identical(const glint_image *a, const glint_image *b, const char *what) {
+// The linear floats of two images of the same size (false when either is missing or the sizes differ).
+static bool both_pixels(const glint_image *a, const glint_image *b, int *w, int *n, const float **pa, const float **pb) {
     if (!a || !b) return false;
     int wa, ha, wb, hb;
+    glint_image_info(a, &wa, &ha, pa);
+    glint_image_info(b, &wb, &hb, pb);
+    *w = wa;
+    *n = wa * ha * 3;
+    return wa == wb && ha == hb;
+}
+
+// Whether two images hold the same linear floats, bit for bit (the 8-bit output is then the same too).
+static bool identical(const glint_image *a, const glint_image *b, const char *what) {
+    int wa, n;
     const float *pa, *pb;
-    glint_image_info(a, &wa, &ha, &pa);
-    glint_image_info(b, &wb, &hb, &pb);
-    if (wa != wb || ha != hb) return false;
-    for (int i = 0; i < wa * ha * 3; i++)
+    if (!both_pixels(a, b, &wa, &n, &pa, &pb)) return false;
+    for (int i = 0; i < n; i++)
         if (memcmp(&pa[i], &pb[i], sizeof pa[i]) != 0) {
             fprintf(stderr, "  %s: pixel (%d, %d) channel %d: %.9g vs %.9g\n", what, i / 3 % wa, i / 3 / wa, i % 3,
                     (double)pa[i], (double)pb[i]);
@@ -146,13 +154,10 @@ static bool identical(const glint_image *a, const glint_image *b, const char *wh
 // Whether two images agree but for float rounding: at most 1 channel value in 200 differs by more than 1e-4
 // relative (a ray that grazes an edge may take another path), and none by more than 0.05 relative.
 static bool nearly_identical(const glint_image *a, const glint_image *b, const char *what) {
-    if (!a || !b) return false;
-    int wa, ha, wb, hb;
+    int wa, n, off = 0;
     const float *pa, *pb;
-    glint_image_info(a, &wa, &ha, &pa);
-    glint_image_info(b, &wb, &hb, &pb);
-    if (wa != wb || ha != hb) return false;
-    int n = wa * ha * 3, off = 0;
+    if (!both_pixels(a, b, &wa, &n, &pa, &pb)) return false;
+    (void)wa;
     double worst = 0.0;
     for (int i = 0; i < n; i++) {
         double d = fabs((double)pa[i] - (double)pb[i]) / fmax(1e-3, fabs((double)pa[i]));
