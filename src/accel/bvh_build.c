@@ -610,7 +610,7 @@ static bool build_parallel(builder *bd, size_t n, thread_pool *pool, size_t para
         order = malloc(pb.subtree_count * sizeof *order);
         pb.failed = !order;
     }
-    if (!pb.failed && !pb.proto.stopped) {
+    if (!pb.failed && !pb.proto.stopped && pb.subtree_count) { // qsort must not see a NULL array
         for (size_t i = 0; i < pb.subtree_count; i++) {
             subtree *t = &pb.subtrees[i];
             t->bd = pb.proto;
