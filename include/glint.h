@@ -258,7 +258,7 @@ GLINT_API glint_status glint_trace_check_path(const char *path, glint_error *err
 /// with ts and dur in microseconds since glint_trace_new, and thread_name metadata), as glint_image_write writes
 /// images: a temporary file linked into place, nothing left behind on failure. Call it when the renders it
 /// records have returned. GLINT_ERR_RENDER when the file cannot be written, or when memory ran out while events
-/// were recorded (a timeline with holes is not written).
+/// were recorded (a timeline with holes is not written); GLINT_ERR_INPUT when trace or path is NULL.
 GLINT_API glint_status glint_trace_write(glint_trace *trace, const char *path, glint_error *err);
 /// Frees a trace (NULL is allowed) and detaches the calling thread from it; detach any other thread first.
 GLINT_API void glint_trace_free(glint_trace *trace);

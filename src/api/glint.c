@@ -170,6 +170,10 @@ static int write_trace_file(FILE *f, const void *user, char *why, size_t why_siz
 glint_status glint_trace_write(glint_trace *t, const char *path, glint_error *err) {
     glint_error scratch;
     if (!err) err = &scratch;
+    if (!t || !path) {
+        snprintf(err->message, sizeof err->message, "glint_trace_write: no %s", t ? "file name" : "trace");
+        return GLINT_ERR_INPUT;
+    }
     if (!trace_complete(t)) {
         snprintf(err->message, sizeof err->message, "%s: cannot write the trace: memory ran out while it was "
                  "recorded, so events are missing", path);

@@ -150,7 +150,9 @@ static const char *clobbers(const char *path, const cli_options *opt, const char
 // Everything after the command line: load, render, write the image and the trace (NULL: none); the exit status.
 static int run(const cli_options *opt, glint_trace *trace) {
     glint_error err;
-    glint_format format = opt->ascii_ppm ? GLINT_FORMAT_PPM_ASCII : opt->half ? GLINT_FORMAT_EXR_HALF : GLINT_FORMAT_AUTO;
+    glint_format format = opt->ascii_ppm ? GLINT_FORMAT_PPM_ASCII
+                          : opt->half    ? GLINT_FORMAT_EXR_HALF
+                                         : GLINT_FORMAT_AUTO;
     // Before the render, not after it: a typo in -o must not cost a long render.
     // Every file the render will write: the image, and the AOV files beside a PFM.
     const char *outputs[1 + CLI_AOV_COUNT] = {opt->output};
@@ -168,7 +170,8 @@ static int run(const cli_options *opt, glint_trace *trace) {
             return exit_code(GLINT_ERR_INPUT);
         }
     }
-    if (opt->checkpoint && (same_file(opt->checkpoint, opt->output) || cli_output_is_scene(opt->checkpoint, opt->scene_path))) {
+    if (opt->checkpoint &&
+        (same_file(opt->checkpoint, opt->output) || cli_output_is_scene(opt->checkpoint, opt->scene_path))) {
         fprintf(stderr, "glint: --checkpoint: %s: cannot write: it is the %s, which would be lost\n", opt->checkpoint,
                 same_file(opt->checkpoint, opt->output) ? "output image" : "scene file");
         return exit_code(GLINT_ERR_INPUT);

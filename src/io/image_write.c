@@ -468,10 +468,11 @@ static glint_status write_traced(const glint_image *img, const char *path, glint
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
     glint_status st = strcmp(path, "-") == 0 ? write_stdout(img, format, err) : write_file(img, path, format, aov, err);
-    if (lane)
-        trace_add(lane, &(trace_event){"image write", "io", began, trace_clock(), 3,
-                                       {{"file", 0, path}, {"format", 0, (unsigned)format < sizeof formats / sizeof *formats ? formats[format] : "?"},
-                                        {"plane", 0, aov >= 0 && aov < FILM_AOV_COUNT ? aovs[aov] : "colour"}}});
+    if (!lane) return st;
+    const char *kind = (unsigned)format < sizeof formats / sizeof *formats ? formats[format] : "?";
+    const char *plane = aov >= 0 && aov < FILM_AOV_COUNT ? aovs[aov] : "colour";
+    trace_add(lane, &(trace_event){"image write", "io", began, trace_clock(), 3,
+                                   {{"file", 0, path}, {"format", 0, kind}, {"plane", 0, plane}}});
     return st;
 }
 

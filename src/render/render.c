@@ -453,7 +453,8 @@ static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
     st = checkpoint_read(opt->resume, &job->identity, planes, sizeof planes / sizeof planes[0], &made_for, err);
-    if (lane) trace_add(lane, &(trace_event){"checkpoint read", "io", began, trace_clock(), 1, {{"file", 0, opt->resume}}});
+    if (lane)
+        trace_add(lane, &(trace_event){"checkpoint read", "io", began, trace_clock(), 1, {{"file", 0, opt->resume}}});
     if (st != GLINT_OK) return st;
     uint32_t most = 0;
     uint64_t total = 0;

@@ -577,7 +577,8 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(text + bom, length - bom, &end, 0);
     if (lane)
-        trace_add(lane, &(trace_event){"JSON parse", "load", began, trace_clock(), 1, {{"bytes", (int64_t)length, NULL}}});
+        trace_add(lane, &(trace_event){"JSON parse", "load", began, trace_clock(), 1,
+                                       {{"bytes", (int64_t)length, NULL}}});
     sf_loader ld;
     memset(&ld, 0, sizeof ld);
     ld.r = (json_reader){name, text, length, &ix, err, GLINT_ERR_INPUT};

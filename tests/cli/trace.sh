@@ -1,7 +1,7 @@
 # trace.sh — --trace FILE.json: a Chrome trace-event timeline that parses as JSON and holds the thread names, one
 # event per tile pass, the BVH build and the image write, on 1 and 2 threads; the same image bytes with or without
 # it; a stopped render's trace; the files it refuses to write (before rendering), and nothing left behind.
-# The JSON checks need python3 (tests/cli/trace_check.py).
+# The JSON checks need python3 (tests/cli/trace_check.py; .ci/run installs it).
 source "$2/tests/cli/common.bash"
 CHECK_TRACE=(python3 "$SRC/tests/cli/trace_check.py")
 
