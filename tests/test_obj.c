@@ -41,9 +41,12 @@ static const char *expand(const char *pattern) {
     return buf;
 }
 
+// Every line read as a statement, never by a fast path: the tables of cases run both ways.
+static bool statements_only;
+
 static glint_status load(const char *path, obj_model *m, warnings *w, glint_error *err) {
     memset(w, 0, sizeof *w);
-    obj_options opt = {collect, w, false};
+    obj_options opt = {collect, w, false, statements_only};
     return obj_load(path, &opt, m, err);
 }
 
@@ -481,7 +484,7 @@ static void test_mapping(void) {
 }
 
 static void test_texture_paths(void) {
-    obj_options skip = {NULL, NULL, true};
+    obj_options skip = {NULL, NULL, true, false};
     obj_material *mats;
     size_t count;
     glint_error err;
@@ -525,7 +528,8 @@ static void test_index_forms(void) {
                        "f\t2\t4  3 \r\n";
     obj_model m;
     glint_error err;
-    CHECK(obj_parse("forms.obj", text, strlen(text), NULL, &m, &err) == GLINT_OK);
+    obj_options opt = {NULL, NULL, true, statements_only};
+    CHECK(obj_parse("forms.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
     CHECK(m.mesh.triangle_count == 6 && m.mesh.uv_count == 4 && m.mesh.normal_count == 2);
     if (m.mesh.triangle_count == 6) {
         const mesh_triangle *t = m.mesh.triangles;
@@ -583,7 +587,7 @@ static void test_polygons(void) {
     snprintf(big + k, cap - k, "\n");
     warnings w;
     memset(&w, 0, sizeof w);
-    obj_options opt = {collect, &w, false};
+    obj_options opt = {collect, &w, false, false};
     CHECK(obj_parse("star.obj", big, strlen(big), &opt, &m, &err) == GLINT_OK);
     CHECK(m.mesh.triangle_count == N - 2);
     CHECK(w.count == 1 && same_string(w.msg[0], "star.obj:301: warning: concave face with 300 vertices triangulated as a fan; it may be wrong"));
@@ -608,7 +612,7 @@ static void test_large_convex_face(void) {
     snprintf(text + k, cap - k, "\n");
     warnings w;
     memset(&w, 0, sizeof w);
-    obj_options opt = {collect, &w, false};
+    obj_options opt = {collect, &w, false, false};
     obj_model m;
     glint_error err;
     CHECK(obj_parse("circle.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
@@ -693,7 +697,7 @@ static void test_materials_in_obj(void) {
     // skip_files: libraries are not opened and nothing is reported about them.
     const char *text = "mtllib nothere.mtl\nusemtl x\n" TRI "f 1 2 3\n";
     memset(&w, 0, sizeof w);
-    obj_options opt = {collect, &w, true};
+    obj_options opt = {collect, &w, true, false};
     CHECK(obj_parse("mem.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
     CHECK(w.count == 1 && same_string(w.msg[0], "mem.obj:2: warning: material 'x' is not defined in any material library; using the default material"));
     obj_model_free(&m);
@@ -706,7 +710,7 @@ static void test_comments_and_blanks(void) {
     glint_error err;
     warnings w;
     memset(&w, 0, sizeof w);
-    obj_options opt = {collect, &w, false};
+    obj_options opt = {collect, &w, false, false};
     CHECK(obj_parse("c.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
     CHECK(m.mesh.position_count == 4 && m.mesh.triangle_count == 2 && w.count == 0);
     obj_model_free(&m);
@@ -821,7 +825,8 @@ static bool write_long_line(const char *path, size_t length, const char *tail) {
 
 // obj_load reads a file in blocks of a few hundred KiB and parses each block's complete lines as it comes:
 // whatever falls on a block's edge (a line, a CRLF, a line longer than a block, the last line without an
-// end), the model, the warnings and the errors are those of obj_parse over the whole text.
+// end), the model, the warnings and the errors are those of obj_parse over the whole text (run a second
+// time with obj_load reading statements only: then the fast paths are checked against the statements too).
 static void test_blocks_match_whole_text(void) {
     text_buf t = {0};
     rng r = rng_for_sample(77, 1, 0);
@@ -879,7 +884,7 @@ static void test_blocks_match_whole_text(void) {
     warnings w1, w2;
     glint_error err;
     memset(&w1, 0, sizeof w1);
-    obj_options opt = {collect, &w1, false};
+    obj_options opt = {collect, &w1, false, false};
     CHECK(obj_parse(path, t.s, t.n, &opt, &whole, &err) == GLINT_OK);
     CHECK(load(path, &blocks, &w2, &err) == GLINT_OK);
     CHECK(whole.mesh.triangle_count > 200000 && whole.mesh.uv_count > 0 && whole.material_count == 4);
@@ -1091,6 +1096,13 @@ int main(void) {
     test_edge_cases();
     test_malformed();
     test_warnings();
+    // The fast paths decide nothing: the statement reader alone gives the same errors and warnings.
+    statements_only = true;
+    test_malformed();
+    test_warnings();
+    test_index_forms();
+    test_blocks_match_whole_text();
+    statements_only = false;
     test_mapping();
     test_texture_paths();
     test_index_forms();

@@ -1212,9 +1212,10 @@ static bool obj_line(void *state, cursor *c) { return obj_statement(state, c); }
 // line, else as a statement.
 static bool obj_lines(obj_parser *ps, const char *text, size_t length) {
     const char *s = text, *end = text + length;
+    bool fast = !(ps->opt && ps->opt->statements_only);
     while (s < end) {
         ps->rep.line++;
-        fast_result r = fast_line(ps, s, end, &s);
+        fast_result r = fast ? fast_line(ps, s, end, &s) : FAST_NO;
         if (r == FAST_FAIL || (r == FAST_NO && (!add_queued(ps) || !read_line(s, end, &ps->rep, obj_line, ps, &s))))
             return false;
     }

@@ -90,6 +90,7 @@ typedef struct obj_options {
     obj_warning_fn warn; ///< NULL: warnings are only counted
     void *user;          ///< passed to warn
     bool skip_files;     ///< do not open material libraries or check textures (fuzzing, in-memory use)
+    bool statements_only; ///< read every line as a statement, never by a fast path (tests compare the two)
 } obj_options;
 
 /// Loads an OBJ file and its material libraries. On failure returns GLINT_ERR_INPUT (GLINT_ERR_RENDER when

@@ -1,5 +1,6 @@
 // fuzz_obj.c — libFuzzer target for the OBJ and MTL readers: any bytes must give a mesh or a message, never
-// a crash, a leak, a hang or undefined behaviour. Whatever loads is then used as a renderer would use it.
+// a crash, a leak, a hang or undefined behaviour, and the same one with the fast paths as without them.
+// Whatever loads is then used as a renderer would use it.
 // Build with -DGLINT_FUZZ=ON and CC=clang; run: build/tests/fuzz_obj -dict=tests/fuzz/obj.dict NEWDIR tests/fuzz/corpus_obj
 #include "geometry/mesh.h"
 #include "io/obj.h"
@@ -15,12 +16,39 @@ static void check_failure(const glint_error *err) {
     if (memchr(err->message, '\0', sizeof err->message) == NULL || err->message[0] == '\0') __builtin_trap();
 }
 
+// Whether two loads hold the same bytes (arrays, box, material slots, counts).
+static bool same_model(const obj_model *a, const obj_model *b) {
+    const mesh *x = &a->mesh, *y = &b->mesh;
+    bool same = x->position_count == y->position_count && x->normal_count == y->normal_count &&
+                x->uv_count == y->uv_count && x->triangle_count == y->triangle_count &&
+                a->material_count == b->material_count && a->warning_count == b->warning_count &&
+                a->zero_area_faces == b->zero_area_faces && memcmp(&x->bounds, &y->bounds, sizeof x->bounds) == 0;
+    same = same && (!x->position_count || !memcmp(x->positions, y->positions, x->position_count * sizeof *x->positions));
+    same = same && (!x->normal_count || !memcmp(x->normals, y->normals, x->normal_count * sizeof *x->normals));
+    same = same && (!x->uv_count || !memcmp(x->uvs, y->uvs, x->uv_count * sizeof *x->uvs));
+    same = same && (!x->triangle_count || !memcmp(x->triangles, y->triangles, x->triangle_count * sizeof *x->triangles));
+    for (size_t i = 0; same && i < a->material_count; i++) same = strcmp(a->materials[i].name, b->materials[i].name) == 0;
+    return same;
+}
+
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     // No files: a fuzzed `mtllib /dev/zero` must not be read.
-    obj_options opt = {NULL, NULL, true};
-    obj_model m;
-    glint_error err;
-    if (obj_parse("fuzz.obj", (const char *)data, size, &opt, &m, &err) == GLINT_OK) {
+    obj_options opt = {NULL, NULL, true, false}, statements = {NULL, NULL, true, true};
+    obj_model m, slow;
+    glint_error err, slow_err;
+    // The fast paths decide nothing: reading every line as a statement gives the same model or message.
+    glint_status st = obj_parse("fuzz.obj", (const char *)data, size, &opt, &m, &err);
+    glint_status slow_st = obj_parse("fuzz.obj", (const char *)data, size, &statements, &slow, &slow_err);
+    if (st != slow_st || (st != GLINT_OK && strcmp(err.message, slow_err.message) != 0)) __builtin_trap();
+    if (st == GLINT_OK) {
+        if (!same_model(&m, &slow)) __builtin_trap();
+        obj_model_free(&slow);
+        // The box grown triangle by triangle is mesh_compute_bounds's, bit for bit.
+        mesh copy = m.mesh;
+        bounds3 b = mesh_compute_bounds(&copy);
+        if (memcmp(&b, &m.mesh.bounds, sizeof b) != 0) __builtin_trap();
+    }
+    if (st == GLINT_OK) {
         const mesh *me = &m.mesh;
         for (size_t i = 0; i < me->triangle_count; i++) {
             const mesh_triangle *t = &me->triangles[i];
