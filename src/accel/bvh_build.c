@@ -115,12 +115,32 @@ static uint32_t new_node(builder *bd) { return (uint32_t)bd->node_count++; }
 // keeps the later of two equal bounds (+0 and -0 compare equal), so growing the results of consecutive chunks
 // in their order gives the bits of one pass over the whole range: what the parallel build relies on.
 static void range_bounds(const build_prim *prims, size_t begin, size_t end, box3 *bounds, box3 *cbounds) {
+#if defined(__SSE__)
+    // In registers: through the pointers every step would store and reload them (prims may alias them).
+    __m128 lo = _mm_load_ps(bounds->lo), hi = _mm_load_ps(bounds->hi);
+    __m128 clo = _mm_load_ps(cbounds->lo), chi = _mm_load_ps(cbounds->hi);
+    const __m128 half = _mm_set1_ps(0.5f);
+    for (size_t i = begin; i < end; i++) {
+        __m128 plo = _mm_load_ps(prims[i].box.lo), phi = _mm_load_ps(prims[i].box.hi);
+        // Operand order as box_grow's: the later of two equal bounds is kept.
+        lo = _mm_min_ps(lo, plo);
+        hi = _mm_max_ps(hi, phi);
+        __m128 c = _mm_add_ps(_mm_mul_ps(half, plo), _mm_mul_ps(half, phi)); // centroid()'s expression
+        clo = _mm_min_ps(clo, c);
+        chi = _mm_max_ps(chi, c);
+    }
+    _mm_store_ps(bounds->lo, lo);
+    _mm_store_ps(bounds->hi, hi);
+    _mm_store_ps(cbounds->lo, clo);
+    _mm_store_ps(cbounds->hi, chi);
+#else
     for (size_t i = begin; i < end; i++) {
         box_grow(bounds, &prims[i].box);
         float cx = centroid(&prims[i], 0), cy = centroid(&prims[i], 1), cz = centroid(&prims[i], 2);
         box3 c = {{cx, cy, cz, 0.0f}, {cx, cy, cz, 0.0f}};
         box_grow(cbounds, &c);
     }
+#endif
 }
 
 /// The SAH bins of a range: on each axis its centroid box cut into nb equal bins, each with the box and the
