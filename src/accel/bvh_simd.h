@@ -158,7 +158,7 @@ static __attribute__((noinline)) unsigned triangles_exact(const bvh_triangle_pac
 
 /// A ray's triangle-test constants (tri_ray) broadcast into registers, made once per ray.
 typedef struct simd_tri {
-    __m256 ox, oy, oz, sx, sy, sz, tmin, tmax; ///< origin and shear in ray-space order (x = kx, ...)
+    pk ox, oy, oz, sx, sy, sz, tmin, tmax; ///< origin and shear in ray-space order (x = kx, ...)
     int kx, ky, kz;
     float tmin1, tmax1;
     const tri_ray *tr; ///< for the lanes that take tri_intersect's double path
@@ -166,14 +166,14 @@ typedef struct simd_tri {
 
 static inline void simd_tri_setup(const tri_ray *tr, float tmin, float tmax, simd_tri *st) {
     const float o[3] = {tr->o.x, tr->o.y, tr->o.z};
-    st->ox = _mm256_set1_ps(o[tr->kx]);
-    st->oy = _mm256_set1_ps(o[tr->ky]);
-    st->oz = _mm256_set1_ps(o[tr->kz]);
-    st->sx = _mm256_set1_ps(tr->sx);
-    st->sy = _mm256_set1_ps(tr->sy);
-    st->sz = _mm256_set1_ps(tr->sz);
-    st->tmin = _mm256_set1_ps(tmin);
-    st->tmax = _mm256_set1_ps(tmax);
+    st->ox = PK(set1_ps)(o[tr->kx]);
+    st->oy = PK(set1_ps)(o[tr->ky]);
+    st->oz = PK(set1_ps)(o[tr->kz]);
+    st->sx = PK(set1_ps)(tr->sx);
+    st->sy = PK(set1_ps)(tr->sy);
+    st->sz = PK(set1_ps)(tr->sz);
+    st->tmin = PK(set1_ps)(tmin);
+    st->tmax = PK(set1_ps)(tmax);
     st->kx = tr->kx;
     st->ky = tr->ky;
     st->kz = tr->kz;
@@ -182,48 +182,48 @@ static inline void simd_tri_setup(const tri_ray *tr, float tmin, float tmax, sim
     st->tr = tr;
 }
 
-// A packet of eight triangles at once, each lane computing exactly what tri_intersect computes for it (the same
+// A packet of triangles at once, each lane computing exactly what tri_intersect computes for it (the same
 // float operations in the same order, unfused), so t and the barycentrics are bit-identical to the scalar test;
 // lanes with an edge function of zero go through tri_intersect's double path. Returns the mask of lanes hit with
 // tmin < t < tmax, with t, b1, b2 in the arrays (lanes outside the mask undefined).
 static inline unsigned triangles_simd(const bvh_triangle_packet *p, const simd_tri *st, float *t, float *b1,
                                       float *b2) {
-    __m256 x[3], y[3], z[3];
+    pk x[3], y[3], z[3];
     for (int j = 0; j < 3; j++) { // vertex j - o, sheared: x - sx z, y - sy z (products, then differences)
-        z[j] = _mm256_sub_ps(_mm256_load_ps(p->v[j][st->kz]), st->oz);
-        x[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][st->kx]), st->ox), _mm256_mul_ps(st->sx, z[j]));
-        y[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_load_ps(p->v[j][st->ky]), st->oy), _mm256_mul_ps(st->sy, z[j]));
+        z[j] = PK(sub_ps)(PK(load_ps)(p->v[j][st->kz]), st->oz);
+        x[j] = PK(sub_ps)(PK(sub_ps)(PK(load_ps)(p->v[j][st->kx]), st->ox), PK(mul_ps)(st->sx, z[j]));
+        y[j] = PK(sub_ps)(PK(sub_ps)(PK(load_ps)(p->v[j][st->ky]), st->oy), PK(mul_ps)(st->sy, z[j]));
     }
-    __m256 u = _mm256_sub_ps(_mm256_mul_ps(x[2], y[1]), _mm256_mul_ps(y[2], x[1]));
-    __m256 v = _mm256_sub_ps(_mm256_mul_ps(x[0], y[2]), _mm256_mul_ps(y[0], x[2]));
-    __m256 w = _mm256_sub_ps(_mm256_mul_ps(x[1], y[0]), _mm256_mul_ps(y[1], x[0]));
-    const __m256 zero = _mm256_setzero_ps();
-    __m256 neg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
-                              _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
-    __m256 pos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
-                              _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
-    __m256 zeros = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
-                                _mm256_cmp_ps(w, zero, _CMP_EQ_OQ));
-    unsigned exact = (unsigned)_mm256_movemask_ps(zeros);
+    pk u = PK(sub_ps)(PK(mul_ps)(x[2], y[1]), PK(mul_ps)(y[2], x[1]));
+    pk v = PK(sub_ps)(PK(mul_ps)(x[0], y[2]), PK(mul_ps)(y[0], x[2]));
+    pk w = PK(sub_ps)(PK(mul_ps)(x[1], y[0]), PK(mul_ps)(y[1], x[0]));
+    const pk zero = PK(setzero_ps)();
+    pk neg = PK(or_ps)(PK(or_ps)(PK(cmp_ps)(u, zero, _CMP_LT_OQ), PK(cmp_ps)(v, zero, _CMP_LT_OQ)),
+                              PK(cmp_ps)(w, zero, _CMP_LT_OQ));
+    pk pos = PK(or_ps)(PK(or_ps)(PK(cmp_ps)(u, zero, _CMP_GT_OQ), PK(cmp_ps)(v, zero, _CMP_GT_OQ)),
+                              PK(cmp_ps)(w, zero, _CMP_GT_OQ));
+    pk zeros = PK(or_ps)(PK(or_ps)(PK(cmp_ps)(u, zero, _CMP_EQ_OQ), PK(cmp_ps)(v, zero, _CMP_EQ_OQ)),
+                                PK(cmp_ps)(w, zero, _CMP_EQ_OQ));
+    unsigned exact = (unsigned)PK(movemask_ps)(zeros);
     // Edges of both signs: outside (most lanes of most packets, so most calls end here, before the division).
-    unsigned inside = ~(unsigned)_mm256_movemask_ps(_mm256_and_ps(neg, pos)) & 0xffu & ~exact;
+    unsigned inside = ~(unsigned)PK(movemask_ps)(PK(and_ps)(neg, pos)) & ((1u << BVH_PACKET) - 1) & ~exact;
     unsigned mask = 0;
     if (inside) {
-        __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
-        __m256 scaled = _mm256_mul_ps(
-            _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, z[0]), _mm256_mul_ps(v, z[1])), _mm256_mul_ps(w, z[2])),
+        pk det = PK(add_ps)(PK(add_ps)(u, v), w);
+        pk scaled = PK(mul_ps)(
+            PK(add_ps)(PK(add_ps)(PK(mul_ps)(u, z[0]), PK(mul_ps)(v, z[1])), PK(mul_ps)(w, z[2])),
             st->sz);
-        __m256 inv = _mm256_div_ps(_mm256_set1_ps(1.0f), det);
-        __m256 tv = _mm256_mul_ps(scaled, inv);
+        pk inv = PK(div_ps)(PK(set1_ps)(1.0f), det);
+        pk tv = PK(mul_ps)(scaled, inv);
         // det zero or NaN (unused lanes are NaN), and t outside (tmin, tmax), fail these ordered comparisons.
-        __m256 ok = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ),
-                                  _mm256_and_ps(_mm256_cmp_ps(tv, st->tmin, _CMP_GT_OQ),
-                                                _mm256_cmp_ps(tv, st->tmax, _CMP_LT_OQ)));
-        mask = inside & (unsigned)_mm256_movemask_ps(ok);
+        pk ok = PK(and_ps)(PK(cmp_ps)(det, zero, _CMP_NEQ_OQ),
+                                  PK(and_ps)(PK(cmp_ps)(tv, st->tmin, _CMP_GT_OQ),
+                                                PK(cmp_ps)(tv, st->tmax, _CMP_LT_OQ)));
+        mask = inside & (unsigned)PK(movemask_ps)(ok);
         if (mask) {
-            _mm256_store_ps(t, tv);
-            _mm256_store_ps(b1, _mm256_mul_ps(v, inv));
-            _mm256_store_ps(b2, _mm256_mul_ps(w, inv));
+            PK(store_ps)(t, tv);
+            PK(store_ps)(b1, PK(mul_ps)(v, inv));
+            PK(store_ps)(b2, PK(mul_ps)(w, inv));
         }
     }
     if (exact) mask |= triangles_exact(p, st->tr, st->tmin1, st->tmax1, exact, t, b1, b2);

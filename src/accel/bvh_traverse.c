@@ -131,11 +131,11 @@ static __attribute__((noinline)) hit triangle_packet_scalar(const bvh_triangle_p
     return best;
 }
 
-#if BVH_SIMD && BVH_PACKET == 8
+#if BVH_SIMD
 // A packet of triangles in SIMD (triangles_simd), its hits offered lane by lane.
 static __attribute__((noinline)) hit triangle_packet_simd(const bvh_triangle_packet *p, const ray *r, tri_cache *tc,
                                                           hit best, uint32_t inst_id, bool any, bool *hit_any) {
-    _Alignas(32) float t[8], b1[8], b2[8];
+    _Alignas(32) float t[BVH_PACKET], b1[BVH_PACKET], b2[BVH_PACKET];
     simd_tri st;
     simd_tri_setup(tri_for(tc, r), r->tmin, r->tmax, &st);
     unsigned mask = triangles_simd(p, &st, t, b1, b2);
@@ -240,9 +240,8 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
                 offer_spheres(best, p, mask, tv, inst_id);
             }
         } else if (leaves == LEAVES_TRIANGLES) {
-#if BVH_PACKET == 8
             const bvh_triangle_packet *p = (const bvh_triangle_packet *)(const void *)slot;
-            _Alignas(32) float t[8], b1[8], b2[8];
+            _Alignas(32) float t[BVH_PACKET], b1[BVH_PACKET], b2[BVH_PACKET];
             unsigned mask = triangles_simd(p, st, t, b1, b2);
             if (mask) {
                 found = true;
@@ -253,15 +252,6 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
                     offer_triangle(best, p, k, t[k], b1[k], b2[k], inst_id);
                 } while (mask);
             }
-#else
-            bool h;
-            *best = triangle_packet_scalar((const bvh_triangle_packet *)(const void *)slot, r, tc, *best, inst_id, any,
-                                           &h);
-            if (h) {
-                found = true;
-                if (any) return true;
-            }
-#endif
         } else {
             bool h;
             if (hd->kind == PRIM_TRIANGLE || hd->kind == PRIM_QUAD)
