@@ -43,10 +43,7 @@ static bool make_soup(rng *g, size_t n, mesh *m) {
             for (int j = 0; j < 3; j++)
                 p[j] = v3_add(c, v3(urand(g, -size, size), urand(g, -size, size), urand(g, -size, size)));
         }
-        for (int j = 0; j < 3; j++) {
-            m->triangles[i].v[j] = (int32_t)(3 * i + (size_t)j);
-            m->triangles[i].n[j] = m->triangles[i].t[j] = -1;
-        }
+        for (int j = 0; j < 3; j++) m->triangles[i].v[j] = (int32_t)(3 * i + (size_t)j);
         m->triangles[i].material = -1;
     }
     mesh_compute_bounds(m);

@@ -127,8 +127,9 @@ int main(void) {
 #else
     if (!tmpdir_make("glint-test-limits")) return 1;
     char want[1200], scene[1400];
-    // A 40 MB OBJ file (read a block at a time) whose 5 million triangles would take 200 MB: the array of
-    // triangles cannot grow that far (with glibc, it stops doubling at 2^22 triangles, on line 4194308).
+    // An 85 MB OBJ file (read a block at a time) whose 5 million triangles would take 140 MB: the arrays of
+    // triangles and normal indices cannot both grow that far (with glibc, they stop doubling past 2^22
+    // triangles, on line 4194309).
     const char *obj = many_faces_file("big.obj", 5000000);
     snprintf(want, sizeof want, "%s:", obj);
     expect_line(__LINE__, run_limited(load_obj, obj), want, ": out of memory");
