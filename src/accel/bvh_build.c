@@ -1074,6 +1074,10 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     b->front = leaf_placed(&cl, b->front);
     b->root = leaf_placed(&cl, b->root);
     free(cl.spans);
+    // The packets hold what the wide traversal reads of the references (the binary one reads them).
+    free(b->refs);
+    b->refs = NULL;
+    b->ref_count = 0;
     b->stats.nodes = b->wnode_count;
     b->stats.leaves = cl.leaves;
     b->stats.depth = tree ? cl.depth + 1 : 1; // the leaf level counts, as in the binary tree
