@@ -104,13 +104,13 @@ static void expect_line(int line, outcome o, const char *head, const char *tail)
             (int)GLINT_ERR_RENDER, o.message, head, tail);
 }
 
-// An OBJ file of one triangle's corners and `faces` lines "f 1 2 3" (a multiple of 4): 8 bytes of text and
-// 40 of mesh each.
+// An OBJ file of one triangle's corners and normal and `faces` lines "f 1//1 2//1 3//1" (a multiple of 4): 17
+// bytes of text and 28 of mesh each (the triangle's 16, its normal indices' 12).
 static const char *many_faces_file(const char *name, size_t faces) {
     const char *path = tmp_path(name);
     FILE *f = fopen(path, "wb");
-    bool ok = f && fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\n", f) >= 0;
-    static const char lines[] = "f 1 2 3\nf 1 2 3\nf 1 2 3\nf 1 2 3\n";
+    bool ok = f && fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n", f) >= 0;
+    static const char lines[] = "f 1//1 2//1 3//1\nf 1//1 2//1 3//1\nf 1//1 2//1 3//1\nf 1//1 2//1 3//1\n";
     for (size_t i = 0; ok && i < faces / 4; i++) ok = fwrite(lines, 1, sizeof lines - 1, f) == sizeof lines - 1;
     if (f) ok = fclose(f) == 0 && ok;
     CHECK(ok);
