@@ -254,10 +254,7 @@ static bool make_mesh(rng *g, int cells, scene_mesh *out) {
             int a = y * side + x, b = a + 1, c = a + side, d = c + 1;
             int tri[2][3] = {{a, b, d}, {a, d, c}};
             for (int k = 0; k < 2; k++, t++) {
-                for (int j = 0; j < 3; j++) {
-                    m->triangles[t].v[j] = tri[k][j];
-                    m->triangles[t].n[j] = m->triangles[t].t[j] = -1;
-                }
+                for (int j = 0; j < 3; j++) m->triangles[t].v[j] = tri[k][j];
                 m->triangles[t].material = -1;
             }
         }

@@ -104,13 +104,13 @@ static void expect_line(int line, outcome o, const char *head, const char *tail)
             (int)GLINT_ERR_RENDER, o.message, head, tail);
 }
 
-// An OBJ file of one triangle's corners and `faces` lines "f 1 2 3" (a multiple of 4): 8 bytes of text and
-// 40 of mesh each.
+// An OBJ file of one triangle's corners and normal and `faces` lines "f 1//1 2//1 3//1" (a multiple of 4): 17
+// bytes of text and 28 of mesh each (the triangle's 16, its normal indices' 12).
 static const char *many_faces_file(const char *name, size_t faces) {
     const char *path = tmp_path(name);
     FILE *f = fopen(path, "wb");
-    bool ok = f && fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\n", f) >= 0;
-    static const char lines[] = "f 1 2 3\nf 1 2 3\nf 1 2 3\nf 1 2 3\n";
+    bool ok = f && fputs("v 0 0 0\nv 1 0 0\nv 0 1 0\nvn 0 0 1\n", f) >= 0;
+    static const char lines[] = "f 1//1 2//1 3//1\nf 1//1 2//1 3//1\nf 1//1 2//1 3//1\nf 1//1 2//1 3//1\n";
     for (size_t i = 0; ok && i < faces / 4; i++) ok = fwrite(lines, 1, sizeof lines - 1, f) == sizeof lines - 1;
     if (f) ok = fclose(f) == 0 && ok;
     CHECK(ok);
@@ -127,8 +127,9 @@ int main(void) {
 #else
     if (!tmpdir_make("glint-test-limits")) return 1;
     char want[1200], scene[1400];
-    // A 40 MB OBJ file (read a block at a time) whose 5 million triangles would take 200 MB: the array of
-    // triangles cannot grow that far (with glibc, it stops doubling at 2^22 triangles, on line 4194308).
+    // An 85 MB OBJ file (read a block at a time) whose 5 million triangles would take 140 MB: the arrays of
+    // triangles and normal indices cannot both grow that far (with glibc, they stop doubling past 2^22
+    // triangles, on line 4194309).
     const char *obj = many_faces_file("big.obj", 5000000);
     snprintf(want, sizeof want, "%s:", obj);
     expect_line(__LINE__, run_limited(load_obj, obj), want, ": out of memory");

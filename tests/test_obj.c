@@ -111,7 +111,7 @@ static void test_cornell_original(void) {
     CHECK(m.mesh.triangles[0].v[0] == 0 && m.mesh.triangles[0].v[1] == 1 && m.mesh.triangles[0].v[2] == 2);
     CHECK(m.mesh.triangles[1].v[0] == 0 && m.mesh.triangles[1].v[1] == 2 && m.mesh.triangles[1].v[2] == 3);
     CHECK(m.mesh.positions[0].x == -1.01f && m.mesh.positions[0].z == 0.99f);
-    CHECK(m.mesh.triangles[0].n[0] == -1 && m.mesh.triangles[0].t[0] == -1);
+    CHECK(mesh_triangle_normals(&m.mesh, 0).i[0] == -1 && mesh_triangle_uvs(&m.mesh, 0).i[0] == -1);
     static const char *const names[] = {"floor", "ceiling", "backWall", "rightWall", "leftWall", "shortBox", "tallBox", "light"};
     CHECK(m.material_count == 8);
     for (size_t i = 0; i < 8 && i < m.material_count; i++) {
@@ -144,8 +144,8 @@ static void test_spot(void) {
     bool uv_everywhere = true, no_normals = true, unit_square = true;
     for (size_t i = 0; i < m.mesh.triangle_count; i++)
         for (int k = 0; k < 3; k++) {
-            uv_everywhere &= m.mesh.triangles[i].t[k] >= 0;
-            no_normals &= m.mesh.triangles[i].n[k] == -1;
+            uv_everywhere &= mesh_triangle_uvs(&m.mesh, i).i[k] >= 0;
+            no_normals &= mesh_triangle_normals(&m.mesh, i).i[k] == -1;
         }
     for (size_t i = 0; i < m.mesh.uv_count; i++)
         // About the unit square: awk finds 4 of them slightly outside (down to u = -0.052, up to v = 1.00065).
@@ -154,7 +154,7 @@ static void test_spot(void) {
     CHECK(m.mesh.triangles[0].material == -1);
     // Smooth normals can be computed for it.
     CHECK(mesh_compute_normals(&m.mesh));
-    CHECK(m.mesh.normal_count == 2930 && m.mesh.triangles[5855].n[2] >= 0);
+    CHECK(m.mesh.normal_count == 2930 && mesh_triangle_normals(&m.mesh, 5855).i[2] >= 0);
     obj_model_free(&m);
     // The control mesh: 160 quads, 16 pentagons, 4 triangles -> 372 triangles (awk: sum of corners - 2).
     CHECK(load(DATA "spot/spot_control_mesh.obj", &m, &w, &err) == GLINT_OK);
@@ -191,7 +191,8 @@ static void test_spider(void) {
     CHECK(m.materials[1].mat.albedo.x == 0.827451f);
     bool full = true;
     for (size_t i = 0; i < m.mesh.triangle_count; i++)
-        for (int k = 0; k < 3; k++) full &= m.mesh.triangles[i].t[k] >= 0 && m.mesh.triangles[i].n[k] >= 0;
+        for (int k = 0; k < 3; k++)
+            full &= mesh_triangle_uvs(&m.mesh, i).i[k] >= 0 && mesh_triangle_normals(&m.mesh, i).i[k] >= 0;
     CHECK(full);
     obj_model_free(&m);
 }
@@ -231,7 +232,7 @@ static void test_edge_cases(void) {
     CHECK(m.mesh.triangle_count == 12 && m.mesh.uv_count == 4 && m.mesh.normal_count == 6 && w.count == 0);
     CHECK(m.material_count == 2 && m.materials[0].mat.kind == MAT_LAMBERTIAN);
     CHECK(m.materials[0].mat.albedo.x == 0.5f && m.materials[1].mat.albedo.y == 0.5f);
-    CHECK(m.mesh.triangles[2].t[0] == 0 && m.mesh.triangles[2].n[0] == 1);
+    CHECK(mesh_triangle_uvs(&m.mesh, 2).i[0] == 0 && mesh_triangle_normals(&m.mesh, 2).i[0] == 1);
     obj_model_free(&m);
     // N-gons of 7, 8 and 5 corners; the pentagon repeats a vertex (v19 = v20), so one fan triangle has no
     // area: 5 + 6 + 2 = 13 triangles instead of the 14 of a blind fan.
@@ -533,11 +534,17 @@ static void test_index_forms(void) {
     CHECK(m.mesh.triangle_count == 6 && m.mesh.uv_count == 4 && m.mesh.normal_count == 2);
     if (m.mesh.triangle_count == 6) {
         const mesh_triangle *t = m.mesh.triangles;
-        CHECK(t[0].v[2] == 2 && t[0].t[0] == -1 && t[0].n[0] == -1);
-        CHECK(t[1].t[0] == 0 && t[1].t[2] == 2 && t[1].n[1] == -1);
-        CHECK(t[2].t[0] == -1 && t[2].n[1] == 1);
-        CHECK(t[3].t[1] == 1 && t[3].n[1] == 1 && t[3].n[2] == 0);
-        CHECK(t[4].v[0] == 0 && t[4].v[1] == 1 && t[4].v[2] == 3 && t[4].t[2] == 3 && t[4].n[0] == 0 && t[4].n[2] == 1);
+        mesh_corners tc[6], nc[6];
+        for (size_t i = 0; i < 6; i++) {
+            tc[i] = mesh_triangle_uvs(&m.mesh, i);
+            nc[i] = mesh_triangle_normals(&m.mesh, i);
+        }
+        CHECK(t[0].v[2] == 2 && tc[0].i[0] == -1 && nc[0].i[0] == -1);
+        CHECK(tc[1].i[0] == 0 && tc[1].i[2] == 2 && nc[1].i[1] == -1);
+        CHECK(tc[2].i[0] == -1 && nc[2].i[1] == 1);
+        CHECK(tc[3].i[1] == 1 && nc[3].i[1] == 1 && nc[3].i[2] == 0);
+        CHECK(t[4].v[0] == 0 && t[4].v[1] == 1 && t[4].v[2] == 3);
+        CHECK(tc[4].i[2] == 3 && nc[4].i[0] == 0 && nc[4].i[2] == 1);
         CHECK(t[5].v[0] == 1 && t[5].v[1] == 3 && t[5].v[2] == 2);
     }
     CHECK(m.mesh.uvs[3].u == 1.0f && m.mesh.uvs[3].v == 0.0f); // `vt u` alone: v = 0
@@ -804,6 +811,10 @@ static bool same_model(const obj_model *a, const obj_model *b) {
     same = same && (!x->normal_count || !memcmp(x->normals, y->normals, x->normal_count * sizeof *x->normals));
     same = same && (!x->uv_count || !memcmp(x->uvs, y->uvs, x->uv_count * sizeof *x->uvs));
     same = same && (!x->triangle_count || !memcmp(x->triangles, y->triangles, x->triangle_count * sizeof *x->triangles));
+    same = same && !x->normal_corners == !y->normal_corners && !x->uv_corners == !y->uv_corners;
+    same = same && (!x->normal_corners ||
+                    !memcmp(x->normal_corners, y->normal_corners, x->triangle_count * sizeof *x->normal_corners));
+    same = same && (!x->uv_corners || !memcmp(x->uv_corners, y->uv_corners, x->triangle_count * sizeof *x->uv_corners));
     for (size_t i = 0; same && i < a->material_count; i++)
         same = strcmp(a->materials[i].name, b->materials[i].name) == 0 && a->materials[i].line == b->materials[i].line;
     return same;
@@ -937,10 +948,14 @@ static void test_blocks_match_whole_text(void) {
 // The plain reading of an OBJ file of triangles: strtof for every number, strtol for every index, smooth
 // normals summed and normalised one loop at a time, the box over the triangles' corners. The fast reader
 // must give these arrays bit for bit.
+typedef struct plain_triangle {
+    int32_t v[3], n[3], t[3], material;
+} plain_triangle;
+
 typedef struct plain_mesh {
     vec3 *p, *n;
     uv2 *t;
-    mesh_triangle *tri;
+    plain_triangle *tri;
     size_t np, nn, nt, ntri;
     bounds3 box;
 } plain_mesh;
@@ -972,7 +987,7 @@ static void plain_read(const char *text, plain_mesh *m, size_t cap) {
             float u = strtof(s + 3, &end), v = strtof(end, &end);
             m->t[m->nt++] = (uv2){u, v};
         } else if (s[0] == 'f') {
-            mesh_triangle tr = {{0, 0, 0}, {-1, -1, -1}, {-1, -1, -1}, -1};
+            plain_triangle tr = {{0, 0, 0}, {-1, -1, -1}, {-1, -1, -1}, -1};
             const char *q = s + 1;
             for (int k = 0; k < 3; k++) {
                 tr.v[k] = plain_index(q, &q, m->np);
@@ -1006,7 +1021,7 @@ static void plain_read(const char *text, plain_mesh *m, size_t cap) {
         acc[i] = len > 0.0f && isfinite(len) && v3_is_finite(u) ? u : v3s(0.0f);
     }
     for (size_t i = 0; i < m->ntri; i++) {
-        mesh_triangle *tr = &m->tri[i];
+        plain_triangle *tr = &m->tri[i];
         if (tr->n[0] < 0 || tr->n[1] < 0 || tr->n[2] < 0)
             for (int k = 0; k < 3; k++) tr->n[k] = (int32_t)m->nn + tr->v[k];
     }
@@ -1076,7 +1091,14 @@ static void test_mesh_matches_plain_reader(void) {
         CHECK(memcmp(g->positions, want.p, want.np * sizeof *want.p) == 0);
         CHECK(memcmp(g->uvs, want.t, want.nt * sizeof *want.t) == 0);
         CHECK(memcmp(g->normals, want.n, want.nn * sizeof *want.n) == 0);
-        CHECK(memcmp(g->triangles, want.tri, want.ntri * sizeof *want.tri) == 0);
+        bool same = true;
+        for (size_t i = 0; i < want.ntri; i++) {
+            const plain_triangle *p = &want.tri[i];
+            mesh_corners n = mesh_triangle_normals(g, i), uv = mesh_triangle_uvs(g, i);
+            same = same && g->triangles[i].material == p->material && memcmp(g->triangles[i].v, p->v, sizeof p->v) == 0;
+            same = same && memcmp(n.i, p->n, sizeof p->n) == 0 && memcmp(uv.i, p->t, sizeof p->t) == 0;
+        }
+        CHECK(same);
         CHECK(memcmp(&g->bounds, &want.box, sizeof want.box) == 0);
     }
     obj_model_free(&m);

@@ -692,7 +692,7 @@ static void add_mesh_instance(glint_scene *s, const vec3 *pos, int np, const int
     if (!g->positions || !g->triangles) abort();
     for (int i = 0; i < np; i++) g->positions[i] = pos[i];
     for (int i = 0; i < nt; i++) {
-        mesh_triangle t = {{tri[i][0], tri[i][1], tri[i][2]}, {-1, -1, -1}, {-1, -1, -1}, -1};
+        mesh_triangle t = {{tri[i][0], tri[i][1], tri[i][2]}, -1};
         g->triangles[i] = t;
     }
     mesh_compute_bounds(g);

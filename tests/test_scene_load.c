@@ -582,9 +582,10 @@ static void test_meshes(void) {
             CHECK(m->geometry.triangle_count == 36 && m->slot_count == 8);
             CHECK(strstr(m->path, "/scenes/meshes/cornell-box-original/CornellBox-Original.obj") != NULL);
             bool flat = true, smooth = true;
-            for (size_t i = 0; i < m->geometry.triangle_count; i++) flat = flat && m->geometry.triangles[i].n[0] == -1;
+            for (size_t i = 0; i < m->geometry.triangle_count; i++)
+                flat = flat && mesh_triangle_normals(&m->geometry, i).i[0] == -1;
             for (size_t i = 0; i < s->meshes[1].geometry.triangle_count; i++)
-                smooth = smooth && s->meshes[1].geometry.triangles[i].n[0] >= 0;
+                smooth = smooth && mesh_triangle_normals(&s->meshes[1].geometry, i).i[0] >= 0;
             CHECK(flat && smooth);
             // Every slot maps to a material named after the file and the MTL name.
             const char *prefix = "meshes/cornell-box-original/CornellBox-Original.obj:";

@@ -190,8 +190,10 @@ static void test_mesh_transform(void) {
     m.position_count = 3;
     m.normals = nrm;
     m.normal_count = 1;
-    mesh_triangle tri = {{0, 1, 2}, {0, 0, 0}, {-1, -1, -1}, -1};
+    mesh_triangle tri = {{0, 1, 2}, -1};
+    mesh_corners tri_normals = {{0, 0, 0}};
     m.triangles = &tri;
+    m.normal_corners = &tri_normals;
     m.triangle_count = 1;
     // A mirror in z: the normal flips, and so must the winding, or the geometric normal would not follow.
     mat4 mirror = mat4_scale(v3(2, 1, -1));

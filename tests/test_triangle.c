@@ -119,7 +119,7 @@ static int32_t add_pos(mesh *m, vec3 p) {
 static void add_tri(mesh *m, int32_t a, int32_t b, int32_t c) {
     m->triangles = realloc(m->triangles, (m->triangle_count + 1) * sizeof *m->triangles);
     mesh_triangle *t = &m->triangles[m->triangle_count++];
-    *t = (mesh_triangle){{a, b, c}, {-1, -1, -1}, {-1, -1, -1}, -1};
+    *t = (mesh_triangle){{a, b, c}, -1};
 }
 
 static int32_t midpoint(builder *b, int32_t i, int32_t j) {
@@ -420,8 +420,11 @@ static void test_shading(void) {
     m.normal_count = 3;
     m.uvs = uvs;
     m.uv_count = 3;
-    mesh_triangle t = {{0, 1, 2}, {0, 1, 2}, {0, 1, 2}, -1};
+    mesh_triangle t = {{0, 1, 2}, -1};
+    mesh_corners normal_corners = {{0, 1, 2}}, uv_corners = {{0, 1, 2}};
     m.triangles = &t;
+    m.normal_corners = &normal_corners;
+    m.uv_corners = &uv_corners;
     m.triangle_count = 1;
     tri_hit h = {1.0f, 0.5f, 0.25f, 0.25f};
     mesh_shading s = mesh_shade(&m, 0, &h);
@@ -437,8 +440,8 @@ static void test_shading(void) {
     s = mesh_shade(&m, 0, &h);
     CHECK_NEAR(s.ng.z, -1.0, 0);
     // Without normals and uvs: geometric normal and barycentric (u, v).
-    t.n[1] = -1;
-    t.t[2] = -1;
+    normal_corners.i[1] = -1;
+    uv_corners.i[2] = -1;
     s = mesh_shade(&m, 0, &h);
     CHECK_NEAR(s.ns.z, 1.0, 0);
     CHECK_NEAR(s.u, 0.25, 0);
@@ -453,10 +456,36 @@ static void test_compute_normals(void) {
     for (size_t i = 0; i < m.position_count; i++)
         worst = fmax(worst, 1.0 - v3_dot(m.normals[i], v3_unit(m.positions[i]))); // a sphere's normal is its position
     CHECK(worst < 0.01);
-    for (size_t i = 0; i < m.triangle_count; i++) CHECK(m.triangles[i].n[0] == m.triangles[i].v[0]);
+    // Without normals of its own, a triangle's are its vertices': indexed like the positions, no index stored.
+    CHECK(m.smooth && m.smooth_base == 0 && m.normal_corners == NULL);
+    for (size_t i = 0; i < m.triangle_count; i++)
+        for (int k = 0; k < 3; k++) CHECK(mesh_triangle_normals(&m, i).i[k] == m.triangles[i].v[k]);
     bounds3 b = m.bounds;
     CHECK_NEAR(b.hi.y, 1.0, 1e-6);
     CHECK_NEAR(b.lo.y, -1.0, 1e-6);
+    // A second call leaves every triangle's normals as they are (each has complete ones now).
+    CHECK(mesh_compute_normals(&m));
+    CHECK(m.smooth && m.smooth_base == 0 && m.normal_count == 2 * m.position_count);
+    mesh_free(&m);
+    // Some triangles with normals of their own keep them; the others get their vertices' smooth normals.
+    m = icosphere(0);
+    m.normals = malloc(sizeof *m.normals);
+    m.normal_corners = malloc(m.triangle_count * sizeof *m.normal_corners);
+    CHECK(m.normals && m.normal_corners);
+    if (!m.normals || !m.normal_corners) return;
+    m.normals[0] = v3(0, 1, 0);
+    m.normal_count = 1;
+    for (size_t i = 0; i < m.triangle_count; i++)
+        m.normal_corners[i] = i % 2 ? (mesh_corners){{0, 0, 0}} : (mesh_corners){{0, -1, 0}};
+    CHECK(mesh_compute_normals(&m));
+    CHECK(!m.smooth && m.normal_count == 1 + m.position_count);
+    for (size_t i = 0; i < m.triangle_count; i++) {
+        mesh_corners n = mesh_triangle_normals(&m, i);
+        for (int k = 0; k < 3; k++) CHECK(n.i[k] == (i % 2 ? 0 : 1 + m.triangles[i].v[k]));
+    }
+    // Flat shading drops them all.
+    mesh_drop_normals(&m);
+    CHECK(m.normal_count == 0 && mesh_triangle_normals(&m, 0).i[0] == -1);
     mesh_free(&m);
 }
 

@@ -154,7 +154,7 @@ typedef struct bvh {
     size_t prim_count;
     bool spheres_only;  ///< nothing but spheres: the traversal without the code for other kinds runs
     bool triangles_only; ///< nothing but triangles and quads (triangle packets): likewise
-    // binary BVH (ACCEL_BVH2); nodes[0] is the root
+    // binary BVH (ACCEL_BVH2); nodes[0] is the root. A wide build frees both once its packets are written.
     bvh2_node *nodes2;
     size_t node2_count;
     prim_ref *refs; ///< primitive references in leaf order

@@ -682,10 +682,20 @@ static bool build_parallel(builder *bd, size_t n, thread_pool *pool, size_t para
     return !pb.failed;
 }
 
-/// State of the collapse into the wide BVH (arrays sized beforehand from the binary tree).
+/// A binary leaf: its references refs[offset, offset + count).
+typedef struct leaf_span {
+    uint32_t offset, count;
+} leaf_span;
+
+/// State of the collapse into the wide BVH. It runs in two passes so that the binary nodes are gone before the
+/// packet arena fills: the first makes the wide nodes and lists the leaves in the order their packets take in the
+/// arena (a leaf's child reference holds its number in the list meanwhile), the second writes the packets.
 typedef struct collapser {
     bvh *b;
     uint64_t depth, leaves;
+    leaf_span *spans; ///< the leaves, in arena order; spans[i].offset becomes the leaf's first slot once written
+    size_t span_count;
+    size_t slots;     ///< the arena's size: the slots of the listed leaves' packets
 } collapser;
 
 static float node2_half_area(const bvh2_node *n) {
@@ -721,14 +731,15 @@ static size_t packet_run(const prim_ref *refs, size_t i, size_t count) {
     return n;
 }
 
-// Slots the packets of a binary leaf take (packet_run). Sorts the leaf's references by (kind, instance,
-// index), which groups them into packets and orders the lanes.
-static size_t leaf_slots(bvh *b, const bvh2_node *leaf) {
-    prim_ref *refs = &b->refs[leaf->offset];
+// Lists a binary leaf for the second pass and counts the slots of its packets (packet_run); returns its
+// temporary reference. Sorts the leaf's references by (kind, instance, index), which groups them into packets
+// and orders the lanes.
+static uint32_t note_leaf(collapser *cl, const bvh2_node *leaf) {
+    prim_ref *refs = &cl->b->refs[leaf->offset];
     qsort(refs, leaf->count, sizeof *refs, ref_order);
-    size_t slots = 0;
-    for (size_t i = 0; i < leaf->count; i += packet_run(refs, i, leaf->count)) slots += packet_slots(refs[i].kind);
-    return slots;
+    for (size_t i = 0; i < leaf->count; i += packet_run(refs, i, leaf->count)) cl->slots += packet_slots(refs[i].kind);
+    cl->spans[cl->span_count] = (leaf_span){leaf->offset, leaf->count};
+    return BVH_LEAF | (uint32_t)cl->span_count++;
 }
 
 // Writes the corners of triangle `tri` into lane k of packet pk (NaN corners when tri is NULL: never hit).
@@ -742,9 +753,8 @@ static void put_triangle(bvh_triangle_packet *pk, size_t k, const vec3 *tri, uin
     pk->prim[k] = prim;
 }
 
-// Writes the packets of a binary leaf (its references sorted by leaf_slots) into the arena; returns the
-// leaf reference.
-static uint32_t emit_leaf(collapser *cl, const bvh2_node *leaf) {
+// Writes the packets of a leaf (its references sorted by note_leaf) into the arena; returns the leaf reference.
+static uint32_t emit_leaf(collapser *cl, const leaf_span *leaf) {
     bvh *b = cl->b;
     const prim_ref *refs = &b->refs[leaf->offset];
     uint32_t first = (uint32_t)b->slot_count;
@@ -813,11 +823,12 @@ static uint32_t emit_leaf(collapser *cl, const bvh2_node *leaf) {
     return BVH_LEAF | first;
 }
 
-// Collapses the binary subtree at `id` into wide nodes; returns its reference (node index or leaf).
+// Collapses the binary subtree at `id` into wide nodes; returns its reference (node index, or leaf number:
+// see collapser).
 static uint32_t collapse(collapser *cl, uint32_t id, uint64_t depth) {
     bvh *b = cl->b;
     const bvh2_node *n2 = &b->nodes2[id];
-    if (n2->count > 0) return emit_leaf(cl, n2);
+    if (n2->count > 0) return note_leaf(cl, n2);
     if (depth + 1 > cl->depth) cl->depth = depth + 1;
     // Open the largest inner child until the node has BVH_WIDTH children or only leaves remain.
     uint32_t kids[BVH_WIDTH];
@@ -852,9 +863,14 @@ static uint32_t collapse(collapser *cl, uint32_t id, uint64_t depth) {
             w->box[a][k] = c->box[a];
             w->box[3 + a][k] = c->box[3 + a];
         }
-        w->child[k] = c->count > 0 ? emit_leaf(cl, c) : collapse(cl, kids[k], depth + 1);
+        w->child[k] = c->count > 0 ? note_leaf(cl, c) : collapse(cl, kids[k], depth + 1);
     }
     return wid;
+}
+
+// The first slot of the leaf that a leaf number refers to (other references unchanged).
+static uint32_t leaf_placed(const collapser *cl, uint32_t ref) {
+    return ref == BVH_EMPTY || !(ref & BVH_LEAF) ? ref : BVH_LEAF | cl->spans[ref & ~BVH_LEAF].offset;
 }
 
 // Pads a box so that it stays conservative after the float rounding of the slab test.
@@ -966,6 +982,19 @@ static size_t split_front(build_prim *prims, size_t n) {
     return front;
 }
 
+// Moves every primitive's reference to the front of the array, in order, and gives the rest back: the
+// references take the place of the build input, so that the two are never held at once.
+static prim_ref *refs_in_place(build_prim *prims, size_t n) {
+    prim_ref *refs = (prim_ref *)(void *)prims;
+    for (size_t i = 0; i < n; i++) { // refs[i] lies within prims[0..i], which are read already
+        prim_ref r;
+        memcpy(&r, &prims[i].ref, sizeof r);
+        memcpy(&refs[i], &r, sizeof r);
+    }
+    prim_ref *fit = realloc(refs, n * sizeof *fit);
+    return fit ? fit : refs;
+}
+
 bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     memset(b, 0, sizeof *b);
     b->spheres = in->spheres;
@@ -1006,8 +1035,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     // The wide BVH tests the huge spheres (the last `front` prims) on their own, the tree holds the rest.
     size_t front = wide ? split_front(prims, n) : 0, tree = n - front;
     b->nodes2 = tree ? malloc((2 * tree - 1) * sizeof *b->nodes2) : NULL;
-    b->refs = malloc(n * sizeof *b->refs);
-    if ((tree && !b->nodes2) || !b->refs) {
+    if (tree && !b->nodes2) {
         free(prims);
         bvh_release(b);
         return false;
@@ -1032,34 +1060,47 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     }
     b->node2_count = bd.node_count;
     b->ref_count = n;
-    for (size_t i = 0; i < n; i++) b->refs[i] = prims[i].ref;
-    free(prims);
+    b->refs = refs_in_place(prims, n);
     b->stats.nodes = bd.node_count - bd.leaves;
     b->stats.leaves = bd.leaves;
     b->stats.depth = bd.depth;
     if (!wide) return true;
 
-    // Size the wide arrays from the binary tree: at most one wide node per binary inner node.
-    bvh2_node front_leaf = {.offset = (uint32_t)tree, .count = (uint32_t)front};
-    size_t inner = bd.node_count - bd.leaves, slots = front ? leaf_slots(b, &front_leaf) : 0;
-    for (size_t i = 0; i < bd.node_count; i++)
-        if (b->nodes2[i].count > 0) slots += leaf_slots(b, &b->nodes2[i]);
+    // The wide nodes (at most one per binary inner node) and the list of leaves, one per binary leaf and the front.
+    size_t inner = bd.node_count - bd.leaves;
     b->wnodes = inner ? aligned_alloc(_Alignof(bvh_wnode), inner * sizeof *b->wnodes) : NULL;
-    b->slots = aligned_alloc(_Alignof(bvh_slot), slots * sizeof *b->slots);
-    if ((inner && !b->wnodes) || !b->slots || slots >= BVH_LEAF) {
+    collapser cl = {.b = b, .spans = malloc((bd.leaves + 1) * sizeof *cl.spans)};
+    if ((inner && !b->wnodes) || !cl.spans) {
+        free(cl.spans);
         bvh_release(b);
         return false;
     }
-    collapser cl = {.b = b};
-    if (front) b->front = emit_leaf(&cl, &front_leaf);
+    bvh2_node front_leaf = {.offset = (uint32_t)tree, .count = (uint32_t)front};
+    if (front) b->front = note_leaf(&cl, &front_leaf);
     if (tree) b->root = collapse(&cl, 0, 0);
-    b->stats.nodes = b->wnode_count;
-    b->stats.leaves = cl.leaves;
-    b->stats.depth = tree ? cl.depth + 1 : 1; // the leaf level counts, as in the binary tree
-    // The binary tree is only scaffolding for the wide one.
+    // The binary tree is only scaffolding for the wide one: gone before the arena fills (the peak of the build).
     free(b->nodes2);
     b->nodes2 = NULL;
     b->node2_count = 0;
+    b->slots = cl.slots < BVH_LEAF ? aligned_alloc(_Alignof(bvh_slot), cl.slots * sizeof *b->slots) : NULL;
+    if (!b->slots) {
+        free(cl.spans);
+        bvh_release(b);
+        return false;
+    }
+    for (size_t i = 0; i < cl.span_count; i++) cl.spans[i].offset = emit_leaf(&cl, &cl.spans[i]) & ~BVH_LEAF;
+    for (size_t i = 0; i < b->wnode_count; i++)
+        for (int k = 0; k < BVH_WIDTH; k++) b->wnodes[i].child[k] = leaf_placed(&cl, b->wnodes[i].child[k]);
+    b->front = leaf_placed(&cl, b->front);
+    b->root = leaf_placed(&cl, b->root);
+    free(cl.spans);
+    // The packets hold what the wide traversal reads of the references (the binary one reads them).
+    free(b->refs);
+    b->refs = NULL;
+    b->ref_count = 0;
+    b->stats.nodes = b->wnode_count;
+    b->stats.leaves = cl.leaves;
+    b->stats.depth = tree ? cl.depth + 1 : 1; // the leaf level counts, as in the binary tree
     return true;
 }
 

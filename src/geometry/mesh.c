@@ -11,8 +11,20 @@ void mesh_free(mesh *m) {
     free(m->normals);
     free(m->uvs);
     free(m->triangles);
+    free(m->normal_corners);
+    free(m->uv_corners);
     memset(m, 0, sizeof *m);
     m->bounds = bounds3_empty();
+}
+
+void mesh_drop_normals(mesh *m) {
+    free(m->normals);
+    free(m->normal_corners);
+    m->normals = NULL;
+    m->normal_count = 0;
+    m->normal_corners = NULL;
+    m->smooth = false;
+    m->smooth_base = 0;
 }
 
 bounds3 mesh_compute_bounds(mesh *m) {
@@ -31,22 +43,22 @@ static vec3 unit_or(vec3 n, vec3 fallback) {
 }
 
 mesh_shading mesh_shade(const mesh *m, size_t tri, const tri_hit *h) {
-    const mesh_triangle *t = &m->triangles[tri];
+    mesh_corners n = mesh_triangle_normals(m, tri), t = mesh_triangle_uvs(m, tri);
     mesh_shading s;
     vec3 p0, p1, p2;
     mesh_triangle_positions(m, tri, &p0, &p1, &p2);
     s.ng = unit_or(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)), v3(0, 0, 1));
     s.ns = s.ng;
-    if (t->n[0] >= 0 && t->n[1] >= 0 && t->n[2] >= 0) {
-        vec3 n = v3_scale(m->normals[t->n[0]], h->b0);
-        n = v3_fma(n, m->normals[t->n[1]], h->b1);
-        n = v3_fma(n, m->normals[t->n[2]], h->b2);
-        s.ns = unit_or(n, s.ng);
+    if (mesh_corners_complete(n)) {
+        vec3 sum = v3_scale(m->normals[n.i[0]], h->b0);
+        sum = v3_fma(sum, m->normals[n.i[1]], h->b1);
+        sum = v3_fma(sum, m->normals[n.i[2]], h->b2);
+        s.ns = unit_or(sum, s.ng);
         // As pbrt: the file's normals say which side is outside, whatever the winding.
         if (v3_dot(s.ng, s.ns) < 0.0f) s.ng = v3_neg(s.ng);
     }
-    if (t->t[0] >= 0 && t->t[1] >= 0 && t->t[2] >= 0) {
-        uv2 a = m->uvs[t->t[0]], b = m->uvs[t->t[1]], c = m->uvs[t->t[2]];
+    if (mesh_corners_complete(t)) {
+        uv2 a = m->uvs[t.i[0]], b = m->uvs[t.i[1]], c = m->uvs[t.i[2]];
         s.u = h->b0 * a.u + h->b1 * b.u + h->b2 * c.u;
         s.v = h->b0 * a.v + h->b1 * b.v + h->b2 * c.v;
     } else {
@@ -70,7 +82,8 @@ bool mesh_compute_normals(mesh *m) {
     vec3 *acc = normals + m->normal_count;
     for (size_t i = 0; i < np; i++) acc[i] = v3s(0.0f);
     const vec3 *pos = m->positions;
-    mesh_triangle *tris = m->triangles;
+    const mesh_triangle *tris = m->triangles;
+    mesh_corners *corners = m->normal_corners;
     int32_t base = (int32_t)m->normal_count;
     for (size_t i = 0; i < nt; i++) {
         if (i + NORMALS_PREFETCH_AHEAD < nt) {
@@ -80,17 +93,22 @@ bool mesh_compute_normals(mesh *m) {
                 prefetch_write(&acc[ahead[k]]);
             }
         }
-        mesh_triangle *t = &tris[i];
+        const mesh_triangle *t = &tris[i];
         // The unnormalised cross product is twice the area times the unit normal: area weighting for free.
         vec3 p0 = pos[t->v[0]], p1 = pos[t->v[1]], p2 = pos[t->v[2]];
         vec3 n = v3_cross(v3_sub(p1, p0), v3_sub(p2, p0));
         if (v3_is_finite(n))
             for (int k = 0; k < 3; k++) acc[t->v[k]] = v3_add(acc[t->v[k]], n);
         // Triangles without complete normals of their own get their vertices' (normalised below).
-        if (!(t->n[0] >= 0 && t->n[1] >= 0 && t->n[2] >= 0))
-            for (int k = 0; k < 3; k++) t->n[k] = base + t->v[k];
+        if (corners && !mesh_corners_complete(corners[i]))
+            for (int k = 0; k < 3; k++) corners[i].i[k] = base + t->v[k];
     }
     for (size_t i = 0; i < np; i++) acc[i] = unit_or(acc[i], v3s(0.0f));
+    // Without normals of their own, every triangle's are its vertices': indexed like positions, stored once.
+    if (!corners && !m->smooth) {
+        m->smooth = true;
+        m->smooth_base = base;
+    }
     m->normal_count += np;
     return true;
 }
@@ -106,11 +124,14 @@ void mesh_apply_transform(mesh *m, const transform *t) {
     if (det < 0.0) {
         // A mirror turns counter-clockwise into clockwise: swap two corners to keep the geometric normal outwards.
         for (size_t i = 0; i < m->triangle_count; i++) {
-            mesh_triangle *tri = &m->triangles[i];
-            int32_t tmp;
-            tmp = tri->v[1]; tri->v[1] = tri->v[2]; tri->v[2] = tmp;
-            tmp = tri->n[1]; tri->n[1] = tri->n[2]; tri->n[2] = tmp;
-            tmp = tri->t[1]; tri->t[1] = tri->t[2]; tri->t[2] = tmp;
+            int32_t *c[3] = {m->triangles[i].v, m->normal_corners ? m->normal_corners[i].i : NULL,
+                             m->uv_corners ? m->uv_corners[i].i : NULL};
+            for (int k = 0; k < 3; k++) {
+                if (!c[k]) continue;
+                int32_t tmp = c[k][1];
+                c[k][1] = c[k][2];
+                c[k][2] = tmp;
+            }
         }
     }
     mesh_compute_bounds(m);

@@ -1,5 +1,6 @@
 // mesh.h — an indexed triangle mesh: shared positions, normals and texture coordinates, triangles that index
-// them per corner, a per-triangle material slot, and the shading data of a hit.
+// them per corner (normals and texture coordinates in arrays of their own, only when some triangle has them),
+// a per-triangle material slot, and the shading data of a hit.
 #ifndef GLINT_MESH_H
 #define GLINT_MESH_H
 
@@ -16,15 +17,20 @@ typedef struct uv2 {
     float u, v;
 } uv2;
 
-/// One triangle: per corner an index into positions, normals (-1: none) and uvs (-1: none).
+/// One triangle: per corner an index into positions; its material. 16 bytes: a large mesh's biggest array.
 typedef struct mesh_triangle {
     int32_t v[3];
-    int32_t n[3];
-    int32_t t[3];
     int32_t material; ///< slot in the mesh's own material list (see obj_model); -1: the mesh's scene material
 } mesh_triangle;
 
-/// A triangle mesh. Counts fit in int32_t; all arrays are owned (malloc) and freed by mesh_free().
+/// Per corner of a triangle, an index into a mesh's normals or uvs (-1: none).
+typedef struct mesh_corners {
+    int32_t i[3];
+} mesh_corners;
+
+/// A triangle mesh. Counts fit in int32_t; all arrays are owned (malloc) and freed by mesh_free(). Read a
+/// triangle's normal and uv indices through mesh_triangle_normals and mesh_triangle_uvs: most large meshes
+/// have no uvs and only computed smooth normals, indexed like their positions, and then store no indices.
 typedef struct mesh {
     vec3 *positions;
     size_t position_count;
@@ -34,6 +40,11 @@ typedef struct mesh {
     size_t uv_count;
     mesh_triangle *triangles;
     size_t triangle_count;
+    mesh_corners *normal_corners; ///< per triangle, its normals; NULL: as `smooth` says
+    mesh_corners *uv_corners;     ///< per triangle, its uvs; NULL: no triangle has uvs
+    bool smooth;                  ///< without normal_corners: corner k of a triangle has normal smooth_base + v[k]
+                                  ///< (false: no triangle has normals)
+    int32_t smooth_base;
     bounds3 bounds; ///< of the vertices of the triangles (mesh_compute_bounds)
 } mesh;
 
@@ -46,6 +57,8 @@ typedef struct mesh_shading {
 
 /// Frees the arrays and leaves an empty mesh.
 void mesh_free(mesh *m);
+/// Drops every normal: each triangle is shaded with its geometric normal (flat shading).
+void mesh_drop_normals(mesh *m);
 /// Sets and returns m->bounds: the box of every vertex used by a triangle (empty for no triangles).
 bounds3 mesh_compute_bounds(mesh *m);
 /// Shading data at barycentrics h of triangle `tri` (normals interpolated when all three corners have one).
@@ -56,6 +69,22 @@ bool mesh_compute_normals(mesh *m);
 /// Applies t to positions and normals in place (mirrors swap the winding so fronts stay fronts), then
 /// recomputes the bounds.
 void mesh_apply_transform(mesh *m, const transform *t);
+
+/// The normal indices of triangle i's corners (-1: none).
+static inline mesh_corners mesh_triangle_normals(const mesh *m, size_t i) {
+    if (m->normal_corners) return m->normal_corners[i];
+    if (!m->smooth) return (mesh_corners){{-1, -1, -1}};
+    const int32_t *v = m->triangles[i].v, b = m->smooth_base;
+    return (mesh_corners){{b + v[0], b + v[1], b + v[2]}};
+}
+
+/// The uv indices of triangle i's corners (-1: none).
+static inline mesh_corners mesh_triangle_uvs(const mesh *m, size_t i) {
+    return m->uv_corners ? m->uv_corners[i] : (mesh_corners){{-1, -1, -1}};
+}
+
+/// Whether every corner has an index (a normal or a uv to interpolate).
+static inline bool mesh_corners_complete(mesh_corners c) { return c.i[0] >= 0 && c.i[1] >= 0 && c.i[2] >= 0; }
 
 /// The three corner positions of triangle i.
 static inline void mesh_triangle_positions(const mesh *m, size_t i, vec3 *p0, vec3 *p1, vec3 *p2) {

@@ -609,6 +609,7 @@ typedef struct obj_parser {
     obj_model *model;
     const obj_options *opt;
     size_t pos_cap, nrm_cap, uv_cap, tri_cap, slot_cap;
+    size_t nrm_corner_cap, uv_corner_cap; // of the mesh's normal_corners and uv_corners
     corner *corners;
     size_t corner_cap;
     double *px, *py;  // a face projected on its plane, for triangulation
@@ -757,16 +758,29 @@ static inline bounds3 box_add_triangle(bounds3 box, vec3 p, vec3 q, vec3 r) {
                      v3(max_not_nan(box.hi.x, hi.x), max_not_nan(box.hi.y, hi.y), max_not_nan(box.hi.z, hi.z))};
 }
 
+// Stores triangle i's corner indices (x, y, z) into normals or uvs in *list. The list starts with the first
+// triangle that has one, all -1 before it, so that a mesh without any stores none. False when out of memory.
+static bool store_corners(mesh_corners **list, size_t *cap, size_t i, int32_t x, int32_t y, int32_t z) {
+    if (!*list && x < 0 && y < 0 && z < 0) return true;
+    bool first = !*list;
+    if (i >= *cap && !array_reserve((void **)list, cap, i + 1, sizeof **list)) return false;
+    for (size_t k = 0; first && k < i; k++) (*list)[k] = (mesh_corners){{-1, -1, -1}};
+    (*list)[i] = (mesh_corners){{x, y, z}};
+    return true;
+}
+
 // Appends triangle (a, b, c) at positions (p, q, r), and grows the mesh's box by it while its corners are at
 // hand (the box mesh_compute_bounds would compute, union for union in the same order).
 static bool append_triangle(obj_parser *ps, const corner *a, const corner *b, const corner *c, vec3 p, vec3 q, vec3 r) {
     mesh *m = &ps->model->mesh;
-    if (m->triangle_count >= MAX_ELEMENTS) return too_many(&ps->rep, "triangles");
-    if (m->triangle_count == ps->tri_cap &&
-        !array_reserve((void **)&m->triangles, &ps->tri_cap, m->triangle_count + 1, sizeof *m->triangles))
+    size_t i = m->triangle_count;
+    if (i >= MAX_ELEMENTS) return too_many(&ps->rep, "triangles");
+    if ((i == ps->tri_cap && !array_reserve((void **)&m->triangles, &ps->tri_cap, i + 1, sizeof *m->triangles)) ||
+        !store_corners(&m->normal_corners, &ps->nrm_corner_cap, i, a->n, b->n, c->n) ||
+        !store_corners(&m->uv_corners, &ps->uv_corner_cap, i, a->t, b->t, c->t))
         return out_of_memory(&ps->rep);
-    mesh_triangle *t = &m->triangles[m->triangle_count++];
-    *t = (mesh_triangle){{a->v, b->v, c->v}, {a->n, b->n, c->n}, {a->t, b->t, c->t}, ps->material};
+    m->triangles[i] = (mesh_triangle){{a->v, b->v, c->v}, ps->material};
+    m->triangle_count = i + 1;
     m->bounds = box_add_triangle(m->bounds, p, q, r);
     return true;
 }

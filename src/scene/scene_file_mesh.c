@@ -124,9 +124,7 @@ static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id i
     scene_mesh sm = {0};
     bool ok = true;
     if (face_normals) {
-        // Flat shading: every triangle uses its geometric normal.
-        for (size_t i = 0; i < model.mesh.triangle_count; i++)
-            model.mesh.triangles[i].n[0] = model.mesh.triangles[i].n[1] = model.mesh.triangles[i].n[2] = -1;
+        mesh_drop_normals(&model.mesh); // flat shading: every triangle uses its geometric normal
     } else {
         ok = mesh_compute_normals(&model.mesh) || sf_fail_oom(ld);
     }

@@ -27,6 +27,10 @@ static bool same_model(const obj_model *a, const obj_model *b) {
     same = same && (!x->normal_count || !memcmp(x->normals, y->normals, x->normal_count * sizeof *x->normals));
     same = same && (!x->uv_count || !memcmp(x->uvs, y->uvs, x->uv_count * sizeof *x->uvs));
     same = same && (!x->triangle_count || !memcmp(x->triangles, y->triangles, x->triangle_count * sizeof *x->triangles));
+    same = same && !x->normal_corners == !y->normal_corners && !x->uv_corners == !y->uv_corners;
+    same = same && (!x->normal_corners ||
+                    !memcmp(x->normal_corners, y->normal_corners, x->triangle_count * sizeof *x->normal_corners));
+    same = same && (!x->uv_corners || !memcmp(x->uv_corners, y->uv_corners, x->triangle_count * sizeof *x->uv_corners));
     for (size_t i = 0; same && i < a->material_count; i++) same = strcmp(a->materials[i].name, b->materials[i].name) == 0;
     return same;
 }
@@ -52,9 +56,10 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         const mesh *me = &m.mesh;
         for (size_t i = 0; i < me->triangle_count; i++) {
             const mesh_triangle *t = &me->triangles[i];
+            mesh_corners n = mesh_triangle_normals(me, i), uv = mesh_triangle_uvs(me, i);
             for (int k = 0; k < 3; k++)
-                if (t->v[k] < 0 || (size_t)t->v[k] >= me->position_count || t->n[k] >= (int32_t)me->normal_count ||
-                    t->t[k] >= (int32_t)me->uv_count)
+                if (t->v[k] < 0 || (size_t)t->v[k] >= me->position_count || n.i[k] >= (int32_t)me->normal_count ||
+                    uv.i[k] >= (int32_t)me->uv_count)
                     __builtin_trap();
             if (t->material < -1 || t->material >= (int32_t)m.material_count) __builtin_trap();
             // Shade the centroid and fire a ray at it, as the renderer would.
