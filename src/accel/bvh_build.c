@@ -685,6 +685,7 @@ static bool build_parallel(builder *bd, size_t n, thread_pool *pool, size_t para
 /// A binary leaf: its references refs[offset, offset + count).
 typedef struct leaf_span {
     uint32_t offset, count;
+    uint32_t slot; ///< the first slot of its packets in the arena
 } leaf_span;
 
 /// State of the collapse into the wide BVH. It runs in two passes so that the binary nodes are gone before the
@@ -693,7 +694,7 @@ typedef struct leaf_span {
 typedef struct collapser {
     bvh *b;
     uint64_t depth, leaves;
-    leaf_span *spans; ///< the leaves, in arena order; spans[i].offset becomes the leaf's first slot once written
+    leaf_span *spans; ///< the leaves, in arena order
     size_t span_count;
     size_t slots;     ///< the arena's size: the slots of the listed leaves' packets
 } collapser;
@@ -737,8 +738,9 @@ static size_t packet_run(const prim_ref *refs, size_t i, size_t count) {
 static uint32_t note_leaf(collapser *cl, const bvh2_node *leaf) {
     prim_ref *refs = &cl->b->refs[leaf->offset];
     qsort(refs, leaf->count, sizeof *refs, ref_order);
+    size_t first = cl->slots;
     for (size_t i = 0; i < leaf->count; i += packet_run(refs, i, leaf->count)) cl->slots += packet_slots(refs[i].kind);
-    cl->spans[cl->span_count] = (leaf_span){leaf->offset, leaf->count};
+    cl->spans[cl->span_count] = (leaf_span){leaf->offset, leaf->count, (uint32_t)first};
     return BVH_LEAF | (uint32_t)cl->span_count++;
 }
 
@@ -754,18 +756,16 @@ static void put_triangle(bvh_triangle_packet *pk, size_t k, const vec3 *tri, uin
 }
 
 // Writes the packets of a leaf (its references sorted by note_leaf) into the arena; returns the leaf reference.
-static uint32_t emit_leaf(collapser *cl, const leaf_span *leaf) {
-    bvh *b = cl->b;
+static void emit_leaf(const bvh *b, const leaf_span *leaf) {
     const prim_ref *refs = &b->refs[leaf->offset];
-    uint32_t first = (uint32_t)b->slot_count;
+    size_t at = leaf->slot;
     bvh_packet_header *last = NULL;
-    cl->leaves++;
     for (size_t i = 0; i < leaf->count;) {
         uint32_t kind = refs[i].kind, owner = prim_ref_instance(refs[i]);
         size_t n = packet_run(refs, i, leaf->count);
-        bvh_slot *slot = &b->slots[b->slot_count];
+        bvh_slot *slot = &b->slots[at];
         size_t nslots = packet_slots(kind);
-        b->slot_count += nslots;
+        at += nslots;
         memset(slot, 0, nslots * sizeof *slot);
         bvh_packet_header *h = (bvh_packet_header *)(void *)slot;
         h->kind = kind;
@@ -820,7 +820,22 @@ static uint32_t emit_leaf(collapser *cl, const leaf_span *leaf) {
         i += n;
     }
     if (last) last->last = 1;
-    return BVH_LEAF | first;
+}
+
+/// Leaves whose packets one pool item writes: enough to outweigh the hand-over.
+enum { EMIT_LEAVES_PER_ITEM = 1024 };
+
+/// The packets of a run of listed leaves, written by one thread of the pool (each leaf has its own slots).
+typedef struct emit_job {
+    const bvh *b;
+    const leaf_span *spans;
+    size_t count, per_item;
+} emit_job;
+
+static void emit_leaves(void *ctx, size_t item) {
+    const emit_job *job = ctx;
+    size_t begin = item * job->per_item, end = begin + job->per_item < job->count ? begin + job->per_item : job->count;
+    for (size_t i = begin; i < end; i++) emit_leaf(job->b, &job->spans[i]);
 }
 
 // Collapses the binary subtree at `id` into wide nodes; returns its reference (node index, or leaf number:
@@ -870,7 +885,7 @@ static uint32_t collapse(collapser *cl, uint32_t id, uint64_t depth) {
 
 // The first slot of the leaf that a leaf number refers to (other references unchanged).
 static uint32_t leaf_placed(const collapser *cl, uint32_t ref) {
-    return ref == BVH_EMPTY || !(ref & BVH_LEAF) ? ref : BVH_LEAF | cl->spans[ref & ~BVH_LEAF].offset;
+    return ref == BVH_EMPTY || !(ref & BVH_LEAF) ? ref : BVH_LEAF | cl->spans[ref & ~BVH_LEAF].slot;
 }
 
 // Pads a box so that it stays conservative after the float rounding of the slab test.
@@ -1044,16 +1059,21 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     builder bd = {.prims = prims, .nodes = b->nodes2, .block_shift = shift, .block_mask = ((size_t)1 << shift) - 1,
                   .max_leaf = wide ? BVH_PACKET : BIN_MAX_LEAF, .stop = in->stop};
     bool built = true;
-    if (tree) {
-        // Threads for a big tree (the same tree for any number); one thread, or a pool that could not start: serially.
-        int threads = in->threads > 0 ? in->threads : thread_pool_online_cpus();
-        size_t parallel_min = in->parallel_min ? in->parallel_min : PARALLEL_MIN;
-        thread_pool *pool = threads > 1 && tree >= 2 * parallel_min ? thread_pool_start(threads) : NULL;
-        if (pool && thread_pool_size(pool) > 1) built = build_parallel(&bd, tree, pool, parallel_min);
-        else build_range(&bd, 0, tree, 0);
+    // Threads for a big tree (the same tree for any number) and its packets; one thread, or a pool that could not
+    // start: serially.
+    int threads = in->threads > 0 ? in->threads : thread_pool_online_cpus();
+    size_t parallel_min = in->parallel_min ? in->parallel_min : PARALLEL_MIN;
+    thread_pool *pool = tree && threads > 1 && tree >= 2 * parallel_min ? thread_pool_start(threads) : NULL;
+    if (pool && thread_pool_size(pool) < 2) {
         thread_pool_stop(pool);
+        pool = NULL;
+    }
+    if (tree) {
+        if (pool) built = build_parallel(&bd, tree, pool, parallel_min);
+        else build_range(&bd, 0, tree, 0);
     }
     if (!built || bd.stopped) {
+        thread_pool_stop(pool);
         free(prims);
         bvh_release(b);
         return false;
@@ -1064,13 +1084,17 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     b->stats.nodes = bd.node_count - bd.leaves;
     b->stats.leaves = bd.leaves;
     b->stats.depth = bd.depth;
-    if (!wide) return true;
+    if (!wide) {
+        thread_pool_stop(pool);
+        return true;
+    }
 
     // The wide nodes (at most one per binary inner node) and the list of leaves, one per binary leaf and the front.
     size_t inner = bd.node_count - bd.leaves;
     b->wnodes = inner ? aligned_alloc(_Alignof(bvh_wnode), inner * sizeof *b->wnodes) : NULL;
     collapser cl = {.b = b, .spans = malloc((bd.leaves + 1) * sizeof *cl.spans)};
     if ((inner && !b->wnodes) || !cl.spans) {
+        thread_pool_stop(pool);
         free(cl.spans);
         bvh_release(b);
         return false;
@@ -1084,11 +1108,19 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     b->node2_count = 0;
     b->slots = cl.slots < BVH_LEAF ? aligned_alloc(_Alignof(bvh_slot), cl.slots * sizeof *b->slots) : NULL;
     if (!b->slots) {
+        thread_pool_stop(pool);
         free(cl.spans);
         bvh_release(b);
         return false;
     }
-    for (size_t i = 0; i < cl.span_count; i++) cl.spans[i].offset = emit_leaf(&cl, &cl.spans[i]) & ~BVH_LEAF;
+    b->slot_count = cl.slots;
+    emit_job job = {b, cl.spans, cl.span_count, EMIT_LEAVES_PER_ITEM};
+    size_t items = (cl.span_count + EMIT_LEAVES_PER_ITEM - 1) / EMIT_LEAVES_PER_ITEM;
+    if (pool) thread_pool_run(pool, items, emit_leaves, &job);
+    else
+        for (size_t i = 0; i < items; i++) emit_leaves(&job, i);
+    thread_pool_stop(pool);
+    cl.leaves = cl.span_count;
     for (size_t i = 0; i < b->wnode_count; i++)
         for (int k = 0; k < BVH_WIDTH; k++) b->wnodes[i].child[k] = leaf_placed(&cl, b->wnodes[i].child[k]);
     b->front = leaf_placed(&cl, b->front);
