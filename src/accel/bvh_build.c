@@ -914,7 +914,37 @@ static bounds3 instance_object_bounds(const bvh_input *in, const instance *inst)
 }
 
 // The build input of every primitive: kind, index, padded box, centroid.
-static size_t gather_prims(const bvh_input *in, build_prim *prims) {
+/// Triangles whose boxes one pool item gathers.
+enum { GATHER_PER_ITEM = 16384 };
+
+/// The boxes of a mesh's triangles, gathered by the pool in runs (each into its own places of prims).
+typedef struct gather_job {
+    const mesh *m;
+    build_prim *prims;
+    uint32_t owner; ///< prim_ref.instance of every triangle
+    size_t per_item;
+} gather_job;
+
+static void gather_triangles_run(void *ctx, size_t item) {
+    const gather_job *job = ctx;
+    size_t begin = item * job->per_item, count = job->m->triangle_count;
+    size_t end = begin + job->per_item < count ? begin + job->per_item : count;
+    for (size_t k = begin; k < end; k++) {
+        job->prims[k].box = box_padded(mesh_triangle_bounds(job->m, k));
+        job->prims[k].ref = (prim_ref){.kind = PRIM_TRIANGLE, .index = (uint32_t)k, .instance = job->owner & PRIM_NO_INSTANCE};
+    }
+}
+
+// Gathers the triangles of m into prims[0, triangle_count), on the pool's threads when there is one.
+static void gather_triangles(thread_pool *pool, const mesh *m, uint32_t owner, build_prim *prims) {
+    gather_job job = {m, prims, owner, GATHER_PER_ITEM};
+    size_t items = (m->triangle_count + GATHER_PER_ITEM - 1) / GATHER_PER_ITEM;
+    if (pool) thread_pool_run(pool, items, gather_triangles_run, &job);
+    else
+        for (size_t i = 0; i < items; i++) gather_triangles_run(&job, i);
+}
+
+static size_t gather_prims(const bvh_input *in, build_prim *prims, thread_pool *pool) {
     size_t n = 0;
     const uint32_t none = PRIM_NO_INSTANCE;
     for (size_t i = 0; i < in->sphere_count; i++) {
@@ -927,20 +957,15 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims) {
         prims[n].ref = (prim_ref){.kind = PRIM_QUAD, .index = (uint32_t)i, .instance = none};
         n++;
     }
-    for (size_t i = 0; in->mesh && i < in->mesh->triangle_count; i++) {
-        prims[n].box = box_padded(mesh_triangle_bounds(in->mesh, i));
-        prims[n].ref = (prim_ref){.kind = PRIM_TRIANGLE, .index = (uint32_t)i, .instance = none};
-        n++;
+    if (in->mesh) {
+        gather_triangles(pool, in->mesh, none, &prims[n]);
+        n += in->mesh->triangle_count;
     }
     for (size_t i = 0; i < in->instance_count; i++) {
         const instance *inst = &in->instances[i];
         if (in->flat && in->flat[i]) { // its triangles in world space, each a primitive of this BVH
-            const mesh *m = in->flat[i];
-            for (size_t k = 0; k < m->triangle_count; k++) {
-                prims[n].box = box_padded(mesh_triangle_bounds(m, k));
-                prims[n].ref = (prim_ref){.kind = PRIM_TRIANGLE, .index = (uint32_t)k, .instance = (uint32_t)i & PRIM_NO_INSTANCE};
-                n++;
-            }
+            gather_triangles(pool, in->flat[i], (uint32_t)i & PRIM_NO_INSTANCE, &prims[n]);
+            n += in->flat[i]->triangle_count;
             continue;
         }
         bounds3 ob = instance_object_bounds(in, inst);
@@ -1034,9 +1059,19 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
 
     build_prim *prims = malloc(cap * sizeof *prims);
     if (!prims) return false;
-    size_t n = gather_prims(in, prims);
+    // Threads for a big build (the same tree for any number): gathering the boxes, the top of the tree, the
+    // packets. One thread, or a pool that could not start: serially.
+    int threads = in->threads > 0 ? in->threads : thread_pool_online_cpus();
+    size_t parallel_min = in->parallel_min ? in->parallel_min : PARALLEL_MIN;
+    thread_pool *pool = threads > 1 && cap >= 2 * parallel_min ? thread_pool_start(threads) : NULL;
+    if (pool && thread_pool_size(pool) < 2) {
+        thread_pool_stop(pool);
+        pool = NULL;
+    }
+    size_t n = gather_prims(in, prims, pool);
     b->prim_count = n;
     if (n == 0) {
+        thread_pool_stop(pool);
         free(prims);
         return true;
     }
@@ -1051,6 +1086,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     size_t front = wide ? split_front(prims, n) : 0, tree = n - front;
     b->nodes2 = tree ? malloc((2 * tree - 1) * sizeof *b->nodes2) : NULL;
     if (tree && !b->nodes2) {
+        thread_pool_stop(pool);
         free(prims);
         bvh_release(b);
         return false;
@@ -1059,17 +1095,8 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     builder bd = {.prims = prims, .nodes = b->nodes2, .block_shift = shift, .block_mask = ((size_t)1 << shift) - 1,
                   .max_leaf = wide ? BVH_PACKET : BIN_MAX_LEAF, .stop = in->stop};
     bool built = true;
-    // Threads for a big tree (the same tree for any number) and its packets; one thread, or a pool that could not
-    // start: serially.
-    int threads = in->threads > 0 ? in->threads : thread_pool_online_cpus();
-    size_t parallel_min = in->parallel_min ? in->parallel_min : PARALLEL_MIN;
-    thread_pool *pool = tree && threads > 1 && tree >= 2 * parallel_min ? thread_pool_start(threads) : NULL;
-    if (pool && thread_pool_size(pool) < 2) {
-        thread_pool_stop(pool);
-        pool = NULL;
-    }
     if (tree) {
-        if (pool) built = build_parallel(&bd, tree, pool, parallel_min);
+        if (pool && tree >= 2 * parallel_min) built = build_parallel(&bd, tree, pool, parallel_min);
         else build_range(&bd, 0, tree, 0);
     }
     if (!built || bd.stopped) {
