@@ -5,6 +5,7 @@
 #include "test_util.h"
 #include "core/rng.h"
 #include "io/obj.h"
+#include "obj_same.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -800,26 +801,6 @@ static void put_n(text_buf *t, const char *s, size_t k) {
 
 static void put(text_buf *t, const char *s) { put_n(t, s, strlen(s)); }
 
-// Whether two loads hold the same bytes: every array, the box, the material slots, the counts.
-static bool same_model(const obj_model *a, const obj_model *b) {
-    const mesh *x = &a->mesh, *y = &b->mesh;
-    bool same = x->position_count == y->position_count && x->normal_count == y->normal_count &&
-                x->uv_count == y->uv_count && x->triangle_count == y->triangle_count &&
-                a->material_count == b->material_count && a->warning_count == b->warning_count &&
-                a->zero_area_faces == b->zero_area_faces && memcmp(&x->bounds, &y->bounds, sizeof x->bounds) == 0;
-    same = same && (!x->position_count || !memcmp(x->positions, y->positions, x->position_count * sizeof *x->positions));
-    same = same && (!x->normal_count || !memcmp(x->normals, y->normals, x->normal_count * sizeof *x->normals));
-    same = same && (!x->uv_count || !memcmp(x->uvs, y->uvs, x->uv_count * sizeof *x->uvs));
-    same = same && (!x->triangle_count || !memcmp(x->triangles, y->triangles, x->triangle_count * sizeof *x->triangles));
-    same = same && !x->normal_corners == !y->normal_corners && !x->uv_corners == !y->uv_corners;
-    same = same && (!x->normal_corners ||
-                    !memcmp(x->normal_corners, y->normal_corners, x->triangle_count * sizeof *x->normal_corners));
-    same = same && (!x->uv_corners || !memcmp(x->uv_corners, y->uv_corners, x->triangle_count * sizeof *x->uv_corners));
-    for (size_t i = 0; same && i < a->material_count; i++)
-        same = strcmp(a->materials[i].name, b->materials[i].name) == 0 && a->materials[i].line == b->materials[i].line;
-    return same;
-}
-
 // A file of line 1 "v 0 0 0", line 2 a comment of `length` bytes, then `tail`.
 static bool write_long_line(const char *path, size_t length, const char *tail) {
     size_t n = 8 + length + strlen(tail);
@@ -899,7 +880,7 @@ static void test_blocks_match_whole_text(void) {
     CHECK(obj_parse(path, t.s, t.n, &opt, &whole, &err) == GLINT_OK);
     CHECK(load(path, &blocks, &w2, &err) == GLINT_OK);
     CHECK(whole.mesh.triangle_count > 200000 && whole.mesh.uv_count > 0 && whole.material_count == 4);
-    CHECK(same_model(&whole, &blocks));
+    CHECK(obj_same_model(&whole, &blocks, true));
     CHECK(w1.count == w2.count && w1.count > 0);
     for (int i = 0; i < w1.count && i < 16; i++) CHECK(same_string(w2.msg[i], w1.msg[i]));
     obj_model_free(&whole);

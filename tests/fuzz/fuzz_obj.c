@@ -4,6 +4,7 @@
 // Build with -DGLINT_FUZZ=ON and CC=clang; run: build/tests/fuzz_obj -dict=tests/fuzz/obj.dict NEWDIR tests/fuzz/corpus_obj
 #include "geometry/mesh.h"
 #include "io/obj.h"
+#include "../obj_same.h"
 
 #include <stddef.h>
 #include <stdint.h>
@@ -16,25 +17,6 @@ static void check_failure(const glint_error *err) {
     if (memchr(err->message, '\0', sizeof err->message) == NULL || err->message[0] == '\0') __builtin_trap();
 }
 
-// Whether two loads hold the same bytes (arrays, box, material slots, counts).
-static bool same_model(const obj_model *a, const obj_model *b) {
-    const mesh *x = &a->mesh, *y = &b->mesh;
-    bool same = x->position_count == y->position_count && x->normal_count == y->normal_count &&
-                x->uv_count == y->uv_count && x->triangle_count == y->triangle_count &&
-                a->material_count == b->material_count && a->warning_count == b->warning_count &&
-                a->zero_area_faces == b->zero_area_faces && memcmp(&x->bounds, &y->bounds, sizeof x->bounds) == 0;
-    same = same && (!x->position_count || !memcmp(x->positions, y->positions, x->position_count * sizeof *x->positions));
-    same = same && (!x->normal_count || !memcmp(x->normals, y->normals, x->normal_count * sizeof *x->normals));
-    same = same && (!x->uv_count || !memcmp(x->uvs, y->uvs, x->uv_count * sizeof *x->uvs));
-    same = same && (!x->triangle_count || !memcmp(x->triangles, y->triangles, x->triangle_count * sizeof *x->triangles));
-    same = same && !x->normal_corners == !y->normal_corners && !x->uv_corners == !y->uv_corners;
-    same = same && (!x->normal_corners ||
-                    !memcmp(x->normal_corners, y->normal_corners, x->triangle_count * sizeof *x->normal_corners));
-    same = same && (!x->uv_corners || !memcmp(x->uv_corners, y->uv_corners, x->triangle_count * sizeof *x->uv_corners));
-    for (size_t i = 0; same && i < a->material_count; i++) same = strcmp(a->materials[i].name, b->materials[i].name) == 0;
-    return same;
-}
-
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     // No files: a fuzzed `mtllib /dev/zero` must not be read.
     obj_options opt = {NULL, NULL, true, false}, statements = {NULL, NULL, true, true};
@@ -45,7 +27,7 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     glint_status slow_st = obj_parse("fuzz.obj", (const char *)data, size, &statements, &slow, &slow_err);
     if (st != slow_st || (st != GLINT_OK && strcmp(err.message, slow_err.message) != 0)) __builtin_trap();
     if (st == GLINT_OK) {
-        if (!same_model(&m, &slow)) __builtin_trap();
+        if (!obj_same_model(&m, &slow, false)) __builtin_trap();
         obj_model_free(&slow);
         // The box grown triangle by triangle is mesh_compute_bounds's, bit for bit.
         mesh copy = m.mesh;
