@@ -736,6 +736,21 @@ static int ref_order(const void *a, const void *b) {
     return (x->index > y->index) - (x->index < y->index);
 }
 
+// Sorts references by ref_order (a total order: any sort gives the same result): by insertion for the small
+// leaves the SAH makes, where qsort's calls through a pointer cost more than the sorting.
+static void sort_refs(prim_ref *refs, size_t n) {
+    if (n > 16) {
+        qsort(refs, n, sizeof *refs, ref_order);
+        return;
+    }
+    for (size_t i = 1; i < n; i++) {
+        prim_ref r = refs[i];
+        size_t j = i;
+        for (; j > 0 && ref_order(&r, &refs[j - 1]) < 0; j--) refs[j] = refs[j - 1];
+        refs[j] = r;
+    }
+}
+
 // Quads are tested as two triangles in triangle packets; other kinds that are not spheres as indices.
 static size_t packet_slots(uint32_t kind) {
     size_t bytes = kind == PRIM_SPHERE                            ? sizeof(bvh_sphere_packet)
@@ -760,7 +775,7 @@ static size_t packet_run(const prim_ref *refs, size_t i, size_t count) {
 // and orders the lanes.
 static uint32_t note_leaf(collapser *cl, const bvh2_node *leaf) {
     prim_ref *refs = &cl->b->refs[leaf->offset];
-    qsort(refs, leaf->count, sizeof *refs, ref_order);
+    sort_refs(refs, leaf->count);
     size_t first = cl->slots;
     for (size_t i = 0; i < leaf->count; i += packet_run(refs, i, leaf->count)) cl->slots += packet_slots(refs[i].kind);
     cl->spans[cl->span_count] = (leaf_span){leaf->offset, leaf->count, (uint32_t)first};
