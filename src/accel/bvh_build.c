@@ -281,31 +281,94 @@ static void node_set_leaf(builder *bd, bvh2_node *node, size_t begin, size_t n) 
     bd->leaves++;
 }
 
+// Gives zero bounds one sign (+0): the box of a set of primitives is then the same bits whatever the order they
+// were grown in, so that bounds grown during a partition equal range_bounds' (and the parallel build's).
+static void box_canonical(box3 *b) {
+    for (int a = 0; a < 4; a++) {
+        b->lo[a] += 0.0f;
+        b->hi[a] += 0.0f;
+    }
+}
+
 // Partitions prims[begin, end) by the split, left side first, and returns where the right side starts. The
-// order it leaves is the leaf order of the tree; parallel_partition reproduces it.
-static size_t partition(build_prim *prims, size_t begin, size_t end, const bins *b, split s) {
+// order it leaves is the leaf order of the tree; parallel_partition reproduces it. side[0] and side[1] get the
+// boxes and centroid boxes of the two sides, grown as each primitive is placed: the children need not read
+// their primitives again for them (range_bounds).
+static size_t partition(build_prim *prims, size_t begin, size_t end, const bins *b, split s, box3 side[2],
+                        box3 cside[2]) {
     // The chosen bin, recomputed with exactly the arithmetic of the binning.
     int a = s.axis, nb = b->nb;
     float lo = b->lo[a], scale = b->scale[a];
     size_t i = begin, j = end;
+#if defined(__SSE__)
+    // In registers, as range_bounds, with its operations (centroid()'s expression).
+    const __m128 half = _mm_set1_ps(0.5f), inf = _mm_set1_ps(INFINITY);
+    __m128 lo0 = inf, hi0 = _mm_sub_ps(_mm_setzero_ps(), inf), clo0 = lo0, chi0 = hi0;
+    __m128 lo1 = lo0, hi1 = hi0, clo1 = lo0, chi1 = hi0;
     while (i < j) {
+        if (bin_of(centroid(&prims[i], a), lo, scale, nb) <= s.bin) {
+            __m128 plo = _mm_load_ps(prims[i].box.lo), phi = _mm_load_ps(prims[i].box.hi);
+            __m128 c = _mm_add_ps(_mm_mul_ps(half, plo), _mm_mul_ps(half, phi));
+            lo0 = _mm_min_ps(lo0, plo);
+            hi0 = _mm_max_ps(hi0, phi);
+            clo0 = _mm_min_ps(clo0, c);
+            chi0 = _mm_max_ps(chi0, c);
+            i++;
+        } else {
+            build_prim tmp = prims[i];
+            prims[i] = prims[--j];
+            prims[j] = tmp;
+            __m128 plo = _mm_load_ps(tmp.box.lo), phi = _mm_load_ps(tmp.box.hi);
+            __m128 c = _mm_add_ps(_mm_mul_ps(half, plo), _mm_mul_ps(half, phi));
+            lo1 = _mm_min_ps(lo1, plo);
+            hi1 = _mm_max_ps(hi1, phi);
+            clo1 = _mm_min_ps(clo1, c);
+            chi1 = _mm_max_ps(chi1, c);
+        }
+    }
+    // The padding lanes: zero, as box_empty leaves them after growing by boxes with zero padding.
+    const __m128 keep = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
+    _mm_store_ps(side[0].lo, _mm_and_ps(lo0, keep));
+    _mm_store_ps(side[0].hi, _mm_and_ps(hi0, keep));
+    _mm_store_ps(cside[0].lo, _mm_and_ps(clo0, keep));
+    _mm_store_ps(cside[0].hi, _mm_and_ps(chi0, keep));
+    _mm_store_ps(side[1].lo, _mm_and_ps(lo1, keep));
+    _mm_store_ps(side[1].hi, _mm_and_ps(hi1, keep));
+    _mm_store_ps(cside[1].lo, _mm_and_ps(clo1, keep));
+    _mm_store_ps(cside[1].hi, _mm_and_ps(chi1, keep));
+#else
+    side[0] = side[1] = cside[0] = cside[1] = box_empty();
+    while (i < j) {
+        size_t k = i;
         if (bin_of(centroid(&prims[i], a), lo, scale, nb) <= s.bin) {
             i++;
         } else {
             build_prim tmp = prims[i];
             prims[i] = prims[--j];
             prims[j] = tmp;
+            k = j;
         }
+        int to = k == j ? 1 : 0;
+        range_bounds(prims, k, k + 1, &side[to], &cside[to]);
     }
+#endif
     return i;
 }
 
-// Recursively builds the subtree over prims[begin, end) and returns its node index (depth-first order).
-static uint32_t build_range(builder *bd, size_t begin, size_t end, uint64_t depth) {
+// Recursively builds the subtree over prims[begin, end) and returns its node index (depth-first order). Its
+// primitives' box and centroid box are `known` ([0] and [1]) when the parent's partition grew them, else NULL.
+static uint32_t build_range(builder *bd, size_t begin, size_t end, uint64_t depth, const box3 *known) {
     uint32_t id = new_node(bd);
     if (depth + 1 > bd->depth) bd->depth = depth + 1;
     box3 bounds = box_empty(), cbounds = box_empty();
-    range_bounds(bd->prims, begin, end, &bounds, &cbounds);
+    if (known) {
+        bounds = known[0];
+        cbounds = known[1];
+    } else {
+        range_bounds(bd->prims, begin, end, &bounds, &cbounds);
+    }
+    box_canonical(&bounds);
+    box_canonical(&cbounds);
     bvh2_node *node = &bd->nodes[id];
     node_set_box(node, &bounds);
     size_t n = end - begin;
@@ -322,9 +385,18 @@ static uint32_t build_range(builder *bd, size_t begin, size_t end, uint64_t dept
         return id;
     }
     // No axis separates the centroids when they all coincide: halve the range.
-    size_t mid = s.axis >= 0 ? partition(bd->prims, begin, end, &b, s) : begin + n / 2;
-    build_range(bd, begin, mid, depth + 1);
-    uint32_t right = build_range(bd, mid, end, depth + 1);
+    box3 side[2], cside[2];
+    if (s.axis < 0) {
+        size_t mid = begin + n / 2;
+        build_range(bd, begin, mid, depth + 1, NULL);
+        uint32_t right = build_range(bd, mid, end, depth + 1, NULL);
+        bd->nodes[id].offset = right;
+        bd->nodes[id].count = 0;
+        return id;
+    }
+    size_t mid = partition(bd->prims, begin, end, &b, s, side, cside);
+    build_range(bd, begin, mid, depth + 1, (const box3[2]){side[0], cside[0]});
+    uint32_t right = build_range(bd, mid, end, depth + 1, (const box3[2]){side[1], cside[1]});
     bd->nodes[id].offset = right;
     bd->nodes[id].count = 0;
     return id;
@@ -565,6 +637,8 @@ static size_t top_range(par_build *pb, size_t begin, size_t end, uint64_t depth)
         box_grow(&bounds, &pb->chunks[k].bounds);
         box_grow(&cbounds, &pb->chunks[k].cbounds);
     }
+    box_canonical(&bounds);
+    box_canonical(&cbounds);
     node_set_box(&pb->top[id].node, &bounds);
     bool stopped = stop_requested(bd);
     split s = {-1, 0, INFINITY};
@@ -602,7 +676,7 @@ static void subtree_build(void *ctx, size_t k) {
         t->failed = true;
         return;
     }
-    build_range(&t->bd, t->begin, t->end, t->depth);
+    build_range(&t->bd, t->begin, t->end, t->depth, NULL);
     // Most of the bound of 2n - 1 nodes is unused: give it back until the copy.
     bvh2_node *fit = realloc(t->bd.nodes, t->bd.node_count * sizeof *fit);
     if (fit) t->bd.nodes = fit;
@@ -1135,7 +1209,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     bool built = true;
     if (tree) {
         if (pool && tree >= 2 * parallel_min) built = build_parallel(&bd, tree, pool, parallel_min);
-        else build_range(&bd, 0, tree, 0);
+        else build_range(&bd, 0, tree, 0, NULL);
     }
     if (!built || bd.stopped) {
         thread_pool_stop(pool);
