@@ -127,25 +127,35 @@ static uint32_t new_node(builder *bd) { return (uint32_t)bd->node_count++; }
 // Grows *bounds and *cbounds by the boxes and the centroids of prims[begin, end), in index order. box_grow
 // keeps the later of two equal bounds (+0 and -0 compare equal), so growing the results of consecutive chunks
 // in their order gives the bits of one pass over the whole range: what the parallel build relies on.
+#if defined(__SSE__)
+/// A box and a centroid box being grown in registers (range_bounds, partition).
+typedef struct bounds_acc {
+    __m128 lo, hi, clo, chi;
+} bounds_acc;
+
+// Grows acc by box p and its centroid (centroid()'s expression), with box_grow's operand order: the later of
+// two equal bounds is kept.
+static inline void bounds_acc_grow(bounds_acc *acc, const box3 *p) {
+    const __m128 half = _mm_set1_ps(0.5f);
+    __m128 plo = _mm_load_ps(p->lo), phi = _mm_load_ps(p->hi);
+    __m128 c = _mm_add_ps(_mm_mul_ps(half, plo), _mm_mul_ps(half, phi));
+    acc->lo = _mm_min_ps(acc->lo, plo);
+    acc->hi = _mm_max_ps(acc->hi, phi);
+    acc->clo = _mm_min_ps(acc->clo, c);
+    acc->chi = _mm_max_ps(acc->chi, c);
+}
+#endif
+
 static void range_bounds(const build_prim *prims, size_t begin, size_t end, box3 *bounds, box3 *cbounds) {
 #if defined(__SSE__)
     // In registers: through the pointers every step would store and reload them (prims may alias them).
-    __m128 lo = _mm_load_ps(bounds->lo), hi = _mm_load_ps(bounds->hi);
-    __m128 clo = _mm_load_ps(cbounds->lo), chi = _mm_load_ps(cbounds->hi);
-    const __m128 half = _mm_set1_ps(0.5f);
-    for (size_t i = begin; i < end; i++) {
-        __m128 plo = _mm_load_ps(prims[i].box.lo), phi = _mm_load_ps(prims[i].box.hi);
-        // Operand order as box_grow's: the later of two equal bounds is kept.
-        lo = _mm_min_ps(lo, plo);
-        hi = _mm_max_ps(hi, phi);
-        __m128 c = _mm_add_ps(_mm_mul_ps(half, plo), _mm_mul_ps(half, phi)); // centroid()'s expression
-        clo = _mm_min_ps(clo, c);
-        chi = _mm_max_ps(chi, c);
-    }
-    _mm_store_ps(bounds->lo, lo);
-    _mm_store_ps(bounds->hi, hi);
-    _mm_store_ps(cbounds->lo, clo);
-    _mm_store_ps(cbounds->hi, chi);
+    bounds_acc acc = {_mm_load_ps(bounds->lo), _mm_load_ps(bounds->hi), _mm_load_ps(cbounds->lo),
+                      _mm_load_ps(cbounds->hi)};
+    for (size_t i = begin; i < end; i++) bounds_acc_grow(&acc, &prims[i].box);
+    _mm_store_ps(bounds->lo, acc.lo);
+    _mm_store_ps(bounds->hi, acc.hi);
+    _mm_store_ps(cbounds->lo, acc.clo);
+    _mm_store_ps(cbounds->hi, acc.chi);
 #else
     for (size_t i = begin; i < end; i++) {
         box_grow(bounds, &prims[i].box);
@@ -312,41 +322,27 @@ static size_t partition(build_prim *prims, size_t begin, size_t end, const bins 
     float lo = b->lo[a], scale = b->scale[a];
     size_t i = begin, j = end;
 #if defined(__SSE__)
-    // In registers, as range_bounds, with its operations (centroid()'s expression).
-    const __m128 half = _mm_set1_ps(0.5f), inf = _mm_set1_ps(INFINITY);
-    __m128 lo0 = inf, hi0 = _mm_sub_ps(_mm_setzero_ps(), inf), clo0 = lo0, chi0 = hi0;
-    __m128 lo1 = lo0, hi1 = hi0, clo1 = lo0, chi1 = hi0;
+    // In registers, as range_bounds, from box_empty().
+    box3 e = box_empty();
+    bounds_acc acc[2];
+    acc[0] = acc[1] = (bounds_acc){_mm_load_ps(e.lo), _mm_load_ps(e.hi), _mm_load_ps(e.lo), _mm_load_ps(e.hi)};
     while (i < j) {
         if (bin_of(centroid(&prims[i], a), lo, scale, nb) <= s.bin) {
-            __m128 plo = _mm_load_ps(prims[i].box.lo), phi = _mm_load_ps(prims[i].box.hi);
-            __m128 c = _mm_add_ps(_mm_mul_ps(half, plo), _mm_mul_ps(half, phi));
-            lo0 = _mm_min_ps(lo0, plo);
-            hi0 = _mm_max_ps(hi0, phi);
-            clo0 = _mm_min_ps(clo0, c);
-            chi0 = _mm_max_ps(chi0, c);
+            bounds_acc_grow(&acc[0], &prims[i].box);
             i++;
         } else {
             build_prim tmp = prims[i];
             prims[i] = prims[--j];
             prims[j] = tmp;
-            __m128 plo = _mm_load_ps(tmp.box.lo), phi = _mm_load_ps(tmp.box.hi);
-            __m128 c = _mm_add_ps(_mm_mul_ps(half, plo), _mm_mul_ps(half, phi));
-            lo1 = _mm_min_ps(lo1, plo);
-            hi1 = _mm_max_ps(hi1, phi);
-            clo1 = _mm_min_ps(clo1, c);
-            chi1 = _mm_max_ps(chi1, c);
+            bounds_acc_grow(&acc[1], &tmp.box);
         }
     }
-    // The padding lanes: zero, as box_empty leaves them after growing by boxes with zero padding.
-    const __m128 keep = _mm_castsi128_ps(_mm_setr_epi32(-1, -1, -1, 0));
-    _mm_store_ps(side[0].lo, _mm_and_ps(lo0, keep));
-    _mm_store_ps(side[0].hi, _mm_and_ps(hi0, keep));
-    _mm_store_ps(cside[0].lo, _mm_and_ps(clo0, keep));
-    _mm_store_ps(cside[0].hi, _mm_and_ps(chi0, keep));
-    _mm_store_ps(side[1].lo, _mm_and_ps(lo1, keep));
-    _mm_store_ps(side[1].hi, _mm_and_ps(hi1, keep));
-    _mm_store_ps(cside[1].lo, _mm_and_ps(clo1, keep));
-    _mm_store_ps(cside[1].hi, _mm_and_ps(chi1, keep));
+    for (int k = 0; k < 2; k++) {
+        _mm_store_ps(side[k].lo, acc[k].lo);
+        _mm_store_ps(side[k].hi, acc[k].hi);
+        _mm_store_ps(cside[k].lo, acc[k].clo);
+        _mm_store_ps(cside[k].hi, acc[k].chi);
+    }
 #else
     side[0] = side[1] = cside[0] = cside[1] = box_empty();
     while (i < j) {
