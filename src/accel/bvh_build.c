@@ -852,15 +852,41 @@ static size_t packet_run(const prim_ref *refs, size_t i, size_t count) {
 }
 
 // Lists a binary leaf for the second pass and counts the slots of its packets (packet_run); returns its
-// temporary reference. Sorts the leaf's references by (kind, instance, index), which groups them into packets
-// and orders the lanes.
+// temporary reference. The leaf's references are sorted already (sort_leaves).
 static uint32_t note_leaf(collapser *cl, const bvh2_node *leaf) {
-    prim_ref *refs = &cl->b->refs[leaf->offset];
-    sort_refs(refs, leaf->count);
+    const prim_ref *refs = &cl->b->refs[leaf->offset];
     size_t first = cl->slots;
     for (size_t i = 0; i < leaf->count; i += packet_run(refs, i, leaf->count)) cl->slots += packet_slots(refs[i].kind);
     cl->spans[cl->span_count] = (leaf_span){leaf->offset, leaf->count, (uint32_t)first};
     return BVH_LEAF | (uint32_t)cl->span_count++;
+}
+
+/// Binary nodes whose leaves one pool item sorts.
+enum { SORT_NODES_PER_ITEM = 16384 };
+
+typedef struct sort_job {
+    const bvh2_node *nodes;
+    prim_ref *refs;
+    size_t count;
+} sort_job;
+
+// Sorts the references of every leaf among nodes [item * SORT_NODES_PER_ITEM, ...) by (kind, instance, index),
+// which groups them into packets and orders the lanes (leaves own disjoint ranges of refs).
+static void sort_leaves_run(void *ctx, size_t item) {
+    const sort_job *job = ctx;
+    size_t begin = item * SORT_NODES_PER_ITEM, end = begin + SORT_NODES_PER_ITEM;
+    if (end > job->count) end = job->count;
+    for (size_t i = begin; i < end; i++)
+        if (job->nodes[i].count > 0) sort_refs(&job->refs[job->nodes[i].offset], job->nodes[i].count);
+}
+
+// sort_leaves_run over the whole binary tree, on the pool's threads when there is one.
+static void sort_leaves(thread_pool *pool, const bvh2_node *nodes, size_t count, prim_ref *refs) {
+    sort_job job = {nodes, refs, count};
+    size_t items = (count + SORT_NODES_PER_ITEM - 1) / SORT_NODES_PER_ITEM;
+    if (pool) thread_pool_run(pool, items, sort_leaves_run, &job);
+    else
+        for (size_t i = 0; i < items; i++) sort_leaves_run(&job, i);
 }
 
 // Writes the corners of triangle `tri` into lane k of packet pk (NaN corners when tri is NULL: never hit).
@@ -874,7 +900,7 @@ static void put_triangle(bvh_triangle_packet *pk, size_t k, const vec3 *tri, uin
     pk->prim[k] = prim;
 }
 
-// Writes the packets of a leaf (its references sorted by note_leaf) into the arena; returns the leaf reference.
+// Writes the packets of a leaf (its references sorted by sort_leaves) into the arena; returns the leaf reference.
 static void emit_leaf(const bvh *b, const leaf_span *leaf) {
     const prim_ref *refs = &b->refs[leaf->offset];
     size_t at = leaf->slot;
@@ -1120,10 +1146,9 @@ static const float FRONT_AREA_FRACTION = 0.5f;
 
 // Moves the huge spheres (FRONT_AREA_FRACTION) to the end of prims, keeping the others' order; returns how
 // many there are.
-static size_t split_front(build_prim *prims, size_t n) {
-    box3 all = box_empty();
-    for (size_t i = 0; i < n; i++) box_grow(&all, &prims[i].box);
-    float limit = FRONT_AREA_FRACTION * box_half_area(&all);
+// `all` is the box of all of them.
+static size_t split_front(build_prim *prims, size_t n, const box3 *all) {
+    float limit = FRONT_AREA_FRACTION * box_half_area(all);
     size_t front = 0;
     for (size_t i = 0; i < n && front < BVH_PACKET; i++)
         front += prims[i].ref.kind == PRIM_SPHERE && box_half_area(&prims[i].box) >= limit;
@@ -1202,7 +1227,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     }
     b->bounds = (bounds3){v3(all.lo[0], all.lo[1], all.lo[2]), v3(all.hi[0], all.hi[1], all.hi[2])};
     // The wide BVH tests the huge spheres (the last `front` prims) on their own, the tree holds the rest.
-    size_t front = wide ? split_front(prims, n) : 0, tree = n - front;
+    size_t front = wide && in->sphere_count ? split_front(prims, n, &all) : 0, tree = n - front;
     b->nodes2 = tree ? malloc((2 * tree - 1) * sizeof *b->nodes2) : NULL;
     if (tree && !b->nodes2) {
         thread_pool_stop(pool);
@@ -1246,6 +1271,8 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
         return false;
     }
     bvh2_node front_leaf = {.offset = (uint32_t)tree, .count = (uint32_t)front};
+    sort_leaves(pool, b->nodes2, b->node2_count, b->refs);
+    sort_refs(&b->refs[tree], front);
     if (front) b->front = note_leaf(&cl, &front_leaf);
     if (tree) b->root = collapse(&cl, 0, 0);
     // The binary tree is only scaffolding for the wide one: gone before the arena fills (the peak of the build).
