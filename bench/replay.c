@@ -177,7 +177,7 @@ int main(int argc, char **argv) {
     }
     glint_scene *s;
     glint_error err;
-    if (scene_file_load(argv[1], &s, &err) != GLINT_OK) {
+    if (scene_file_load(argv[1], 1, &s, &err) != GLINT_OK) {
         fprintf(stderr, "replay: %s\n", err.message);
         return 1;
     }

@@ -151,6 +151,16 @@ GLINT_API glint_status glint_scene_load(const char *path, glint_scene **out, gli
 /// Parses a JSON scene from memory; `name` is used in messages and to resolve relative paths.
 GLINT_API glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out,
                                          glint_error *err);
+/// A value struct: options of reading a scene (zero-initialised: the defaults, those of glint_scene_load).
+typedef struct glint_load_options {
+    int threads; ///< threads that read a large mesh file; 0 = all online CPUs. The scene is the same for every count
+} glint_load_options;
+/// glint_scene_load with options (opt may be NULL: the defaults).
+GLINT_API glint_status glint_scene_load_with(const char *path, const glint_load_options *opt, glint_scene **out,
+                                             glint_error *err);
+/// glint_scene_parse with options (opt may be NULL: the defaults).
+GLINT_API glint_status glint_scene_parse_with(const char *name, const char *text, size_t length,
+                                              const glint_load_options *opt, glint_scene **out, glint_error *err);
 /// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise); adds
 /// a warning when the scene will render by brute force (accel "none") with meshes in it.
 GLINT_API glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err);

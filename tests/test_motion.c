@@ -119,7 +119,7 @@ static void test_bounds(void) {
 static glint_scene *parse(const char *text) {
     glint_scene *s = NULL;
     glint_error err;
-    if (scene_file_parse("motion.json", text, strlen(text), &s, &err) != GLINT_OK) {
+    if (scene_file_parse("motion.json", text, strlen(text), 0, &s, &err) != GLINT_OK) {
         fprintf(stderr, "parse: %s\n", err.message);
         CHECK(false);
         return NULL;

@@ -44,10 +44,13 @@ static const char *expand(const char *pattern) {
 
 // Every line read as a statement, never by a fast path: the tables of cases run both ways.
 static bool statements_only;
+// Threads and block size of the parallel reader (0, 0: one thread), which every file takes when they are set.
+static int load_threads;
+static size_t load_block;
 
 static glint_status load(const char *path, obj_model *m, warnings *w, glint_error *err) {
     memset(w, 0, sizeof *w);
-    obj_options opt = {collect, w, false, statements_only};
+    obj_options opt = {collect, w, false, statements_only, load_threads, load_block};
     return obj_load(path, &opt, m, err);
 }
 
@@ -486,7 +489,7 @@ static void test_mapping(void) {
 }
 
 static void test_texture_paths(void) {
-    obj_options skip = {NULL, NULL, true, false};
+    obj_options skip = {NULL, NULL, true, false, 0, 0};
     obj_material *mats;
     size_t count;
     glint_error err;
@@ -530,7 +533,7 @@ static void test_index_forms(void) {
                        "f\t2\t4  3 \r\n";
     obj_model m;
     glint_error err;
-    obj_options opt = {NULL, NULL, true, statements_only};
+    obj_options opt = {NULL, NULL, true, statements_only, 0, 0};
     CHECK(obj_parse("forms.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
     CHECK(m.mesh.triangle_count == 6 && m.mesh.uv_count == 4 && m.mesh.normal_count == 2);
     if (m.mesh.triangle_count == 6) {
@@ -595,7 +598,7 @@ static void test_polygons(void) {
     snprintf(big + k, cap - k, "\n");
     warnings w;
     memset(&w, 0, sizeof w);
-    obj_options opt = {collect, &w, false, false};
+    obj_options opt = {collect, &w, false, false, 0, 0};
     CHECK(obj_parse("star.obj", big, strlen(big), &opt, &m, &err) == GLINT_OK);
     CHECK(m.mesh.triangle_count == N - 2);
     CHECK(w.count == 1 && same_string(w.msg[0], "star.obj:301: warning: concave face with 300 vertices triangulated as a fan; it may be wrong"));
@@ -620,7 +623,7 @@ static void test_large_convex_face(void) {
     snprintf(text + k, cap - k, "\n");
     warnings w;
     memset(&w, 0, sizeof w);
-    obj_options opt = {collect, &w, false, false};
+    obj_options opt = {collect, &w, false, false, 0, 0};
     obj_model m;
     glint_error err;
     CHECK(obj_parse("circle.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
@@ -705,7 +708,7 @@ static void test_materials_in_obj(void) {
     // skip_files: libraries are not opened and nothing is reported about them.
     const char *text = "mtllib nothere.mtl\nusemtl x\n" TRI "f 1 2 3\n";
     memset(&w, 0, sizeof w);
-    obj_options opt = {collect, &w, true, false};
+    obj_options opt = {collect, &w, true, false, 0, 0};
     CHECK(obj_parse("mem.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
     CHECK(w.count == 1 && same_string(w.msg[0], "mem.obj:2: warning: material 'x' is not defined in any material library; using the default material"));
     obj_model_free(&m);
@@ -718,7 +721,7 @@ static void test_comments_and_blanks(void) {
     glint_error err;
     warnings w;
     memset(&w, 0, sizeof w);
-    obj_options opt = {collect, &w, false, false};
+    obj_options opt = {collect, &w, false, false, 0, 0};
     CHECK(obj_parse("c.obj", text, strlen(text), &opt, &m, &err) == GLINT_OK);
     CHECK(m.mesh.position_count == 4 && m.mesh.triangle_count == 2 && w.count == 0);
     obj_model_free(&m);
@@ -876,7 +879,7 @@ static void test_blocks_match_whole_text(void) {
     warnings w1, w2;
     glint_error err;
     memset(&w1, 0, sizeof w1);
-    obj_options opt = {collect, &w1, false, false};
+    obj_options opt = {collect, &w1, false, false, 0, 0};
     CHECK(obj_parse(path, t.s, t.n, &opt, &whole, &err) == GLINT_OK);
     CHECK(load(path, &blocks, &w2, &err) == GLINT_OK);
     CHECK(whole.mesh.triangle_count > 200000 && whole.mesh.uv_count > 0 && whole.material_count == 4);
@@ -1117,6 +1120,24 @@ int main(void) {
     test_numbers_match_strtof();
     test_blocks_match_whole_text();
     test_mesh_matches_plain_reader();
+    // On several threads, in blocks of one line or less (16 bytes) and of many lines: the same models, warnings and
+    // errors, on the same lines.
+    for (int i = 0; i < 2; i++) {
+        load_threads = 2 + i;
+        load_block = i ? 4096 : 1;
+        test_cornell_original();
+        test_bunny();
+        test_edge_cases();
+        test_malformed();
+        test_warnings();
+        test_index_forms();
+        test_polygons();
+        test_comments_and_blanks();
+        test_blocks_match_whole_text();
+        test_mesh_matches_plain_reader();
+    }
+    load_threads = 0;
+    load_block = 0;
     tmpdir_remove();
     return check_summary();
 }

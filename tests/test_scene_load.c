@@ -3,7 +3,9 @@
 // boxes, transforms (order, baking, instances), meshes (loaded once, MTL materials) and the issue-5 scenes.
 #include "check.h"
 #include "glint.h"
+#include "obj_same.h"
 #include "scene/scene.h"
+#include "test_util.h"
 
 #include <math.h>
 #include <stdbool.h>
@@ -824,6 +826,72 @@ static void test_paper_mode_warnings(void) {
                    none);
 }
 
+// Writes a grid mesh of (n + 1)^2 vertices and 2 n^2 triangles, with a zero-area face and a face of an
+// undefined vertex-normal index in the middle (a warning and an error line would fall inside a block), to path.
+static bool write_grid(const char *path, int n, bool bad_line) {
+    FILE *f = fopen(path, "wb");
+    if (!f) return false;
+    for (int y = 0; y <= n; y++)
+        for (int x = 0; x <= n; x++) fprintf(f, "v %d.%03d %d.5 %d\n", x, y % 1000, y, (x * y) % 7);
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++) {
+            int a = y * (n + 1) + x + 1, b = a + 1, c = a + n + 1, d = c + 1;
+            if (y == n / 2 && x == n / 2) fprintf(f, "f %d %d %d\n# a comment\nvn 0 0 1\n", a, a, b); // no area
+            if (bad_line && y == n / 2 && x == n / 2 + 1) fprintf(f, "f %d//7 %d//1 %d//1\n", a, b, c);
+            fprintf(f, "f %d %d %d\nf %d %d %d %d\n", a, b, d, a, d, c, c);
+        }
+    return fclose(f) == 0;
+}
+
+// A mesh file large enough for the parallel reader (over 4 MiB) gives the same scene, warnings and errors on
+// one thread and on several.
+static void test_large_mesh_on_threads(void) {
+    if (!tmpdir_make("glint-test-scene-load")) return;
+    const char *obj = tmp_path("grid.obj"), *bad = tmp_path("bad.obj");
+    CHECK(write_grid(obj, 420, false) && write_grid(bad, 420, true));
+    FILE *f = fopen(obj, "rb");
+    long size = f && fseek(f, 0, SEEK_END) == 0 ? ftell(f) : -1;
+    if (f) fclose(f);
+    CHECK(size > (4L << 20));
+    char text[1200];
+    snprintf(text, sizeof text, "{\"objects\": [{\"type\": \"mesh\", \"file\": \"%s\"}]}", obj);
+    glint_scene *one = NULL, *two = NULL, *all = NULL;
+    glint_error err;
+    CHECK(glint_scene_parse_with("big.json", text, strlen(text), &(glint_load_options){.threads = 1}, &one, &err) ==
+          GLINT_OK);
+    CHECK(glint_scene_parse_with("big.json", text, strlen(text), &(glint_load_options){.threads = 2}, &two, &err) ==
+          GLINT_OK);
+    CHECK(glint_scene_parse_with("big.json", text, strlen(text), NULL, &all, &err) == GLINT_OK);
+    if (one && two && all) {
+        CHECK(one->mesh_count == 1 && two->mesh_count == 1 && all->mesh_count == 1);
+        const mesh *a = &one->meshes[0].geometry;
+        CHECK(a->triangle_count == 2 * 420 * 420 && a->position_count == 421 * 421);
+        obj_model ma = {.mesh = *a}, mb = {.mesh = two->meshes[0].geometry}, mc = {.mesh = all->meshes[0].geometry};
+        CHECK(obj_same_model(&ma, &mb, false) && obj_same_model(&ma, &mc, false));
+        // The zero-area face's warning, on its line, then the scene's (no material, no light).
+        size_t n = glint_scene_warning_count(one);
+        CHECK(n == 3 && glint_scene_warning_count(two) == n);
+        CHECK(n > 0 && strstr(glint_scene_warning(one, 0), "grid.obj:354062: warning: face has zero area") != NULL);
+        for (size_t i = 0; i < n && i < glint_scene_warning_count(two); i++)
+            CHECK(strcmp(glint_scene_warning(one, i), glint_scene_warning(two, i)) == 0);
+    }
+    glint_scene_free(one);
+    glint_scene_free(two);
+    glint_scene_free(all);
+    // The error names the same line whichever reader found it.
+    snprintf(text, sizeof text, "{\"objects\": [{\"type\": \"mesh\", \"file\": \"%s\"}]}", bad);
+    char first[sizeof err.message];
+    glint_scene *s = NULL;
+    CHECK(glint_scene_parse_with("bad.json", text, strlen(text), &(glint_load_options){.threads = 1}, &s, &err) ==
+          GLINT_ERR_INPUT && !s);
+    snprintf(first, sizeof first, "%s", err.message);
+    CHECK(glint_scene_parse_with("bad.json", text, strlen(text), &(glint_load_options){.threads = 2}, &s, &err) ==
+          GLINT_ERR_INPUT && !s);
+    CHECK(strcmp(first, err.message) == 0 && strstr(first, "bad.obj:") != NULL);
+    if (strcmp(first, err.message) != 0) fprintf(stderr, "  one thread: %s\n  two threads: %s\n", first, err.message);
+    tmpdir_remove();
+}
+
 int main(void) {
     test_defaults();
     test_render_settings();
@@ -840,5 +908,6 @@ int main(void) {
     test_issue5_scenes();
     test_no_light_warning();
     test_paper_mode_warnings();
+    test_large_mesh_on_threads();
     return check_summary();
 }

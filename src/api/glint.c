@@ -27,17 +27,27 @@ static void trace_scene_load(trace_lane *lane, int64_t began, const char *name) 
 }
 
 glint_status glint_scene_load(const char *path, glint_scene **out, glint_error *err) {
+    return glint_scene_load_with(path, NULL, out, err);
+}
+
+glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err) {
+    return glint_scene_parse_with(name, text, length, NULL, out, err);
+}
+
+glint_status glint_scene_load_with(const char *path, const glint_load_options *opt, glint_scene **out,
+                                   glint_error *err) {
     glint_error scratch;
     if (!err) err = &scratch;
-    if (!out) return glint_scene_parse(path, NULL, 0, out, err);
+    if (!out) return glint_scene_parse_with(path, NULL, 0, opt, out, err);
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
-    glint_status st = scene_file_load(path, out, err);
+    glint_status st = scene_file_load(path, opt ? opt->threads : 0, out, err);
     if (lane) trace_scene_load(lane, began, path);
     return st;
 }
 
-glint_status glint_scene_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err) {
+glint_status glint_scene_parse_with(const char *name, const char *text, size_t length, const glint_load_options *opt,
+                                    glint_scene **out, glint_error *err) {
     glint_error scratch;
     if (!err) err = &scratch;
     if (!out) {
@@ -46,7 +56,7 @@ glint_status glint_scene_parse(const char *name, const char *text, size_t length
     }
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
-    glint_status st = scene_file_parse(name ? name : "<scene>", text, text ? length : 0, out, err);
+    glint_status st = scene_file_parse(name ? name : "<scene>", text, text ? length : 0, opt ? opt->threads : 0, out, err);
     if (lane) trace_scene_load(lane, began, name ? name : "<scene>");
     return st;
 }

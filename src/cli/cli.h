@@ -60,8 +60,9 @@ cli_action cli_parse(const cli_program *p, int argc, char **argv, cli_options *o
 /// Reads standard input as a scene (at most GLINT_MAX_SCENE_BYTES): the text and its length, or NULL with the
 /// message in *err and the status in *st (GLINT_ERR_RENDER when memory runs out).
 char *cli_read_stdin(size_t *length, glint_status *st, glint_error *err);
-/// Loads the scene file at `path`, or from standard input for "-" (named "<stdin>" in messages).
-glint_status cli_load_scene(const char *path, glint_scene **scene, glint_error *err);
+/// Loads the scene file at `path`, or from standard input for "-" (named "<stdin>" in messages); large meshes
+/// are read on `threads` threads (0: all online CPUs).
+glint_status cli_load_scene(const char *path, int threads, glint_scene **scene, glint_error *err);
 /// Whether the output would replace the scene file (the same file by device and inode, whatever the names).
 bool cli_output_is_scene(const char *output, const char *scene_path);
 

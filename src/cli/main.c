@@ -196,7 +196,7 @@ static int run(const cli_options *opt, glint_trace *trace) {
     atomic_store(&loading, 1);
     install_signal_handlers();
     glint_scene *scene = NULL;
-    st = cli_load_scene(opt->scene_path, &scene, &err);
+    st = cli_load_scene(opt->scene_path, opt->threads, &scene, &err);
     atomic_store(&loading, 0);
     if (st == GLINT_OK) st = glint_scene_override(scene, &opt->overrides, &err);
     if (st != GLINT_OK) {

@@ -46,13 +46,14 @@ char *cli_read_stdin(size_t *length, glint_status *st, glint_error *err) {
     return NULL;
 }
 
-glint_status cli_load_scene(const char *path, glint_scene **scene, glint_error *err) {
-    if (strcmp(path, "-") != 0) return glint_scene_load(path, scene, err);
+glint_status cli_load_scene(const char *path, int threads, glint_scene **scene, glint_error *err) {
+    glint_load_options opt = {.threads = threads};
+    if (strcmp(path, "-") != 0) return glint_scene_load_with(path, &opt, scene, err);
     size_t length = 0;
     glint_status st;
     char *text = cli_read_stdin(&length, &st, err);
     if (!text) return st;
-    st = glint_scene_parse("<stdin>", text, length, scene, err);
+    st = glint_scene_parse_with("<stdin>", text, length, &opt, scene, err);
     free(text);
     return st;
 }

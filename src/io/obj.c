@@ -6,6 +6,7 @@
 #include "core/filepath.h"
 #include "core/prefetch.h"
 #include "core/strmap.h"
+#include "core/thread_pool.h"
 #include "io/decimal.h"
 
 #include <errno.h>
@@ -987,17 +988,47 @@ static inline bool fast_numbers(const char *p, const char *end, float *v, int ma
     return true;
 }
 
-// A face index (1-based, or negative: relative) into `count` elements -> 0-based; NULL for anything else,
-// including indices out of range and more than 10 digits.
-static inline const char *fast_index(const char *p, const char *end, size_t count, int32_t *out) {
+// A face index as written (1-based, or negative: relative) into *raw; NULL for anything else: no digits, more
+// than 10 digits, or 0.
+static inline const char *fast_index_raw(const char *p, const char *end, int64_t *raw) {
     bool neg = p < end && *p == '-';
     p += neg;
     const char *first = p;
     uint64_t v = 0;
     p = decimal_scan_digits(p, end, &v);
-    if (p == first || p - first > 10 || v == 0 || v > count) return NULL;
-    *out = (int32_t)(neg ? count - v : v - 1);
+    if (p == first || p - first > 10 || v == 0) return NULL;
+    *raw = neg ? -(int64_t)v : (int64_t)v;
     return p;
+}
+
+// A raw index into `count` elements -> 0-based; false when out of range.
+static inline bool fast_index_resolve(int64_t raw, size_t count, int32_t *out) {
+    uint64_t v = raw < 0 ? (uint64_t)-raw : (uint64_t)raw;
+    if (v > count) return false;
+    *out = (int32_t)(raw < 0 ? count - v : v - 1);
+    return true;
+}
+
+// One face corner as written, v, v/vt, v//vn or v/vt/vn: raw[0], raw[1], raw[2] its indices (0: absent); NULL for
+// anything else, including what follows it on the line ("1/2/3/4", "1x", "1#comment").
+static inline const char *fast_corner_raw(const char *p, const char *end, int64_t raw[3]) {
+    raw[1] = raw[2] = 0;
+    if (!(p = fast_index_raw(p, end, &raw[0]))) return NULL;
+    if (p < end && *p == '/') {
+        p++;
+        if ((p == end || *p != '/') && !(p = fast_index_raw(p, end, &raw[1]))) return NULL;
+        if (p < end && *p == '/' && !(p = fast_index_raw(p + 1, end, &raw[2]))) return NULL;
+    }
+    if (p < end && !is_space(*p) && *p != '\n') return NULL;
+    return p;
+}
+
+// A raw corner resolved against the mesh read so far; false when an index is out of range.
+static inline bool fast_corner_resolve(const mesh *m, const int64_t raw[3], corner *k) {
+    k->t = k->n = -1;
+    return fast_index_resolve(raw[0], m->position_count, &k->v) &&
+           (raw[1] == 0 || fast_index_resolve(raw[1], m->uv_count, &k->t)) &&
+           (raw[2] == 0 || fast_index_resolve(raw[2], m->normal_count, &k->n));
 }
 
 // The corners of a face into ps->corners; *stop gets the end of the line.
@@ -1010,15 +1041,8 @@ static bool fast_corners(obj_parser *ps, const char *p, const char *end, size_t 
         if (n == OBJ_MAX_FACE_CORNERS ||
             (n == ps->corner_cap && !array_reserve((void **)&ps->corners, &ps->corner_cap, n + 1, sizeof *ps->corners)))
             return false;
-        corner *k = &ps->corners[n++];
-        k->t = k->n = -1;
-        if (!(p = fast_index(p, end, m->position_count, &k->v))) return false;
-        if (p < end && *p == '/') {
-            p++;
-            if ((p == end || *p != '/') && !(p = fast_index(p, end, m->uv_count, &k->t))) return false;
-            if (p < end && *p == '/' && !(p = fast_index(p + 1, end, m->normal_count, &k->n))) return false;
-        }
-        if (p < end && !is_space(*p) && *p != '\n') return false; // "1/2/3/4", "1x", "1#comment"
+        int64_t raw[3];
+        if (!(p = fast_corner_raw(p, end, raw)) || !fast_corner_resolve(m, raw, &ps->corners[n++])) return false;
     }
     *count = n;
     *stop = p;
@@ -1057,33 +1081,51 @@ static bool queue_triangle(obj_parser *ps, const corner *k) {
     return true;
 }
 
+/// The lines the fast paths read.
+typedef enum fast_kind { FAST_VERTEX, FAST_NORMAL, FAST_TEXCOORD, FAST_FACE, FAST_OTHER } fast_kind;
+
+static inline fast_kind fast_kind_of(const char *s, const char *end) {
+    if (end - s < 3) return FAST_OTHER;
+    if (s[0] == 'v' && is_space(s[1])) return FAST_VERTEX;
+    if (s[0] == 'f' && is_space(s[1])) return FAST_FACE;
+    if (s[0] == 'v' && s[1] == 'n' && is_space(s[2])) return FAST_NORMAL;
+    if (s[0] == 'v' && s[1] == 't' && is_space(s[2])) return FAST_TEXCOORD;
+    return FAST_OTHER;
+}
+
+// The numbers of a v, vn or vt line at s (as many as its kind takes); *stop gets the end of the line.
+static inline bool fast_line_numbers(fast_kind kind, const char *s, const char *end, float *v, int *count,
+                                     const char **stop) {
+    if (kind == FAST_VERTEX) return fast_numbers(s + 2, end, v, 7, count, stop) && *count >= 3;
+    if (kind == FAST_NORMAL) return fast_numbers(s + 3, end, v, 3, count, stop) && *count == 3;
+    return fast_numbers(s + 3, end, v, 3, count, stop) && *count >= 1;
+}
+
+// Stores what a fast path read: a v, vn or vt line's numbers, or a face of `corners` corners in ps->corners.
+static fast_result fast_store(obj_parser *ps, fast_kind kind, const float *v, int count, size_t corners) {
+    if (kind == FAST_FACE && corners == 3) return queue_triangle(ps, ps->corners) ? FAST_OK : FAST_FAIL;
+    if (!add_queued(ps)) return FAST_FAIL;
+    bool ok = kind == FAST_FACE     ? triangulate(ps, corners)
+              : kind == FAST_VERTEX ? add_position(ps, v)
+              : kind == FAST_NORMAL ? add_normal(ps, v)
+                                    : add_texcoord(ps, v, count);
+    return ok ? FAST_OK : FAST_FAIL;
+}
+
 // The line at s by a fast path, if it is one of theirs; *next gets the start of the next line.
 static fast_result fast_line(obj_parser *ps, const char *s, const char *end, const char **next) {
-    if (end - s < 3) return FAST_NO;
-    enum { VERTEX, NORMAL, TEXCOORD, FACE } kind;
-    if (s[0] == 'v' && is_space(s[1])) kind = VERTEX;
-    else if (s[0] == 'f' && is_space(s[1])) kind = FACE;
-    else if (s[0] == 'v' && s[1] == 'n' && is_space(s[2])) kind = NORMAL;
-    else if (s[0] == 'v' && s[1] == 't' && is_space(s[2])) kind = TEXCOORD;
-    else return FAST_NO;
+    fast_kind kind = fast_kind_of(s, end);
+    if (kind == FAST_OTHER) return FAST_NO;
     const char *stop;
     float v[7];
     int count = 0;
     size_t corners = 0;
-    bool ok = kind == FACE     ? fast_corners(ps, s + 2, end, &corners, &stop)
-              : kind == VERTEX ? fast_numbers(s + 2, end, v, 7, &count, &stop) && count >= 3
-              : kind == NORMAL ? fast_numbers(s + 3, end, v, 3, &count, &stop) && count == 3
-                               : fast_numbers(s + 3, end, v, 3, &count, &stop) && count >= 1;
+    bool ok = kind == FAST_FACE ? fast_corners(ps, s + 2, end, &corners, &stop)
+                                : fast_line_numbers(kind, s, end, v, &count, &stop);
     // A line longer than the limit is an error however well formed: the statement reader says so.
     if (!ok || (size_t)(stop - s) > OBJ_MAX_LINE_BYTES) return FAST_NO;
     *next = stop < end ? stop + 1 : end;
-    if (kind == FACE && corners == 3) return queue_triangle(ps, ps->corners) ? FAST_OK : FAST_FAIL;
-    if (!add_queued(ps)) return FAST_FAIL;
-    ok = kind == FACE     ? triangulate(ps, corners)
-         : kind == VERTEX ? add_position(ps, v)
-         : kind == NORMAL ? add_normal(ps, v)
-                          : add_texcoord(ps, v, count);
-    return ok ? FAST_OK : FAST_FAIL;
+    return fast_store(ps, kind, v, count, corners);
 }
 
 static bool obj_usemtl(obj_parser *ps, cursor *c) {
@@ -1373,6 +1415,247 @@ static bool obj_read_stream(obj_parser *ps, FILE *f, int *errnum) {
     return ok;
 }
 
+// ---------------------------------------------------------------------------------------------------------
+// On several threads: a large file is read in blocks; while one thread stores the lines of a block (the steps
+// above, in the file's order: the same mesh, warnings and errors as reading it alone), the others read the
+// numbers and face corners of the next block's lines into records. A line the records cannot hold (anything
+// but a plain v, vn, vt or f line of at most PRE_CORNERS corners) is read when it is stored, as obj_lines
+// reads it.
+
+/// Bytes of a block; corners a face record holds.
+enum { OBJ_PARALLEL_BLOCK = 1 << 20, PRE_CORNERS = 4 };
+/// Files from this size up are read on several threads.
+#define OBJ_PARALLEL_MIN ((size_t)4 << 20)
+
+/// One line as the fast paths read it, before anything is stored.
+typedef struct pre_line {
+    const char *start, *stop; ///< the line and its end (its '\n', or the text's end)
+    uint8_t kind;             ///< fast_kind; FAST_OTHER: read it when storing it
+    uint8_t count;            ///< numbers, or corners
+    union {
+        float v[7];
+        int64_t raw[PRE_CORNERS][3];
+    } u;
+} pre_line;
+
+/// The records of one part of a block, in line order.
+typedef struct pre_part {
+    pre_line *lines;
+    size_t count, cap;
+    bool nomem;
+} pre_part;
+
+/// A block of complete lines, text[0, upto), and the start of the next line after it, text[upto, have).
+typedef struct obj_block {
+    char *text;
+    size_t cap, have, upto;
+    bool eof;
+    pre_part *parts; ///< `part_count` parts of the block, split at line ends
+} obj_block;
+
+// What the fast paths would read of the line at s, into *pl, storing nothing; returns the next line's start.
+static const char *pre_scan_line(const char *s, const char *end, pre_line *pl) {
+    pl->start = s;
+    pl->kind = FAST_OTHER;
+    fast_kind kind = fast_kind_of(s, end);
+    const char *stop = NULL;
+    bool ok = false;
+    if (kind == FAST_FACE) {
+        const char *p = s + 2;
+        size_t n = 0;
+        for (ok = true;;) {
+            while (p < end && is_space(*p)) p++;
+            if (p == end || *p == '\n') break;
+            if (n == PRE_CORNERS || !(p = fast_corner_raw(p, end, pl->u.raw[n++]))) {
+                ok = false;
+                break;
+            }
+        }
+        stop = p;
+        ok = ok && n >= 3;
+        pl->count = (uint8_t)n;
+    } else if (kind != FAST_OTHER) {
+        int count = 0;
+        ok = fast_line_numbers(kind, s, end, pl->u.v, &count, &stop);
+        pl->count = (uint8_t)count;
+    }
+    if (ok && (size_t)(stop - s) <= OBJ_MAX_LINE_BYTES) {
+        pl->kind = (uint8_t)kind;
+        pl->stop = stop;
+        return stop < end ? stop + 1 : end;
+    }
+    const char *nl = memchr(s, '\n', (size_t)(end - s));
+    return nl ? nl + 1 : end;
+}
+
+// The line of record pl stored as fast_line and obj_lines store it. False on a failure (message set).
+static bool pre_store(obj_parser *ps, const pre_line *pl, const char *end) {
+    ps->rep.line++;
+    if (pl->kind == FAST_FACE) {
+        if (ps->corner_cap < PRE_CORNERS &&
+            !array_reserve((void **)&ps->corners, &ps->corner_cap, PRE_CORNERS, sizeof *ps->corners))
+            return out_of_memory(&ps->rep);
+        bool ok = true;
+        for (size_t k = 0; ok && k < pl->count; k++)
+            ok = fast_corner_resolve(&ps->model->mesh, pl->u.raw[k], &ps->corners[k]);
+        if (ok) return fast_store(ps, FAST_FACE, NULL, 0, pl->count) == FAST_OK;
+    } else if (pl->kind != FAST_OTHER) {
+        return fast_store(ps, (fast_kind)pl->kind, pl->u.v, pl->count, 0) == FAST_OK;
+    }
+    // What the records do not hold (or a corner out of range): the line as obj_lines reads it.
+    const char *next;
+    fast_result r = fast_line(ps, pl->start, end, &next);
+    return r == FAST_OK ||
+           (r == FAST_NO && add_queued(ps) && read_line(pl->start, end, &ps->rep, obj_line, ps, &next));
+}
+
+/// One round of the parallel reader: store block `store` (NULL: none) while the parts of block `scan` (NULL:
+/// none) are read. Item 0 stores, item k > 0 reads part k - 1.
+typedef struct pre_round {
+    obj_parser *ps;
+    const obj_block *store;
+    obj_block *scan;
+    size_t parts;
+    bool ok;
+} pre_round;
+
+static void pre_round_run(void *ctx, size_t item) {
+    pre_round *rd = ctx;
+    if (item == 0) {
+        const obj_block *b = rd->store;
+        const char *end = b ? b->text + b->upto : NULL;
+        for (size_t k = 0; b && rd->ok && k < rd->parts; k++)
+            for (size_t i = 0; rd->ok && i < b->parts[k].count; i++) rd->ok = pre_store(rd->ps, &b->parts[k].lines[i], end);
+        if (b && rd->ok) rd->ok = add_queued(rd->ps); // as obj_lines ends a block
+        return;
+    }
+    obj_block *b = rd->scan;
+    if (!b) return;
+    size_t k = item - 1, n = b->upto;
+    // Part k: from the first line that starts at or after k n / parts to the first at or after (k + 1) n / parts.
+    const char *text = b->text, *end = text + n;
+    const char *s = text + n * k / rd->parts, *e = text + n * (k + 1) / rd->parts;
+    if (k > 0) s = (s = memchr(s - 1, '\n', (size_t)(end - (s - 1)))) ? s + 1 : end;
+    if (k + 1 < rd->parts) e = (e = memchr(e - 1, '\n', (size_t)(end - (e - 1)))) ? e + 1 : end;
+    pre_part *part = &b->parts[k];
+    part->count = 0;
+    while (s < e) {
+        if (part->count == part->cap &&
+            !array_reserve((void **)&part->lines, &part->cap, part->count + 1, sizeof *part->lines)) {
+            part->nomem = true;
+            return;
+        }
+        s = pre_scan_line(s, end, &part->lines[part->count++]);
+    }
+}
+
+// Fills block b: the unfinished line that `prev` ended with, then the file up to the last line end (all of it
+// at the end of the file). False on a read failure (*errnum set) or a line longer than the limit (*errnum 0,
+// b->eof false, b->have its bytes so far).
+static bool fill_block(FILE *f, obj_block *b, const obj_block *prev, size_t *total, int *errnum) {
+    if (prev && b->cap < prev->cap) { // room for the unfinished line, which is shorter than prev's buffer
+        char *grown = realloc(b->text, prev->cap);
+        if (!grown) {
+            *errnum = ENOMEM;
+            return false;
+        }
+        b->text = grown;
+        b->cap = prev->cap;
+    }
+    b->have = prev ? prev->have - prev->upto : 0;
+    if (b->have) memmove(b->text, prev->text + prev->upto, b->have);
+    b->upto = 0;
+    for (;;) {
+        if (b->have == b->cap) { // one unfinished line fills the buffer: grow it, as obj_read_stream does
+            if (b->cap > OBJ_MAX_LINE_BYTES) return false;
+            size_t bigger = b->cap > OBJ_MAX_LINE_BYTES / 2 ? OBJ_MAX_LINE_BYTES + 1 : b->cap * 2;
+            char *grown = realloc(b->text, bigger);
+            if (!grown) {
+                *errnum = ENOMEM;
+                return false;
+            }
+            b->text = grown;
+            b->cap = bigger;
+        }
+        size_t got = fread(b->text + b->have, 1, b->cap - b->have, f);
+        b->eof = got < b->cap - b->have;
+        if (b->eof && ferror(f)) *errnum = errno ? errno : EIO;
+        else if ((*total += got) > OBJ_MAX_FILE_BYTES) *errnum = EFBIG;
+        if (*errnum) return false;
+        b->have += got;
+        size_t upto = b->have;
+        while (!b->eof && upto > 0 && b->text[upto - 1] != '\n') upto--;
+        if (upto > 0 || b->eof) {
+            b->upto = upto;
+            return true;
+        }
+    }
+}
+
+// obj_read_stream on the pool's threads (see above): the same mesh, warnings and errors.
+static bool obj_read_parallel(obj_parser *ps, FILE *f, thread_pool *pool, size_t block, int *errnum) {
+    *errnum = 0;
+    size_t parts = 2 * (size_t)thread_pool_size(pool), total = 0;
+    obj_block blocks[2] = {{0}, {0}};
+    bool ok = true;
+    for (int i = 0; ok && i < 2; i++) {
+        blocks[i].text = malloc(block);
+        blocks[i].cap = block;
+        blocks[i].parts = calloc(parts, sizeof *blocks[i].parts);
+        ok = blocks[i].text && blocks[i].parts;
+    }
+    obj_block *cur = &blocks[0], *spare = &blocks[1], *pending = NULL; // pending: read, not stored yet
+    bool filled = false;
+    if (!ok) *errnum = ENOMEM;
+    else filled = fill_block(f, cur, NULL, &total, errnum);
+    while (filled) {
+        pre_round rd = {ps, pending, cur, parts, true};
+        thread_pool_run(pool, parts + 1, pre_round_run, &rd);
+        pending = NULL;
+        if (!rd.ok) { // a line failed: its message is set
+            ok = false;
+            break;
+        }
+        bool nomem = false;
+        for (size_t k = 0; k < parts; k++) nomem = nomem || cur->parts[k].nomem;
+        if (nomem) {
+            ok = out_of_memory(&ps->rep);
+            break;
+        }
+        pending = cur;
+        if (cur->eof) break;
+        filled = fill_block(f, spare, cur, &total, errnum);
+        obj_block *t = cur;
+        cur = spare;
+        spare = t;
+    }
+    if (ok && pending) {
+        pre_round rd = {ps, pending, NULL, parts, true};
+        pre_round_run(&rd, 0);
+        ok = rd.ok;
+        if (!ok) *errnum = 0; // a line before the read failure failed first
+    }
+    if (ok && !filled && !*errnum) {
+        // A line longer than the limit: an error that gives its length, so read on to its end.
+        size_t length = cur->have;
+        char *nl = NULL;
+        for (size_t got = 1; !nl && got > 0 && length <= OBJ_MAX_FILE_BYTES;) {
+            got = fread(cur->text, 1, cur->cap, f);
+            nl = memchr(cur->text, '\n', got);
+            length += nl ? (size_t)(nl - cur->text) : got;
+        }
+        ps->rep.line++;
+        ok = line_too_long(&ps->rep, length);
+    }
+    if (*errnum) ok = false;
+    for (int i = 0; i < 2; i++) {
+        for (size_t k = 0; blocks[i].parts && k < parts; k++) free(blocks[i].parts[k].lines);
+        free(blocks[i].parts);
+        free(blocks[i].text);
+    }
+    return ok;
+}
+
 // The message of a file that cannot be read.
 static glint_status obj_file_failure(const char *path, int e, glint_error *err) {
     glint_status st = e == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
@@ -1394,7 +1677,15 @@ glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, 
     if (!f) return obj_file_failure(path, e, err);
     obj_parser ps;
     obj_begin(&ps, path, opt, out, err);
-    bool ok = obj_read_stream(&ps, f, &e);
+    // A large file on several threads (fast paths only: statements_only reads every line as a statement).
+    int threads = opt && opt->threads ? opt->threads : 1;
+    if (threads < 0) threads = thread_pool_online_cpus();
+    size_t min = opt && opt->parallel_min ? opt->parallel_min : OBJ_PARALLEL_MIN;
+    size_t block = opt && opt->parallel_min ? (opt->parallel_min > 16 ? opt->parallel_min : 16) : OBJ_PARALLEL_BLOCK;
+    thread_pool *pool = threads > 1 && size >= min && !opt->statements_only ? thread_pool_start(threads) : NULL;
+    bool ok = pool && thread_pool_size(pool) > 1 ? obj_read_parallel(&ps, f, pool, block, &e)
+                                                 : obj_read_stream(&ps, f, &e);
+    thread_pool_stop(pool);
     fclose(f);
     glint_status st = obj_end(&ps, ok);
     return ok || !e ? st : obj_file_failure(path, e, err);

@@ -91,6 +91,10 @@ typedef struct obj_options {
     void *user;          ///< passed to warn
     bool skip_files;     ///< do not open material libraries or check textures (fuzzing, in-memory use)
     bool statements_only; ///< read every line as a statement, never by a fast path (tests compare the two)
+    int threads;          ///< threads that read a large file (obj_load; the model is the same for any number):
+                          ///< 0 or 1 one, -1 all online CPUs
+    size_t parallel_min;  ///< (tests) files from this size up are read on `threads` threads, in blocks of this
+                          ///< size (at least 16 bytes); 0: files from 4 MiB, blocks of 1 MiB
 } obj_options;
 
 /// Loads an OBJ file and its material libraries. On failure returns GLINT_ERR_INPUT (GLINT_ERR_RENDER when

@@ -114,8 +114,9 @@ static int leave(int code) {
 }
 
 // The scene on every rank: read from its path by each, or from rank 0's standard input and broadcast.
-static glint_status load_scene(const char *path, int rank, glint_scene **scene, glint_error *err) {
-    if (strcmp(path, "-") != 0) return glint_scene_load(path, scene, err);
+static glint_status load_scene(const char *path, int rank, int threads, glint_scene **scene, glint_error *err) {
+    glint_load_options lo = {.threads = threads};
+    if (strcmp(path, "-") != 0) return glint_scene_load_with(path, &lo, scene, err);
     long long length = -1; // -1: rank 0 could not read it (its message is in its *err)
     size_t n = 0;
     glint_status st = GLINT_OK;
@@ -139,7 +140,7 @@ static glint_status load_scene(const char *path, int rank, glint_scene **scene, 
         int chunk = length - at < (1 << 30) ? (int)(length - at) : 1 << 30;
         MPI_Bcast(text ? text + at : &byte, text ? chunk : 0, MPI_CHAR, 0, MPI_COMM_WORLD);
     }
-    if (st == GLINT_OK) st = glint_scene_parse("<stdin>", text, (size_t)length, scene, err);
+    if (st == GLINT_OK) st = glint_scene_parse_with("<stdin>", text, (size_t)length, &lo, scene, err);
     free(text);
     return st;
 }
@@ -262,7 +263,7 @@ int main(int argc, char **argv) {
     glint_scene *scene = NULL;
     // A scene from standard input is broadcast: every rank takes part even when rank 0's output is refused.
     if (st == GLINT_OK || strcmp(opt.scene_path, "-") == 0) {
-        glint_status loaded = load_scene(opt.scene_path, rank, &scene, &err);
+        glint_status loaded = load_scene(opt.scene_path, rank, opt.threads > 0 ? opt.threads : usable_cpus(), &scene, &err);
         if (st == GLINT_OK) st = loaded;
     }
     atomic_store(&loading, 0);

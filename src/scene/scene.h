@@ -158,10 +158,12 @@ glint_scene *scene_new(const char *path);
 /// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise).
 glint_status scene_override(glint_scene *s, const glint_overrides *o, glint_error *err);
 /// Reads a JSON scene from memory (docs/scene-format.md); `name` is used in messages and to resolve relative
-/// paths. On failure *out is NULL and *err says "file:line:col: what is wrong, what was expected".
-glint_status scene_file_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err);
+/// paths. On failure *out is NULL and *err says "file:line:col: what is wrong, what was expected". Large mesh
+/// files are read on `threads` threads (0: all online CPUs); the scene is the same for every count.
+glint_status scene_file_parse(const char *name, const char *text, size_t length, int threads, glint_scene **out,
+                              glint_error *err);
 /// Reads a JSON scene file (at most 256 MiB).
-glint_status scene_file_load(const char *path, glint_scene **out, glint_error *err);
+glint_status scene_file_load(const char *path, int threads, glint_scene **out, glint_error *err);
 /// Frees the scene and everything it owns (NULL is allowed).
 void scene_free(glint_scene *s);
 

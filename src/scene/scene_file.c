@@ -548,7 +548,8 @@ static bool read_scene(sf_loader *ld, jr_val root) {
     return !ld->warning_oom || sf_fail_oom(ld);
 }
 
-glint_status scene_file_parse(const char *name, const char *text, size_t length, glint_scene **out, glint_error *err) {
+glint_status scene_file_parse(const char *name, const char *text, size_t length, int threads, glint_scene **out,
+                              glint_error *err) {
     *out = NULL;
     if (!name) name = "<scene>";
     if (!text) length = 0;
@@ -583,6 +584,7 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
     memset(&ld, 0, sizeof ld);
     ld.r = (json_reader){name, text, length, &ix, err, GLINT_ERR_INPUT};
     ld.fallback_material = -1;
+    ld.mesh_threads = threads;
     bool ok = false;
     jr_val top;
     if (!root) {
@@ -620,7 +622,7 @@ static glint_status out_of_memory_reading(const char *path, glint_error *err) {
     return GLINT_ERR_RENDER;
 }
 
-glint_status scene_file_load(const char *path, glint_scene **out, glint_error *err) {
+glint_status scene_file_load(const char *path, int threads, glint_scene **out, glint_error *err) {
     *out = NULL;
     FILE *f = fopen(path, "rb");
     if (!f) {
@@ -655,7 +657,7 @@ glint_status scene_file_load(const char *path, glint_scene **out, glint_error *e
         snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, strerror(e));
         status = GLINT_ERR_INPUT;
     }
-    if (status == GLINT_OK) status = scene_file_parse(path, buf, n, out, err);
+    if (status == GLINT_OK) status = scene_file_parse(path, buf, n, threads, out, err);
     free(buf);
     // The scene file is an input too: nothing should overwrite it.
     if (status == GLINT_OK && stat_ok && S_ISREG(st.st_mode) &&

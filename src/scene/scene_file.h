@@ -86,6 +86,7 @@ typedef struct sf_loader {
     sf_image_entry *images;
     size_t image_count, image_cap;
     long fallback_material;  ///< the grey Lambertian of faces without a material, once created; else -1
+    int mesh_threads;        ///< threads that read a large mesh file (0: all online CPUs)
     size_t warnings_dropped; ///< warnings past SF_MAX_WARNINGS
     bool warning_oom;        ///< a warning could not be stored
     bool output_given;       ///< render.output was in the file (else the integrator's default applies)

@@ -93,7 +93,7 @@ static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model
 static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id id, bool face_normals, sf_mesh_entry *entry) {
     obj_model model;
     glint_error err;
-    obj_options opt = {collect_warning, ld, false, false};
+    obj_options opt = {collect_warning, ld, false, false, ld->mesh_threads > 0 ? ld->mesh_threads : -1, 0};
     char got[96], note[420];
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;

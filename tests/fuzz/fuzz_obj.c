@@ -19,7 +19,7 @@ static void check_failure(const glint_error *err) {
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
     // No files: a fuzzed `mtllib /dev/zero` must not be read.
-    obj_options opt = {NULL, NULL, true, false}, statements = {NULL, NULL, true, true};
+    obj_options opt = {NULL, NULL, true, false, 0, 0}, statements = {NULL, NULL, true, true, 0, 0};
     obj_model m, slow;
     glint_error err, slow_err;
     // The fast paths decide nothing: reading every line as a statement gives the same model or message.
