@@ -1519,6 +1519,13 @@ typedef struct pre_round {
     bool ok;
 } pre_round;
 
+// The first line of text[0, n) that starts at or after `at` (text + n when none does).
+static const char *line_start_from(const char *text, size_t n, size_t at) {
+    if (at == 0 || at >= n) return text + (at < n ? at : n);
+    const char *nl = memchr(text + at - 1, '\n', n - (at - 1));
+    return nl ? nl + 1 : text + n;
+}
+
 static void pre_round_run(void *ctx, size_t item) {
     pre_round *rd = ctx;
     if (item == 0) {
@@ -1534,9 +1541,7 @@ static void pre_round_run(void *ctx, size_t item) {
     size_t k = item - 1, n = b->upto;
     // Part k: from the first line that starts at or after k n / parts to the first at or after (k + 1) n / parts.
     const char *text = b->text, *end = text + n;
-    const char *s = text + n * k / rd->parts, *e = text + n * (k + 1) / rd->parts;
-    if (k > 0) s = (s = memchr(s - 1, '\n', (size_t)(end - (s - 1)))) ? s + 1 : end;
-    if (k + 1 < rd->parts) e = (e = memchr(e - 1, '\n', (size_t)(end - (e - 1)))) ? e + 1 : end;
+    const char *s = line_start_from(text, n, n * k / rd->parts), *e = line_start_from(text, n, n * (k + 1) / rd->parts);
     pre_part *part = &b->parts[k];
     part->count = 0;
     while (s < e) {
