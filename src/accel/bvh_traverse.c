@@ -246,11 +246,18 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
             if (mask) {
                 found = true;
                 if (any) return true;
+                float before = best->t;
                 do {
                     int k = __builtin_ctz(mask);
                     mask &= mask - 1;
                     offer_triangle(best, p, k, t[k], b1[k], b2[k], inst_id);
                 } while (mask);
+                // A nearer triangle of a mesh: start fetching its record (corner indices, material), which
+                // shading reads first, while the traversal goes on.
+                if (best->t < before && p->h.kind == PRIM_TRIANGLE) {
+                    const mesh *m = p->h.instance == HIT_NO_INSTANCE ? b->mesh : b->flat[p->h.instance];
+                    if (m) _mm_prefetch((const char *)&m->triangles[best->prim], _MM_HINT_T0);
+                }
             }
         } else {
             bool h;
