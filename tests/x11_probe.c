@@ -4,9 +4,11 @@
 //
 //   x11_probe find TEXT SECONDS        prints the id of a viewable window whose title contains TEXT
 //   x11_probe title WIN TEXT SECONDS   waits until the window's title contains TEXT; prints the title
-//   x11_probe compare WIN FILE.png     0 when the image's pixels appear in the window exactly, at some offset
+//   x11_probe compare WIN FILE.png     0 when the image's pixels appear in the window exactly, at some offset (within
+//                                      5 s: the picture reaches the server on its own path, perhaps after the title)
 //   x11_probe grab WIN FILE.ppm        writes the window's pixels as a binary PPM (to look at after a failure)
-//   x11_probe lit WIN                  prints how many of the window's pixels are brighter than 48 in a channel
+//   x11_probe lit WIN MIN SECONDS      waits until more than MIN of the window's pixels are brighter than 48 in a
+//                                      channel; prints how many are
 //   x11_probe key WIN NAME             presses and releases the key NAME (an X keysym name: Escape, q)
 //   x11_probe close WIN                asks the window to close (WM_DELETE_WINDOW), as a title bar's button does
 // Exit status: 0 success, 1 not found, timed out or different, 2 usage or X errors.
@@ -139,7 +141,18 @@ static int compare(Display *d, Window win, const char *path) {
         fprintf(stderr, "x11_probe: %s: cannot read it as an 8-bit RGB PNG\n", path);
         return 2;
     }
-    uint8_t *pix = grab(d, win, &ww, &wh);
+    // The window's pixels until they match (the last grab is judged): a renderer may present after the title.
+    uint8_t *pix = NULL;
+    for (double end = now_seconds() + 5.0;;) {
+        free(pix);
+        pix = grab(d, win, &ww, &wh);
+        if (!pix || ww < iw || wh < ih || now_seconds() > end) break;
+        bool same = false;
+        for (int oy = 0; oy <= wh - ih && !same; oy++)
+            for (int ox = 0; ox <= ww - iw && !same; ox++) same = differences(pix, ww, im, iw, ih, ox, oy, 1) == 0;
+        if (same) break;
+        sleep_ms(50);
+    }
     int status = 1;
     if (!pix) fprintf(stderr, "x11_probe: cannot read the window's pixels\n");
     else if (ww < iw || wh < ih) fprintf(stderr, "x11_probe: the window (%dx%d) is smaller than %s (%dx%d)\n", ww, wh, path, iw, ih);
@@ -164,16 +177,20 @@ static int compare(Display *d, Window win, const char *path) {
     return status;
 }
 
-static int lit(Display *d, Window win) {
-    int w, h;
-    uint8_t *pix = grab(d, win, &w, &h);
-    if (!pix) return 2;
-    long n = 0;
-    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
-        n += pix[3 * i] > 48 || pix[3 * i + 1] > 48 || pix[3 * i + 2] > 48;
+static int lit(Display *d, Window win, long min, double seconds) {
+    long n = -1;
+    for (double end = now_seconds() + seconds;; sleep_ms(50)) {
+        int w, h;
+        uint8_t *pix = grab(d, win, &w, &h);
+        if (!pix) return 2;
+        n = 0;
+        for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+            n += pix[3 * i] > 48 || pix[3 * i + 1] > 48 || pix[3 * i + 2] > 48;
+        free(pix);
+        if (n > min || now_seconds() > end) break;
+    }
     printf("%ld\n", n);
-    free(pix);
-    return 0;
+    return n > min ? 0 : 1;
 }
 
 static int grab_to_file(Display *d, Window win, const char *path) {
@@ -223,7 +240,7 @@ static int close_window(Display *d, Window win) {
 int main(int argc, char **argv) {
     if (argc < 3) {
         fprintf(stderr, "usage: x11_probe find TEXT SECONDS | title WIN TEXT SECONDS | compare WIN FILE.png | "
-                        "grab WIN FILE.ppm | lit WIN | key WIN NAME | close WIN\n");
+                        "grab WIN FILE.ppm | lit WIN MIN SECONDS | key WIN NAME | close WIN\n");
         return 2;
     }
     Display *d = XOpenDisplay(NULL);
@@ -253,8 +270,8 @@ int main(int argc, char **argv) {
         status = compare(d, strtoul(argv[2], NULL, 0), argv[3]);
     } else if (strcmp(cmd, "grab") == 0 && argc == 4) {
         status = grab_to_file(d, strtoul(argv[2], NULL, 0), argv[3]);
-    } else if (strcmp(cmd, "lit") == 0 && argc == 3) {
-        status = lit(d, strtoul(argv[2], NULL, 0));
+    } else if (strcmp(cmd, "lit") == 0 && argc == 5) {
+        status = lit(d, strtoul(argv[2], NULL, 0), atol(argv[3]), atof(argv[4]));
     } else if (strcmp(cmd, "key") == 0 && argc == 4) {
         status = key(d, strtoul(argv[2], NULL, 0), argv[3]);
     } else if (strcmp(cmd, "close") == 0 && argc == 3) {
