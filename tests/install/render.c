@@ -1,4 +1,5 @@
-// render.c — a client of the installed library that uses <glint.h> alone: parse, render, check, write, free.
+// render.c — a client of the installed library that uses <glint.h> alone: parse (with load options), render,
+// check, write, free.
 #include <glint.h>
 
 #include <stdio.h>
@@ -31,8 +32,9 @@ int main(int argc, char **argv) {
     printf("glint %s\n", glint_version());
     glint_error err;
     glint_scene *scene = NULL;
-    if (glint_scene_parse("inline.json", SCENE, strlen(SCENE), &scene, &err) != GLINT_OK)
-        return fail("glint_scene_parse", &err);
+    glint_load_options load = {.threads = 2};
+    if (glint_scene_parse_with("inline.json", SCENE, strlen(SCENE), &load, &scene, &err) != GLINT_OK)
+        return fail("glint_scene_parse_with", &err);
     int width = 0, height = 0;
     glint_scene_size(scene, &width, &height);
     if (width != 32 || height != 24) {
