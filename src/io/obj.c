@@ -1418,25 +1418,32 @@ static bool obj_read_stream(obj_parser *ps, FILE *f, int *errnum) {
 // ---------------------------------------------------------------------------------------------------------
 // On several threads: a large file is read in blocks; while one thread stores the lines of a block (the steps
 // above, in the file's order: the same mesh, warnings and errors as reading it alone), the others read the
-// numbers and face corners of the next block's lines into records. A line the records cannot hold (anything
-// but a plain v, vn, vt or f line of at most PRE_CORNERS corners) is read when it is stored, as obj_lines
-// reads it.
+// numbers and face corners of the next block's lines into records. Lines the records cannot hold (anything
+// but a plain v, vn, vt or f line of at most PRE_CORNERS corners) are kept as runs, read when they are stored
+// by obj_lines itself; so a record is at least 8 bytes of the file (a fast line) or a run, and the records of a
+// block take at most 16 times its size.
 
 /// Bytes of a block; corners a face record holds.
 enum { OBJ_PARALLEL_BLOCK = 1 << 20, PRE_CORNERS = 4 };
 /// Files from this size up are read on several threads.
 #define OBJ_PARALLEL_MIN ((size_t)4 << 20)
 
-/// One line as the fast paths read it, before anything is stored.
+/// Threads that read one file, at most (the render's limit).
+enum { OBJ_MAX_THREADS = 256 };
+
+/// One line as the fast paths read it, before anything is stored; or a run of lines they do not take.
 typedef struct pre_line {
-    const char *start, *stop; ///< the line and its end (its '\n', or the text's end)
-    uint8_t kind;             ///< fast_kind; FAST_OTHER: read it when storing it
-    uint8_t count;            ///< numbers, or corners
+    const char *start; ///< the line, or the run's first line
+    uint32_t length;   ///< FAST_OTHER: the run's bytes, whole lines
+    uint8_t kind;      ///< fast_kind; FAST_OTHER: a run, read when it is stored
+    uint8_t count;     ///< numbers, or corners
     union {
         float v[7];
-        int64_t raw[PRE_CORNERS][3];
+        int32_t raw[PRE_CORNERS][3]; ///< fast_corner_raw's indices (a line with one beyond int32 is in a run)
     } u;
 } pre_line;
+_Static_assert(sizeof(pre_line) <= 64, "records of a block stay within 16 times its bytes");
+_Static_assert(OBJ_MAX_LINE_BYTES < UINT32_MAX / 2, "a run's length holds any line");
 
 /// The records of one part of a block, in line order.
 typedef struct pre_part {
@@ -1453,7 +1460,14 @@ typedef struct obj_block {
     pre_part *parts; ///< `part_count` parts of the block, split at line ends
 } obj_block;
 
-// What the fast paths would read of the line at s, into *pl, storing nothing; returns the next line's start.
+// Whether a corner's raw indices fit a record (an index beyond int32 is out of range for any mesh).
+static inline bool fits_int32(const int64_t raw[3]) {
+    return raw[0] >= INT32_MIN && raw[0] <= INT32_MAX && raw[1] >= INT32_MIN && raw[1] <= INT32_MAX &&
+           raw[2] >= INT32_MIN && raw[2] <= INT32_MAX;
+}
+
+// What the fast paths would read of the line at s, into *pl (kind FAST_OTHER: none of it), storing nothing;
+// returns the next line's start.
 static const char *pre_scan_line(const char *s, const char *end, pre_line *pl) {
     pl->start = s;
     pl->kind = FAST_OTHER;
@@ -1466,10 +1480,13 @@ static const char *pre_scan_line(const char *s, const char *end, pre_line *pl) {
         for (ok = true;;) {
             while (p < end && is_space(*p)) p++;
             if (p == end || *p == '\n') break;
-            if (n == PRE_CORNERS || !(p = fast_corner_raw(p, end, pl->u.raw[n++]))) {
+            int64_t raw[3];
+            if (n == PRE_CORNERS || !(p = fast_corner_raw(p, end, raw)) || !fits_int32(raw)) {
                 ok = false;
                 break;
             }
+            for (int k = 0; k < 3; k++) pl->u.raw[n][k] = (int32_t)raw[k];
+            n++;
         }
         stop = p;
         ok = ok && n >= 3;
@@ -1481,28 +1498,30 @@ static const char *pre_scan_line(const char *s, const char *end, pre_line *pl) {
     }
     if (ok && (size_t)(stop - s) <= OBJ_MAX_LINE_BYTES) {
         pl->kind = (uint8_t)kind;
-        pl->stop = stop;
         return stop < end ? stop + 1 : end;
     }
     const char *nl = memchr(s, '\n', (size_t)(end - s));
     return nl ? nl + 1 : end;
 }
 
-// The line of record pl stored as fast_line and obj_lines store it. False on a failure (message set).
+// The line (or run) of record pl stored as obj_lines stores it. False on a failure (message set).
 static bool pre_store(obj_parser *ps, const pre_line *pl, const char *end) {
+    if (pl->kind == FAST_OTHER) return obj_lines(ps, pl->start, pl->length);
     ps->rep.line++;
     if (pl->kind == FAST_FACE) {
         if (ps->corner_cap < PRE_CORNERS &&
             !array_reserve((void **)&ps->corners, &ps->corner_cap, PRE_CORNERS, sizeof *ps->corners))
             return out_of_memory(&ps->rep);
         bool ok = true;
-        for (size_t k = 0; ok && k < pl->count; k++)
-            ok = fast_corner_resolve(&ps->model->mesh, pl->u.raw[k], &ps->corners[k]);
+        for (size_t k = 0; ok && k < pl->count; k++) {
+            const int32_t *r = pl->u.raw[k];
+            ok = fast_corner_resolve(&ps->model->mesh, (const int64_t[3]){r[0], r[1], r[2]}, &ps->corners[k]);
+        }
         if (ok) return fast_store(ps, FAST_FACE, NULL, 0, pl->count) == FAST_OK;
     } else if (pl->kind != FAST_OTHER) {
         return fast_store(ps, (fast_kind)pl->kind, pl->u.v, pl->count, 0) == FAST_OK;
     }
-    // What the records do not hold (or a corner out of range): the line as obj_lines reads it.
+    // A corner out of range: the line as obj_lines reads it (which gives the message).
     const char *next;
     fast_result r = fast_line(ps, pl->start, end, &next);
     return r == FAST_OK ||
@@ -1541,7 +1560,8 @@ static void pre_round_run(void *ctx, size_t item) {
     size_t k = item - 1, n = b->upto;
     // Part k: from the first line that starts at or after k n / parts to the first at or after (k + 1) n / parts.
     const char *text = b->text, *end = text + n;
-    const char *s = line_start_from(text, n, n * k / rd->parts), *e = line_start_from(text, n, n * (k + 1) / rd->parts);
+    size_t at = (size_t)((uint64_t)n * k / rd->parts), to = (size_t)((uint64_t)n * (k + 1) / rd->parts);
+    const char *s = line_start_from(text, n, at), *e = line_start_from(text, n, to);
     pre_part *part = &b->parts[k];
     part->count = 0;
     while (s < e) {
@@ -1550,25 +1570,40 @@ static void pre_round_run(void *ctx, size_t item) {
             part->nomem = true;
             return;
         }
-        s = pre_scan_line(s, end, &part->lines[part->count++]);
+        pre_line *pl = &part->lines[part->count];
+        const char *next = pre_scan_line(s, end, pl);
+        size_t bytes = (size_t)(next - s);
+        pre_line *last = part->count ? pl - 1 : NULL;
+        if (pl->kind != FAST_OTHER) {
+            part->count++;
+        } else if (last && last->kind == FAST_OTHER && last->length <= UINT32_MAX - bytes) {
+            last->length += (uint32_t)bytes; // the line joins the run before it
+        } else {
+            pl->length = (uint32_t)bytes; // a line is shorter than a block's buffer (OBJ_MAX_LINE_BYTES + 1)
+            part->count++;
+        }
+        s = next;
     }
 }
 
-// Fills block b: the unfinished line that `prev` ended with, then the file up to the last line end (all of it
-// at the end of the file). False on a read failure (*errnum set) or a line longer than the limit (*errnum 0,
-// b->eof false, b->have its bytes so far).
-static bool fill_block(FILE *f, obj_block *b, const obj_block *prev, size_t *total, int *errnum) {
-    if (prev && b->cap < prev->cap) { // room for the unfinished line, which is shorter than prev's buffer
-        char *grown = realloc(b->text, prev->cap);
+// Fills block b: the unfinished line that `prev` ended with, then up to `block` bytes more of the file, cut at the
+// last line end (all of it at the end of the file); more only while the unfinished line alone fills it. False on a
+// read failure (*errnum set) or a line longer than the limit (*errnum 0, b->eof false, b->have its bytes so far).
+static bool fill_block(FILE *f, obj_block *b, const obj_block *prev, size_t block, size_t *total, int *errnum) {
+    size_t carried = prev ? prev->have - prev->upto : 0; // at most OBJ_MAX_LINE_BYTES: prev had a line end
+    if (carried + block > b->cap && b->cap <= OBJ_MAX_LINE_BYTES) {
+        // Room for the unfinished line and a block after it, within the most a line's buffer may take.
+        size_t want = carried + block < OBJ_MAX_LINE_BYTES + 1 ? carried + block : OBJ_MAX_LINE_BYTES + 1;
+        char *grown = realloc(b->text, want);
         if (!grown) {
             *errnum = ENOMEM;
             return false;
         }
         b->text = grown;
-        b->cap = prev->cap;
+        b->cap = want;
     }
-    b->have = prev ? prev->have - prev->upto : 0;
-    if (b->have) memmove(b->text, prev->text + prev->upto, b->have);
+    b->have = carried;
+    if (carried) memmove(b->text, prev->text + prev->upto, carried);
     b->upto = 0;
     for (;;) {
         if (b->have == b->cap) { // one unfinished line fills the buffer: grow it, as obj_read_stream does
@@ -1582,15 +1617,17 @@ static bool fill_block(FILE *f, obj_block *b, const obj_block *prev, size_t *tot
             b->text = grown;
             b->cap = bigger;
         }
-        size_t got = fread(b->text + b->have, 1, b->cap - b->have, f);
-        b->eof = got < b->cap - b->have;
+        size_t room = b->cap - b->have, want = room < block ? room : block;
+        size_t got = fread(b->text + b->have, 1, want, f);
+        b->eof = got < want;
         if (b->eof && ferror(f)) *errnum = errno ? errno : EIO;
         else if ((*total += got) > OBJ_MAX_FILE_BYTES) *errnum = EFBIG;
         if (*errnum) return false;
+        size_t before = b->have; // the bytes before hold no line end (the unfinished line)
         b->have += got;
         size_t upto = b->have;
-        while (!b->eof && upto > 0 && b->text[upto - 1] != '\n') upto--;
-        if (upto > 0 || b->eof) {
+        while (!b->eof && upto > before && b->text[upto - 1] != '\n') upto--;
+        if (upto > before || b->eof) {
             b->upto = upto;
             return true;
         }
@@ -1612,7 +1649,7 @@ static bool obj_read_parallel(obj_parser *ps, FILE *f, thread_pool *pool, size_t
     obj_block *cur = &blocks[0], *spare = &blocks[1], *pending = NULL; // pending: read, not stored yet
     bool filled = false;
     if (!ok) *errnum = ENOMEM;
-    else filled = fill_block(f, cur, NULL, &total, errnum);
+    else filled = fill_block(f, cur, NULL, block, &total, errnum);
     while (filled) {
         pre_round rd = {ps, pending, cur, parts, true};
         thread_pool_run(pool, parts + 1, pre_round_run, &rd);
@@ -1629,7 +1666,7 @@ static bool obj_read_parallel(obj_parser *ps, FILE *f, thread_pool *pool, size_t
         }
         pending = cur;
         if (cur->eof) break;
-        filled = fill_block(f, spare, cur, &total, errnum);
+        filled = fill_block(f, spare, cur, block, &total, errnum);
         obj_block *t = cur;
         cur = spare;
         spare = t;
@@ -1685,6 +1722,7 @@ glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, 
     // A large file on several threads (fast paths only: statements_only reads every line as a statement).
     int threads = opt && opt->threads ? opt->threads : 1;
     if (threads < 0) threads = thread_pool_online_cpus();
+    if (threads > OBJ_MAX_THREADS) threads = OBJ_MAX_THREADS;
     size_t min = opt && opt->parallel_min ? opt->parallel_min : OBJ_PARALLEL_MIN;
     size_t block = opt && opt->parallel_min ? (opt->parallel_min > 16 ? opt->parallel_min : 16) : OBJ_PARALLEL_BLOCK;
     thread_pool *pool = threads > 1 && size >= min && !opt->statements_only ? thread_pool_start(threads) : NULL;

@@ -82,7 +82,8 @@ typedef struct obj_model {
     size_t library_count;
 } obj_model;
 
-/// Receives each warning, formatted "file:line: warning: what happened; what is done instead".
+/// Receives each warning, formatted "file:line: warning: what happened; what is done instead"; in the file's order,
+/// one call at a time, though not always on the caller's thread (a large file is read on several).
 typedef void (*obj_warning_fn)(const char *message, void *user);
 
 /// Options of a load; a NULL pointer or a zeroed struct means: no callback, files opened.
