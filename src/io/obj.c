@@ -1363,6 +1363,34 @@ glint_status obj_parse(const char *name, const char *text, size_t length, const 
 // as obj_parse parses them: a large file is never held whole, which spares copying it into fresh memory (a
 // page fault every 4 KiB) and reading it back from far away. False on a parse failure (message set, *errnum
 // 0) or a read failure (*errnum: the read's errno, EFBIG past OBJ_MAX_FILE_BYTES, ENOMEM).
+// The buffer of a line that fills it, doubled up to one byte more than a line may hold. False when it already
+// holds that (the line is too long: *errnum stays 0) or memory runs out (*errnum ENOMEM).
+static bool grow_line_buffer(char **buf, size_t *cap, int *errnum) {
+    if (*cap > OBJ_MAX_LINE_BYTES) return false;
+    size_t bigger = *cap > OBJ_MAX_LINE_BYTES / 2 ? OBJ_MAX_LINE_BYTES + 1 : *cap * 2;
+    char *grown = realloc(*buf, bigger);
+    if (!grown) {
+        *errnum = ENOMEM;
+        return false;
+    }
+    *buf = grown;
+    *cap = bigger;
+    return true;
+}
+
+// A line longer than the limit, `length` bytes of it read: an error that gives its length, so read on to its end
+// (through buf). Always false.
+static bool line_too_long_read_on(obj_parser *ps, FILE *f, char *buf, size_t cap, size_t length) {
+    char *nl = NULL;
+    for (size_t got = 1; !nl && got > 0 && length <= OBJ_MAX_FILE_BYTES;) {
+        got = fread(buf, 1, cap, f);
+        nl = memchr(buf, '\n', got);
+        length += nl ? (size_t)(nl - buf) : got;
+    }
+    ps->rep.line++;
+    return line_too_long(&ps->rep, length);
+}
+
 static bool obj_read_stream(obj_parser *ps, FILE *f, int *errnum) {
     *errnum = 0;
     size_t cap = OBJ_READ_BLOCK, have = 0, total = 0; // have: bytes of buf not parsed yet, a part of a line
@@ -1370,18 +1398,9 @@ static bool obj_read_stream(obj_parser *ps, FILE *f, int *errnum) {
     bool ok = buf != NULL, eof = false;
     if (!ok) *errnum = ENOMEM;
     while (ok && !eof) {
-        if (have == cap) {
-            // The buffer is one unfinished line: grow it, up to one byte more than a line may hold.
-            if (cap > OBJ_MAX_LINE_BYTES) break;
-            size_t bigger = cap > OBJ_MAX_LINE_BYTES / 2 ? OBJ_MAX_LINE_BYTES + 1 : cap * 2;
-            char *grown = realloc(buf, bigger);
-            if (!grown) {
-                *errnum = ENOMEM;
-                ok = false;
-                break;
-            }
-            buf = grown;
-            cap = bigger;
+        if (have == cap && !grow_line_buffer(&buf, &cap, errnum)) { // the buffer is one unfinished line
+            ok = !*errnum; // too long: said below
+            break;
         }
         size_t got = fread(buf + have, 1, cap - have, f);
         eof = got < cap - have;
@@ -1399,18 +1418,7 @@ static bool obj_read_stream(obj_parser *ps, FILE *f, int *errnum) {
         memmove(buf, buf + upto, have - upto);
         have -= upto;
     }
-    if (ok && !eof) {
-        // A line longer than the limit: an error that gives its length, so read on to its end.
-        size_t length = have;
-        char *nl = NULL;
-        for (size_t got = 1; !nl && got > 0 && length <= OBJ_MAX_FILE_BYTES;) {
-            got = fread(buf, 1, cap, f);
-            nl = memchr(buf, '\n', got);
-            length += nl ? (size_t)(nl - buf) : got;
-        }
-        ps->rep.line++;
-        ok = line_too_long(&ps->rep, length);
-    }
+    if (ok && !eof) ok = line_too_long_read_on(ps, f, buf, cap, have);
     free(buf);
     return ok;
 }
@@ -1457,7 +1465,7 @@ typedef struct obj_block {
     char *text;
     size_t cap, have, upto;
     bool eof;
-    pre_part *parts; ///< `part_count` parts of the block, split at line ends
+    pre_part *parts; ///< the block's parts (obj_read_parallel's `parts` of them), split at line ends
 } obj_block;
 
 // Whether a corner's raw indices fit a record (an index beyond int32 is out of range for any mesh).
@@ -1518,7 +1526,7 @@ static bool pre_store(obj_parser *ps, const pre_line *pl, const char *end) {
             ok = fast_corner_resolve(&ps->model->mesh, (const int64_t[3]){r[0], r[1], r[2]}, &ps->corners[k]);
         }
         if (ok) return fast_store(ps, FAST_FACE, NULL, 0, pl->count) == FAST_OK;
-    } else if (pl->kind != FAST_OTHER) {
+    } else {
         return fast_store(ps, (fast_kind)pl->kind, pl->u.v, pl->count, 0) == FAST_OK;
     }
     // A corner out of range: the line as obj_lines reads it (which gives the message).
@@ -1606,17 +1614,7 @@ static bool fill_block(FILE *f, obj_block *b, const obj_block *prev, size_t bloc
     if (carried) memmove(b->text, prev->text + prev->upto, carried);
     b->upto = 0;
     for (;;) {
-        if (b->have == b->cap) { // one unfinished line fills the buffer: grow it, as obj_read_stream does
-            if (b->cap > OBJ_MAX_LINE_BYTES) return false;
-            size_t bigger = b->cap > OBJ_MAX_LINE_BYTES / 2 ? OBJ_MAX_LINE_BYTES + 1 : b->cap * 2;
-            char *grown = realloc(b->text, bigger);
-            if (!grown) {
-                *errnum = ENOMEM;
-                return false;
-            }
-            b->text = grown;
-            b->cap = bigger;
-        }
+        if (b->have == b->cap && !grow_line_buffer(&b->text, &b->cap, errnum)) return false; // one unfinished line
         size_t room = b->cap - b->have, want = room < block ? room : block;
         size_t got = fread(b->text + b->have, 1, want, f);
         b->eof = got < want;
@@ -1677,18 +1675,7 @@ static bool obj_read_parallel(obj_parser *ps, FILE *f, thread_pool *pool, size_t
         ok = rd.ok;
         if (!ok) *errnum = 0; // a line before the read failure failed first
     }
-    if (ok && !filled && !*errnum) {
-        // A line longer than the limit: an error that gives its length, so read on to its end.
-        size_t length = cur->have;
-        char *nl = NULL;
-        for (size_t got = 1; !nl && got > 0 && length <= OBJ_MAX_FILE_BYTES;) {
-            got = fread(cur->text, 1, cur->cap, f);
-            nl = memchr(cur->text, '\n', got);
-            length += nl ? (size_t)(nl - cur->text) : got;
-        }
-        ps->rep.line++;
-        ok = line_too_long(&ps->rep, length);
-    }
+    if (ok && !filled && !*errnum) ok = line_too_long_read_on(ps, f, cur->text, cur->cap, cur->have);
     if (*errnum) ok = false;
     for (int i = 0; i < 2; i++) {
         for (size_t k = 0; blocks[i].parts && k < parts; k++) free(blocks[i].parts[k].lines);
