@@ -1,6 +1,6 @@
 // test_bvh.c — the wide and the binary BVH against brute force on random rays over random scenes of
 // spheres, quads, meshes and instances: same hit, same primitive, bit-identical t; any-hit agrees with
-// closest-hit; the SIMD path agrees with the scalar one.
+// closest-hit; the SIMD path agrees with the scalar one; streams of rays traced together give the same hits.
 #include "accel/accel.h"
 #include "accel/brute_force.h"
 #include "accel/bvh.h"
@@ -83,6 +83,40 @@ static bool same_hit(bool fa, const hit *a, bool fb, const hit *b) {
 }
 
 // Sphere scenes give sphere hits in world space.
+/// Rays gathered for a stream query (accel_intersect_stream, bvh_intersect_stream), with what the one-ray query
+/// answered for each; batches of 1 to ACCEL_STREAM rays in turn.
+typedef struct stream_batch {
+    int n, batches;
+    ray r[ACCEL_STREAM];
+    bool f[ACCEL_STREAM];
+    hit h[ACCEL_STREAM];
+} stream_batch;
+
+// Adds ray r, whose one-ray answer was (f, h), to the batch; once the batch is full (or `flush`), traces it as one
+// stream through a (when not NULL) and b (when not NULL). Returns the rays on which a stream's answer differs.
+static int stream_add(stream_batch *sb, const accel *a, const bvh *b, const ray *r, bool f, const hit *h, bool flush) {
+    if (r) {
+        sb->r[sb->n] = *r;
+        sb->f[sb->n] = f;
+        sb->h[sb->n++] = *h;
+    }
+    int size = 1 + (sb->batches * 7) % ACCEL_STREAM;
+    if (sb->n == 0 || (sb->n < size && !flush)) return 0;
+    int bad = 0;
+    for (int pass = 0; pass < 2; pass++) {
+        hit hs[ACCEL_STREAM];
+        bool fs[ACCEL_STREAM];
+        memset(hs, 0, sizeof hs);
+        if (pass == 0 && a) accel_intersect_stream(a, sb->n, sb->r, hs, fs);
+        else if (pass == 1 && b) bvh_intersect_stream(b, sb->n, sb->r, hs, fs);
+        else continue;
+        for (int i = 0; i < sb->n; i++) bad += !same_hit(sb->f[i], &sb->h[i], fs[i], &hs[i]);
+    }
+    sb->n = 0;
+    sb->batches++;
+    return bad;
+}
+
 static bool world_sphere(bool f, const hit *h) { return !f || (h->kind == HIT_SPHERE && h->instance == HIT_NO_INSTANCE); }
 
 // Compares every structure with brute force on RAYS_PER_SCENE rays over one scene layout.
@@ -108,7 +142,8 @@ static void check_scene(uint64_t seed, size_t n) {
     CHECK(n == 0 || (st.leaves >= 1 && st.depth >= 1 && st.nodes + 1 == st.leaves));
 
     rng g = rng_for_sample(seed, n, 1);
-    int bad = 0, hits = 0;
+    int bad = 0, hits = 0, stream_bad = 0;
+    stream_batch sb[3] = {{0}};
     for (int i = 0; i < RAYS_PER_SCENE; i++) {
         ray r = random_ray(&g, sc[0]);
         hit h[3], hs;
@@ -116,6 +151,7 @@ static void check_scene(uint64_t seed, size_t n) {
         for (int k = 0; k < 3; k++) {
             memset(&h[k], 0, sizeof h[k]);
             f[k] = accel_intersect(ac[k], &r, &h[k]);
+            stream_bad += stream_add(&sb[k], ac[k], k == 1 ? &wide : NULL, &r, f[k], &h[k], i + 1 == RAYS_PER_SCENE);
         }
         memset(&hs, 0, sizeof hs);
         bool fs = bvh_intersect_scalar(&wide, &r, &hs);
@@ -135,7 +171,8 @@ static void check_scene(uint64_t seed, size_t n) {
         }
     }
     CHECK(bad == 0);
-    mismatches += bad;
+    CHECK(stream_bad == 0);
+    mismatches += bad + stream_bad;
     // The rays must exercise both outcomes (except in the empty scene).
     CHECK(n == 0 || (hits > 0 && hits < RAYS_PER_SCENE));
     bvh_release(&wide);
@@ -328,6 +365,15 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
                        .instance_spheres = s->instance_spheres, .instances = s->instances,
                        .instance_count = s->instance_count};
 
+    // The same primitives through accel_build, which places every mesh used once in the world BVH (flattened: in
+    // world space, so its hits may differ from the others' in the last bits of t; its streams are checked against
+    // its own one-ray queries).
+    glint_error err;
+    accel *acc = accel_build(&all, ACCEL_BVH, &err);
+    CHECK(acc != NULL);
+    stream_batch sb_world = {0}, sb_accel = {0};
+    int stream_bad = 0;
+
     g = rng_for_sample(seed, 78, 1);
     int bad = 0, kinds_seen[3] = {0, 0, 0}, instanced = 0;
     for (int i = 0; i < RAYS_PER_SCENE; i++) {
@@ -354,6 +400,14 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
         f[1] = bvh_intersect(&world_w, &r, &h[1]);
         f[2] = bvh_intersect_scalar(&world_w, &r, &h[2]);
         f[3] = bvh2_intersect(&world_b, &r, &h[3]);
+        bool last = i + 1 == RAYS_PER_SCENE;
+        stream_bad += stream_add(&sb_world, NULL, &world_w, &r, f[1], &h[1], last);
+        if (acc) {
+            hit ha;
+            memset(&ha, 0, sizeof ha);
+            bool fa = accel_intersect(acc, &r, &ha);
+            stream_bad += stream_add(&sb_accel, acc, NULL, &r, fa, &ha, last);
+        }
         bool ok = same_hit(f[0], &h[0], f[1], &h[1]) && same_hit(f[0], &h[0], f[2], &h[2]) &&
                   same_hit(f[0], &h[0], f[3], &h[3]);
         ok = ok && brute_force_occluded(&all, NULL, &r) == f[0] && bvh_occluded(&world_w, &r) == f[0] &&
@@ -366,7 +420,9 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
                     h[1].instance, h[1].prim, (double)h[1].t, f[3], h[3].kind, h[3].instance, h[3].prim, (double)h[3].t);
     }
     CHECK(bad == 0);
-    mismatches += bad;
+    CHECK(stream_bad == 0);
+    mismatches += bad + stream_bad;
+    accel_free(acc);
     // Every kind of hit was exercised.
     CHECK(spheres == 0 || kinds_seen[HIT_SPHERE] > 0);
     CHECK(quads == 0 || kinds_seen[HIT_QUAD] > 0);

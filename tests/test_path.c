@@ -6,6 +6,7 @@
 #include "check.h"
 #include "glint.h"
 #include "integrator/light_sampler.h"
+#include "render/frame.h"
 #include "render/render.h"
 #include "scene/scene.h"
 
@@ -879,7 +880,71 @@ static void test_determinism_quads(void) {
     for (int i = 0; i < 2; i++) glint_image_free(imgs[i]);
 }
 
+// A lean scene (no lights to sample, no media) for the ray streams: the mixed spheres with a flattened mesh (a
+// tetrahedron, mirrored), a ground quad, a textured quad and an emissive quad, or (triangles_only) the tiny
+// Cornell box's quads and a tetrahedron with no sphere, so that the world BVH holds triangle packets alone.
+static glint_scene *stream_scene(bool triangles_only, int depth) {
+    static const vec3 tetra[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+    static const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
+    glint_scene *s;
+    if (triangles_only) {
+        s = tiny_cornell(5, false, 3);
+        s->sphere_count = 0; // the box's sphere goes: quads and triangles only
+        mat4 at = mat4_translate(v3(300, 200, 100)), size = mat4_scale(v3s(120));
+        add_mesh_instance(s, tetra, 4, faces, 4, 0, mat4_mul(&at, &size));
+    } else {
+        s = mixed_scene(40, 23, 5, 9);
+        without_nee = true;
+        // The ground sphere would be a huge sphere, which the BVH tests after the tree for every ray (no streams):
+        // a ground quad instead.
+        s->spheres[0] = s->spheres[--s->sphere_count];
+        add_quad(s, v3(-5, -0.5f, 1), v3(10, 0, 0), v3(0, 0, -10), 0);
+        material lamp = material_default(MAT_DIFFUSE_LIGHT), metal = material_default(MAT_METAL);
+        lamp.emission = v3s(4.0f);
+        add_quad(s, v3(-3, 2, -4), v3(6, 0, 0), v3(0, 0, 2), add_material(s, lamp));
+        material checker = material_default(MAT_LAMBERTIAN);
+        checker.albedo_texture = (int)add_texture(s, texture_checker(0.25f, v3s(0.9f), v3(0.1f, 0.2f, 0.5f)));
+        add_quad(s, v3(-2, -0.5f, -3), v3(4, 0, 0), v3(0, 2, 0), add_material(s, checker));
+        mat4 at = mat4_translate(v3(-0.4f, -0.4f, -0.6f)), size = mat4_scale(v3(-0.4f, 0.4f, 0.4f));
+        add_mesh_instance(s, tetra, 4, faces, 4, add_material(s, metal), mat4_mul(&at, &size));
+    }
+    s->settings.max_depth = depth;
+    return s;
+}
+
+// The path tracer's streams (path_render_tile_stream, forced on small scenes by stream_min_bytes) give the same
+// bytes as its paths one by one, on 1 and 3 threads, at depth limits 1, 3 and 50.
+static void test_streams_same_bytes(void) {
+    for (int kind = 0; kind < 2; kind++) {
+        for (int d = 0; d < 3; d++) {
+            const int depths[3] = {1, 3, 50};
+            glint_image *img[3];
+            for (int i = 0; i < 3; i++) {
+                glint_scene *s = stream_scene(kind == 1, depths[d]);
+                s->settings.stream_min_bytes = i == 0 ? SIZE_MAX : 1;
+                if (i == 1) { // the structure this scene renders with does trace in streams
+                    glint_error err;
+                    accel *a = frame_accel_build(s, 1, NULL, &err);
+                    CHECK(a && accel_streams(a));
+                    accel_free(a);
+                }
+                bool lean = without_nee;
+                img[i] = render(s, i == 2 ? 3 : 1, NULL);
+                without_nee = lean && i < 2; // the next render of this scene samples no lights either
+                glint_scene_free(s);
+            }
+            int w, h;
+            const float *p0 = pixels(img[0], &w, &h);
+            CHECK(d == 0 || max_deviation(img[0], 0.0) > 0.0); // not a black image (at depth 1 the box is dark)
+            size_t bytes = sizeof(float) * 3 * (size_t)(w * h);
+            for (int i = 1; i < 3; i++) CHECK(memcmp(p0, pixels(img[i], &w, &h), bytes) == 0);
+            for (int i = 0; i < 3; i++) glint_image_free(img[i]);
+        }
+    }
+}
+
 int main(void) {
+    test_streams_same_bytes();
     test_importance_sphere();
     test_sphere_cone_sampling();
     test_sphere_light_irradiance();

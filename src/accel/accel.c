@@ -163,6 +163,25 @@ bool accel_intersect(const accel *a, const ray *r, hit *h) {
     return false;
 }
 
+bool accel_streams(const accel *a) {
+    size_t min = a->input.stream_min_bytes ? a->input.stream_min_bytes : ACCEL_STREAM_MIN_BYTES;
+    return a->kind == ACCEL_BVH && bvh_streams(&a->world) &&
+           a->world.wnode_count * sizeof(bvh_wnode) + a->world.slot_count * sizeof(bvh_slot) >= min;
+}
+
+void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, bool *found) {
+    switch (a->kind) {
+    case ACCEL_BVH: bvh_intersect_stream(&a->world, n, rays, hits, found); return;
+    case ACCEL_BVH2:
+        for (int i = 0; i < n; i++) found[i] = bvh2_intersect(&a->world, &rays[i], &hits[i]);
+        return;
+    case ACCEL_NONE:
+        for (int i = 0; i < n; i++)
+            found[i] = brute_force_intersect(&a->input, (const mesh *const *)a->flat, &rays[i], &hits[i]);
+        return;
+    }
+}
+
 bool accel_occluded(const accel *a, const ray *r) {
     switch (a->kind) {
     case ACCEL_BVH: return bvh_occluded(&a->world, r);

@@ -36,6 +36,7 @@ typedef struct accel_input {
     float time0, time1;     ///< the shutter: moving primitives are bounded over every time in [time0, time1]
     const atomic_int *stop; ///< nonzero once a stop is requested: the build gives up (NULL: never)
     int threads;            ///< threads that build the BVHs (the same BVHs for any number); 0: all online CPUs
+    size_t stream_min_bytes; ///< smallest world BVH (nodes and leaves) for accel_streams; 0: ACCEL_STREAM_MIN_BYTES
 } accel_input;
 
 /// Kinds of primitive a hit can be on.
@@ -73,6 +74,18 @@ void accel_get_stats(const accel *a, accel_stats *out);
 
 /// Nearest hit with r->tmin < t < r->tmax, moving primitives where they are at r->time; false when the ray escapes.
 bool accel_intersect(const accel *a, const ray *r, hit *h);
+/// Rays accel_intersect_stream traces together at most.
+#define ACCEL_STREAM 16
+/// Smallest world BVH, in bytes of nodes and leaves, whose rays are worth tracing in streams: a smaller one stays
+/// in the caches, where a stream costs more than one ray at a time (docs/benchmarks.md, "ray streams").
+#define ACCEL_STREAM_MIN_BYTES ((size_t)32 << 20)
+/// Closest hits of n <= ACCEL_STREAM rays, the same as accel_intersect ray by ray: found[i] says whether rays[i]
+/// hit, and hits[i] is then its hit. Traced together, so that one ray's waits for memory overlap the others' work.
+void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, bool *found);
+/// Whether a caller gains by gathering rays for accel_intersect_stream: a wide BVH of triangles, quads and
+/// instances (not only spheres, none of them huge) of at least accel_input.stream_min_bytes. Else it traces
+/// them one by one.
+bool accel_streams(const accel *a);
 /// Whether anything lies on the ray with r->tmin < t < r->tmax (for shadow rays).
 bool accel_occluded(const accel *a, const ray *r);
 

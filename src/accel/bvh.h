@@ -202,6 +202,14 @@ bool bvh2_occluded(const bvh *b, const ray *r);
 bool bvh_intersect(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH, SIMD when compiled in, else scalar.
 bool bvh_occluded(const bvh *b, const ray *r);
+/// Rays a stream query traces together.
+#define BVH_STREAM ACCEL_STREAM
+/// Closest hits of n <= BVH_STREAM rays in the wide BVH, traced together (the same hits as bvh_intersect):
+/// found[i] says whether rays[i] hit, and hits[i] is then its hit.
+void bvh_intersect_stream(const bvh *b, int n, const ray *rays, hit *hits, bool *found);
+/// Whether bvh_intersect_stream traces b's rays together (SIMD compiled in, not only spheres, no huge spheres),
+/// rather than one by one.
+bool bvh_streams(const bvh *b);
 /// Closest hit in the wide BVH by the portable scalar path (always compiled, for tests).
 bool bvh_intersect_scalar(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH by the portable scalar path.

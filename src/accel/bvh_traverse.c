@@ -462,6 +462,79 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
     return found;
 }
 
+#if BVH_SIMD
+/// One ray of a stream in flight: its registers' worth of setup, its best hit so far and where its walk stands.
+typedef struct stream_ray {
+    simd_ray sr;
+    simd_tri stri;
+    tri_cache tc;
+    hit best;
+    walk w;
+    bool found;
+} stream_ray;
+
+// Closest hits of n <= BVH_STREAM rays through a wide BVH, one step of each ray in turn: a step ends by
+// prefetching the children it will visit, so while one ray waits for memory the others work. Each ray makes the
+// same steps in the same order as wide_run alone, so the hits are the same.
+static inline __attribute__((always_inline)) void wide_stream(const bvh *b, int n, const ray *rays, hit *hits,
+                                                              bool *found, int leaves) {
+    stream_ray s[BVH_STREAM];
+    // Each ray's stack holds at most BVH_WIDTH - 1 entries per level of the tree: packed that close, the stacks
+    // in use share few cache lines.
+    stack_entry stacks[BVH_STREAM * WIDE_STACK];
+    size_t stride = b->stats.depth < BVH_MAX_DEPTH ? (size_t)b->stats.depth * (BVH_WIDTH - 1) + 1 : WIDE_STACK;
+    int active[BVH_STREAM], live = 0;
+    for (int i = 0; i < n; i++) {
+        found[i] = false;
+        if (b->root == BVH_EMPTY || !simd_setup(&rays[i], &s[i].sr)) continue; // no tree, or a NaN ray
+        s[i].tc.ready = false;
+        if (leaves == LEAVES_TRIANGLES) {
+            tri_for(&s[i].tc, &rays[i]);
+            simd_tri_setup(&s[i].tc.tr, rays[i].tmin, rays[i].tmax, &s[i].stri);
+        }
+        s[i].best = bvh_no_hit(&rays[i]);
+        s[i].w = (walk){b->root, 0};
+        s[i].found = false;
+        active[live++] = i;
+    }
+    while (live > 0) {
+        for (int k = 0; k < live;) {
+            int i = active[k];
+            stream_ray *q = &s[i];
+            if (wide_step(b, &rays[i], NULL, &q->sr, &q->stri, &q->tc, &stacks[(size_t)i * stride], &q->w, &q->best,
+                          HIT_NO_INSTANCE, &q->found, false, true, leaves) == STEP_MORE) {
+                k++;
+                continue;
+            }
+            found[i] = q->found;
+            hits[i] = q->best;
+            active[k] = active[--live]; // done: its place goes to the last ray in flight
+        }
+    }
+}
+
+bool bvh_streams(const bvh *b) { return !b->spheres_only && b->front == BVH_EMPTY; }
+
+void bvh_intersect_stream(const bvh *b, int n, const ray *rays, hit *hits, bool *found) {
+    if (!bvh_streams(b)) { // the sphere traversal is tuned for one ray; huge spheres are tested after the tree
+        for (int i = 0; i < n; i++) found[i] = bvh_intersect(b, &rays[i], &hits[i]);
+    } else if (b->triangles_only) {
+        wide_stream(b, n, rays, hits, found, LEAVES_TRIANGLES);
+    } else {
+        wide_stream(b, n, rays, hits, found, LEAVES_ANY);
+    }
+}
+#else
+bool bvh_streams(const bvh *b) {
+    (void)b;
+    return false;
+}
+
+void bvh_intersect_stream(const bvh *b, int n, const ray *rays, hit *hits, bool *found) {
+    for (int i = 0; i < n; i++) found[i] = bvh_intersect(b, &rays[i], &hits[i]);
+}
+#endif
+
 static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode) {
     switch (mode) {
     case MODE_WIDE_SIMD: // a mesh's BVH holds only triangles

@@ -265,6 +265,191 @@ static inline bool path_aov_surface(film_aov_sample *aov, vec3 throughput, vec3 
     return path_aov_passes(m);
 }
 
+/// Where a path stands between two rays, but for the ray itself and the media it is in (kept apart: their
+/// addresses are passed on, which would keep the rest of the state out of registers): what it has gathered and
+/// what its last vertex did.
+typedef struct path_state {
+    vec3 radiance, throughput;
+    float bsdf_pdf;           ///< solid-angle density of the direction the last vertex sampled
+    int depth;                ///< rays traced so far
+    bool light_sampled;       ///< the last vertex sampled the area lights: a hit on one is weighted
+    bool env_sampled;         ///< the last vertex sampled the environment: an escaping ray is weighted
+    bool unit;                ///< cur.d has unit length (not so camera rays and the lean bounce's Lambertian ones)
+    bool aov_pending;         ///< the AOVs wait for the path's first diffuse or glossy vertex
+} path_state;
+
+// A path that has traced nothing yet.
+static inline path_state path_start(film_aov_sample *aov) {
+    path_state ps = {.radiance = v3s(0.0f), .throughput = v3s(1.0f), .aov_pending = aov != NULL};
+    if (aov) {
+        aov->albedo = aov->normal = v3s(0.0f);
+        aov->depth = INFINITY;
+    }
+    return ps;
+}
+
+// Whether a path's vertices need none of the lights, media or importance sampling (the book's scenes).
+static inline bool path_lean(const path_integrator *pi) {
+    const glint_scene *s = pi->base.scene;
+    return !s->light_count && !pi->sampled && !pi->env_sampled && !s->medium_count && !s->importance_sphere_count;
+}
+
+// What the path does where its ray *cur ends, at hit *h (found; by address, as the query wrote it: a copy would
+// load it whole, which waits for the query's stores to retire) or in the background, at depth ps->depth:
+// gathers light into ps->radiance and makes the next ray. False when the path ends there.
+static inline __attribute__((always_inline)) bool path_vertex(const path_integrator *pi, path_state *ps, ray *cur,
+                                                             medium_path *mpath, bool found, hit *h, rng *r,
+                                                             thread_stats *ts, film_aov_sample *aov, bool known_lean) {
+    const integrator *it = &pi->base;
+    const glint_scene *s = it->scene;
+    // Known lean (a constant after inlining): the code for lights and media is left out of this copy.
+    bool has_lights = !known_lean && s->light_count > 0;
+    const light_sampler *pl = known_lean ? NULL : pi->sampled;
+    const envmap_sampler *es = known_lean ? NULL : pi->env_sampled;
+    size_t media = known_lean ? 0 : s->medium_count; // none: the vertex does no work for media but this one test
+    bool lean = known_lean || path_lean(pi);
+    int depth = ps->depth;
+    if (media) {
+        if (!ps->unit) { // distances in the media are lengths: a unit direction, t in its units
+            float len = v3_len(cur->d);
+            cur->d = v3_scale(cur->d, 1.0f / len);
+            if (found) h->t *= len;
+            ps->unit = true;
+        }
+        // The ray's free flight through the media up to the surface it meets (or to infinity).
+        medium_event me =
+            medium_sample(s->media, media, s->textures, cur->o, cur->d, found ? h->t : INFINITY, mpath, r);
+        ps->throughput = v3_mul(ps->throughput, me.weight);
+        if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return false;
+        if (me.scattered) {
+            // It scatters in the medium: the lights are sampled as at a diffuse surface, with the phase
+            // function in place of the BSDF, and the next direction is drawn from the phase function.
+            float g = s->media[me.index].g;
+            nee_vertex nv = {NULL, 0.0f, cur->d, g};
+            spawn_point mp = {me.p, v3s(0.0f), 0.0f, cur->time}; // no surface to step off; the path's time
+            bool more = depth + 1 < s->settings.max_depth;
+            ps->light_sampled = ps->env_sampled = false;
+            if (has_lights) ps->radiance = v3_add(ps->radiance, direct_light(it, &mp, &nv, ps->throughput, ts));
+            if (pl && more) {
+                ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, sample_light(it, pl, &nv, &mp, r, ts)));
+                ps->light_sampled = true;
+            }
+            if (es && more) {
+                vec3 direct = sample_environment(it, es, &nv, &mp, r, ts);
+                ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, direct));
+                ps->env_sampled = true;
+            }
+            float a = rng_float(r), b = rng_float(r);
+            vec3 wi = phase_hg_sample(g, cur->d, a, b);
+            ps->bsdf_pdf = phase_hg(g, v3_dot(cur->d, wi));
+            *cur = (ray){me.p, wi, 0.0f, INFINITY, cur->time};
+            return true;
+        }
+    }
+    if (!found) {
+        if (!ps->unit) cur->d = v3_unit(cur->d);
+        vec3 bg = scene_background(s, cur->d);
+        // The background seen (through mirrors and glass) is the albedo; the normal stays (0 for no surface).
+        if (ps->aov_pending) aov->albedo = integrator_aov_albedo(v3_mul(ps->throughput, bg));
+        if (ps->env_sampled) bg = v3_scale(bg, mis_weight(ps->bsdf_pdf, envmap_pdf(es, &s->environment, cur->d)));
+        ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, bg));
+        return false;
+    }
+    if (aov && depth == 0) aov->depth = ps->unit ? h->t : h->t * v3_len(cur->d); // camera rays may be unnormalised
+    // A world sphere of an untextured material that does not emit, with no light to sample (the book's
+    // scenes): exactly what the general code below computes for it, without the surface record, texture
+    // lookups, emission, shading normals and light sampling, which cost as much as the bounce itself.
+    if (lean && h->kind == HIT_SPHERE && h->instance == HIT_NO_INSTANCE) {
+        const sphere *sp = &s->spheres[h->prim];
+        const material *m = &s->materials[sp->material];
+        if (m->kind != MAT_DIFFUSE_LIGHT && m->albedo_texture < 0) {
+            vec3 p, n;
+            sphere_hit_frame(sp, cur, h->t, &p, &n);
+            bool front = v3_dot(cur->d, n) < 0.0f;
+            if (!front) n = v3_neg(n);
+            if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, m->albedo, n, m);
+            scatter_event ev;
+            if (m->kind == MAT_LAMBERTIAN) {
+                // Only the direction matters to the next intersection: the normalisation (a square root
+                // and a division) waits until a mirror, glass or the background needs a unit vector.
+                ev.dir = mat_lambertian_sum(n, sample_sphere_uniform(r));
+                ev.weight = m->albedo;
+                ps->unit = false;
+            } else {
+                if (!ps->unit) cur->d = v3_unit(cur->d);
+                ps->unit = true;
+                if (!mat_scatter(m, m->albedo, cur->d, n, front, r, &ev)) return false;
+            }
+            ps->throughput = v3_mul(ps->throughput, ev.weight);
+            if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return false;
+            spawn_point spt = spawn_point_sphere(p, n, sp->radius, cur->time);
+            *cur = spawn_ray(&spt, ev.dir, 0.0f, INFINITY);
+            return true;
+        }
+    }
+    if (!ps->unit) { // the general code below works with unit directions: the same ray, t in its units
+        float len = v3_len(cur->d);
+        cur->d = v3_scale(cur->d, 1.0f / len);
+        h->t *= len;
+        ps->unit = true;
+    }
+    surface sf = surface_at(s, cur, h);
+    const material *m = &s->materials[sf.material];
+    if (m->kind == MAT_DIFFUSE_LIGHT) {
+        vec3 tp = surface_texture_point(s, &sf, m->emission_texture);
+        vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, tp);
+        if (ps->aov_pending) {
+            aov->albedo = integrator_aov_albedo(v3_mul(ps->throughput, integrator_aov_emitter(le)));
+            aov->normal = sf.n;
+        }
+        if (ps->light_sampled) {
+            float pdf_light = light_sampler_pdf(pl, s, &sf, cur->o, cur->d, h->t);
+            if (pdf_light > 0.0f) le = v3_scale(le, mis_weight(ps->bsdf_pdf, pdf_light));
+        }
+        ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, le));
+        return false;
+    }
+    scatter_event ev;
+    vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
+    if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, albedo, sf.n, m);
+    if (!mat_scatter(m, albedo, cur->d, sf.n, sf.front, r, &ev)) return false;
+    spawn_point sp = spawn_point_of(s, &sf);
+    float in_side = v3_dot(cur->d, sf.ng);
+    ps->light_sampled = ps->env_sampled = false;
+    if (ev.diffuse) {
+        float dir_pdf = s->importance_sphere_count ? aim_diffuse(s, sp.p, sf.n, r, &ev)
+                                                   : v3_dot(ev.dir, sf.n) * inv_pi;
+        nee_vertex nv = {&sf, in_side, cur->d, 0.0f};
+        if (has_lights)
+            ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, direct_light(it, &sp, &nv, ev.weight, ts)));
+        // Only where the BSDF sample is traced too, so that the two strategies cover the same paths.
+        if (pl && depth + 1 < s->settings.max_depth) {
+            vec3 direct = sample_light(it, pl, &nv, &sp, r, ts);
+            ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, v3_mul(ev.weight, direct)));
+            ps->light_sampled = true;
+            ps->bsdf_pdf = dir_pdf;
+        }
+        if (es && depth + 1 < s->settings.max_depth) {
+            vec3 direct = sample_environment(it, es, &nv, &sp, r, ts);
+            ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, v3_mul(ev.weight, direct)));
+            ps->env_sampled = true;
+            ps->bsdf_pdf = dir_pdf;
+        }
+    }
+    // With shading normals a sampled direction can cross the geometric surface against its event
+    // (reflect through it, or refract back): the path is absorbed rather than leaking light. (Where the
+    // normals agree, only rounding could do that, at grazing refraction: the path goes on as before.)
+    if (sf.n.x != sf.ng.x || sf.n.y != sf.ng.y || sf.n.z != sf.ng.z) {
+        float out_side = v3_dot(ev.dir, sf.ng);
+        if (ev.transmitted ? in_side * out_side < 0.0f : in_side * out_side > 0.0f) return false;
+    }
+    ps->throughput = v3_mul(ps->throughput, ev.weight);
+    // A black throughput can gain nothing more: end the path without tracing the rest.
+    if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return false;
+    *cur = spawn_ray(&sp, ev.dir, 0.0f, INFINITY);
+    return true;
+}
+
 // The radiance a path starting with the primary ray (origin o, direction d, all t > 0, at `time`) carries, and its AOVs
 // when aov is not NULL. The ray comes by its parts, in registers: a whole ray passed by value is copied with
 // wide loads that cannot be forwarded from the stores that just made it. d need not have unit length. One
@@ -272,168 +457,17 @@ static inline bool path_aov_surface(film_aov_sample *aov, vec3 throughput, vec3 
 // scenes 12 % through gcc's inlining budget).
 static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts,
                        film_aov_sample *aov) {
-    const integrator *it = &pi->base;
-    const glint_scene *s = it->scene;
+    const glint_scene *s = pi->base.scene;
+    path_state ps = path_start(aov);
     ray cur = {o, d, 0.0f, INFINITY, time};
-    vec3 radiance = v3s(0.0f), throughput = v3s(1.0f);
-    bool has_lights = s->light_count > 0;
-    const light_sampler *pl = pi->sampled;
-    const envmap_sampler *es = pi->env_sampled;
-    bool light_sampled = false; // the last vertex sampled the area lights: a hit on one is weighted
-    bool env_sampled = false;   // the last vertex sampled the environment: an escaping ray is weighted
-    float bsdf_pdf = 0.0f;      // solid-angle density of the direction the last vertex sampled
-    size_t media = s->medium_count; // none: the loop does no work for media but this one test
     medium_path mpath = medium_path_start();
-    bool lean = !has_lights && !pl && !es && !media && !s->importance_sphere_count;
-    // Whether cur.d has unit length: camera rays and the lean bounce's Lambertian directions are left unnormalised.
-    bool unit = false;
-    bool aov_pending = aov != NULL; // the AOVs wait for the path's first diffuse or glossy vertex
-    if (aov) {
-        aov->albedo = aov->normal = v3s(0.0f);
-        aov->depth = INFINITY;
-    }
-    for (int depth = 0; depth < s->settings.max_depth; depth++) {
+    for (; ps.depth < s->settings.max_depth; ps.depth++) {
         hit h;
         ts->rays++;
-        bool found = accel_intersect(it->accel, &cur, &h);
-        if (media) {
-            if (!unit) { // distances in the media are lengths: a unit direction, t in its units
-                float len = v3_len(cur.d);
-                cur.d = v3_scale(cur.d, 1.0f / len);
-                if (found) h.t *= len;
-                unit = true;
-            }
-            // The ray's free flight through the media up to the surface it meets (or to infinity).
-            medium_event me =
-                medium_sample(s->media, media, s->textures, cur.o, cur.d, found ? h.t : INFINITY, &mpath, r);
-            throughput = v3_mul(throughput, me.weight);
-            if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) break;
-            if (me.scattered) {
-                // It scatters in the medium: the lights are sampled as at a diffuse surface, with the phase
-                // function in place of the BSDF, and the next direction is drawn from the phase function.
-                float g = s->media[me.index].g;
-                nee_vertex nv = {NULL, 0.0f, cur.d, g};
-                spawn_point mp = {me.p, v3s(0.0f), 0.0f, cur.time}; // no surface to step off; the path's time
-                bool more = depth + 1 < s->settings.max_depth;
-                light_sampled = env_sampled = false;
-                if (has_lights) radiance = v3_add(radiance, direct_light(it, &mp, &nv, throughput, ts));
-                if (pl && more) {
-                    radiance = v3_add(radiance, v3_mul(throughput, sample_light(it, pl, &nv, &mp, r, ts)));
-                    light_sampled = true;
-                }
-                if (es && more) {
-                    radiance = v3_add(radiance, v3_mul(throughput, sample_environment(it, es, &nv, &mp, r, ts)));
-                    env_sampled = true;
-                }
-                float a = rng_float(r), b = rng_float(r);
-                vec3 wi = phase_hg_sample(g, cur.d, a, b);
-                bsdf_pdf = phase_hg(g, v3_dot(cur.d, wi));
-                cur = (ray){me.p, wi, 0.0f, INFINITY, cur.time};
-                continue;
-            }
-        }
-        if (!found) {
-            if (!unit) cur.d = v3_unit(cur.d);
-            vec3 bg = scene_background(s, cur.d);
-            // The background seen (through mirrors and glass) is the albedo; the normal stays (0 for no surface).
-            if (aov_pending) aov->albedo = integrator_aov_albedo(v3_mul(throughput, bg));
-            if (env_sampled) bg = v3_scale(bg, mis_weight(bsdf_pdf, envmap_pdf(es, &s->environment, cur.d)));
-            radiance = v3_add(radiance, v3_mul(throughput, bg));
-            break;
-        }
-        if (aov && depth == 0) aov->depth = unit ? h.t : h.t * v3_len(cur.d); // camera rays may be unnormalised
-        // A world sphere of an untextured material that does not emit, with no light to sample (the book's
-        // scenes): exactly what the general code below computes for it, without the surface record, texture
-        // lookups, emission, shading normals and light sampling, which cost as much as the bounce itself.
-        if (lean && h.kind == HIT_SPHERE && h.instance == HIT_NO_INSTANCE) {
-            const sphere *sp = &s->spheres[h.prim];
-            const material *m = &s->materials[sp->material];
-            if (m->kind != MAT_DIFFUSE_LIGHT && m->albedo_texture < 0) {
-                vec3 p, n;
-                sphere_hit_frame(sp, &cur, h.t, &p, &n);
-                bool front = v3_dot(cur.d, n) < 0.0f;
-                if (!front) n = v3_neg(n);
-                if (aov_pending) aov_pending = path_aov_surface(aov, throughput, m->albedo, n, m);
-                scatter_event ev;
-                if (m->kind == MAT_LAMBERTIAN) {
-                    // Only the direction matters to the next intersection: the normalisation (a square root
-                    // and a division) waits until a mirror, glass or the background needs a unit vector.
-                    ev.dir = mat_lambertian_sum(n, sample_sphere_uniform(r));
-                    ev.weight = m->albedo;
-                    unit = false;
-                } else {
-                    if (!unit) cur.d = v3_unit(cur.d);
-                    unit = true;
-                    if (!mat_scatter(m, m->albedo, cur.d, n, front, r, &ev)) break;
-                }
-                throughput = v3_mul(throughput, ev.weight);
-                if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) break;
-                spawn_point spt = spawn_point_sphere(p, n, sp->radius, cur.time);
-                cur = spawn_ray(&spt, ev.dir, 0.0f, INFINITY);
-                continue;
-            }
-        }
-        if (!unit) { // the general code below works with unit directions: the same ray, t in its units
-            float len = v3_len(cur.d);
-            cur.d = v3_scale(cur.d, 1.0f / len);
-            h.t *= len;
-            unit = true;
-        }
-        surface sf = surface_at(s, &cur, &h);
-        const material *m = &s->materials[sf.material];
-        if (m->kind == MAT_DIFFUSE_LIGHT) {
-            vec3 tp = surface_texture_point(s, &sf, m->emission_texture);
-            vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, tp);
-            if (aov_pending) {
-                aov->albedo = integrator_aov_albedo(v3_mul(throughput, integrator_aov_emitter(le)));
-                aov->normal = sf.n;
-            }
-            if (light_sampled) {
-                float pdf_light = light_sampler_pdf(pl, s, &sf, cur.o, cur.d, h.t);
-                if (pdf_light > 0.0f) le = v3_scale(le, mis_weight(bsdf_pdf, pdf_light));
-            }
-            radiance = v3_add(radiance, v3_mul(throughput, le));
-            break;
-        }
-        scatter_event ev;
-        vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
-        if (aov_pending) aov_pending = path_aov_surface(aov, throughput, albedo, sf.n, m);
-        if (!mat_scatter(m, albedo, cur.d, sf.n, sf.front, r, &ev)) break;
-        spawn_point sp = spawn_point_of(s, &sf);
-        float in_side = v3_dot(cur.d, sf.ng);
-        light_sampled = env_sampled = false;
-        if (ev.diffuse) {
-            float dir_pdf = s->importance_sphere_count ? aim_diffuse(s, sp.p, sf.n, r, &ev)
-                                                       : v3_dot(ev.dir, sf.n) * inv_pi;
-            nee_vertex nv = {&sf, in_side, cur.d, 0.0f};
-            if (has_lights) radiance = v3_add(radiance, v3_mul(throughput, direct_light(it, &sp, &nv, ev.weight, ts)));
-            // Only where the BSDF sample is traced too, so that the two strategies cover the same paths.
-            if (pl && depth + 1 < s->settings.max_depth) {
-                vec3 direct = sample_light(it, pl, &nv, &sp, r, ts);
-                radiance = v3_add(radiance, v3_mul(throughput, v3_mul(ev.weight, direct)));
-                light_sampled = true;
-                bsdf_pdf = dir_pdf;
-            }
-            if (es && depth + 1 < s->settings.max_depth) {
-                vec3 direct = sample_environment(it, es, &nv, &sp, r, ts);
-                radiance = v3_add(radiance, v3_mul(throughput, v3_mul(ev.weight, direct)));
-                env_sampled = true;
-                bsdf_pdf = dir_pdf;
-            }
-        }
-        // With shading normals a sampled direction can cross the geometric surface against its event
-        // (reflect through it, or refract back): the path is absorbed rather than leaking light. (Where the
-        // normals agree, only rounding could do that, at grazing refraction: the path goes on as before.)
-        if (sf.n.x != sf.ng.x || sf.n.y != sf.ng.y || sf.n.z != sf.ng.z) {
-            float out_side = v3_dot(ev.dir, sf.ng);
-            if (ev.transmitted ? in_side * out_side < 0.0f : in_side * out_side > 0.0f) break;
-        }
-        throughput = v3_mul(throughput, ev.weight);
-        // A black throughput can gain nothing more: end the path without tracing the rest.
-        if (!(throughput.x > 0.0f || throughput.y > 0.0f || throughput.z > 0.0f)) break;
-        cur = spawn_ray(&sp, ev.dir, 0.0f, INFINITY);
+        bool found = accel_intersect(pi->base.accel, &cur, &h);
+        if (!path_vertex(pi, &ps, &cur, &mpath, found, &h, r, ts, aov, false)) break;
     }
-    return radiance;
+    return ps.radiance;
 }
 
 // One sample of pixel (x, y): its camera ray, then its path (what path_render_tile does eight at a time).
@@ -445,38 +479,54 @@ static vec3 path_sample(const integrator *it, int x, int y, uint32_t sample, rng
     return path_trace(pi, primary.o, primary.d, primary.time, r, ts, aov);
 }
 
-// One tile pass: the samples' camera rays (and generators) are made CAMERA_BATCH at a time, in vector
-// instructions (camera_batch.h), before their paths are traced one by one. Same samples, same order, same
-// sums as path_sample one at a time: the same bytes.
+/// The next sample of a tile pass to make a camera ray for: pixel (x, y), its rng_pixel_key, sample k.
+typedef struct sample_cursor {
+    int x, y, k;
+    uint64_t key;
+} sample_cursor;
+
+static inline sample_cursor sample_cursor_start(const integrator *it, const tile_pass *tp) {
+    const render_settings *rs = &it->scene->settings;
+    return (sample_cursor){tp->x0, tp->y0, tp->k0,
+                           rng_pixel_key(rs->seed, (uint64_t)tp->y0 * (uint64_t)rs->width + (uint64_t)tp->x0)};
+}
+
+// The camera rays (and generators) of the next n <= CAMERA_BATCH samples, in vector instructions
+// (camera_batch.h); lanes past n repeat the first.
+static inline __attribute__((always_inline)) void sample_cursor_batch(const integrator *it, const tile_pass *tp,
+                                                                     sample_cursor *c, int n, camera_batch *cb) {
+    const render_settings *rs = &it->scene->settings;
+    for (int i = 0; i < CAMERA_BATCH; i++) {
+        if (i >= n) {
+            cb->x[i] = cb->x[0], cb->y[i] = cb->y[0], cb->key[i] = cb->key[0], cb->sample[i] = cb->sample[0];
+            continue;
+        }
+        cb->x[i] = c->x, cb->y[i] = c->y, cb->key[i] = c->key, cb->sample[i] = (uint64_t)c->k;
+        if (++c->k == tp->k1) {
+            c->k = tp->k0;
+            if (++c->x == tp->x1) {
+                c->x = tp->x0;
+                c->y++;
+            }
+            if (c->y < tp->y1) c->key = rng_pixel_key(rs->seed, (uint64_t)c->y * (uint64_t)rs->width + (uint64_t)c->x);
+        }
+    }
+    camera_batch_make(&it->camera, it->stream, cb);
+}
+
+// One tile pass: the samples' camera rays are made CAMERA_BATCH at a time before their paths are traced one by
+// one. Same samples, same order, same sums as path_sample one at a time: the same bytes.
 static inline __attribute__((always_inline)) bool path_render_tile_with(const integrator *it, const tile_pass *tp,
                                                                        film_tile *ft, thread_stats *ts, bool aovs) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    const render_settings *rs = &it->scene->settings;
     int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
     int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
-    // The batch cursor (gx, gy, gk) runs ahead of the film tile's cursor by up to CAMERA_BATCH items.
-    int gx = tp->x0, gy = tp->y0, gk = tp->k0;
-    uint64_t gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
+    sample_cursor cursor = sample_cursor_start(it, tp); // runs ahead of the film tile's by up to CAMERA_BATCH items
     camera_batch cb;
     film_tile t = *ft; // a local copy whose address does not escape: its fields can live in registers
     for (int j = 0; j < items; j += CAMERA_BATCH) {
         int n = items - j < CAMERA_BATCH ? items - j : CAMERA_BATCH;
-        for (int i = 0; i < CAMERA_BATCH; i++) {
-            if (i >= n) { // lanes past the tile's end repeat the first
-                cb.x[i] = cb.x[0], cb.y[i] = cb.y[0], cb.key[i] = cb.key[0], cb.sample[i] = cb.sample[0];
-                continue;
-            }
-            cb.x[i] = gx, cb.y[i] = gy, cb.key[i] = gkey, cb.sample[i] = (uint64_t)gk;
-            if (++gk == tp->k1) {
-                gk = tp->k0;
-                if (++gx == tp->x1) {
-                    gx = tp->x0;
-                    gy++;
-                }
-                if (gy < tp->y1) gkey = rng_pixel_key(rs->seed, (uint64_t)gy * (uint64_t)rs->width + (uint64_t)gx);
-            }
-        }
-        camera_batch_make(&it->camera, it->stream, &cb);
+        sample_cursor_batch(it, tp, &cursor, n, &cb);
         for (int i = 0; i < n; i++) {
             if (tile_pass_stopping(tp)) {
                 film_tile_stop(&t);
@@ -502,6 +552,88 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
     return true;
 }
 
+// A lean tile pass (path_lean) where the structure traces rays together (accel_streams): ACCEL_STREAM paths in
+// flight, the rays of each round traced together, a path that ends giving its place to the next sample. The
+// samples are added to the film in their order, from a window of finished ones: the same sums as
+// path_render_tile_with, so the same bytes.
+static bool path_render_tile_stream(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
+    const path_integrator *pi = (const path_integrator *)(const void *)it;
+    int max_depth = it->scene->settings.max_depth;
+    int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
+    int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
+    enum { WINDOW = 64 };                     // samples started and not yet added (a power of two)
+    vec3 finished[WINDOW];
+    bool is_finished[WINDOW] = {false};
+    path_state ps[ACCEL_STREAM];
+    rng gen[ACCEL_STREAM];
+    int item[ACCEL_STREAM];
+    ray rays[ACCEL_STREAM]; // each path's next ray
+    medium_path mpath[ACCEL_STREAM];
+    hit hits[ACCEL_STREAM];
+    bool found[ACCEL_STREAM];
+    int lanes = 0, started = 0, added = 0; // paths in flight are lanes [0, lanes)
+    sample_cursor cursor = sample_cursor_start(it, tp);
+    camera_batch cb;
+    int batch_start = 0, batch_end = 0; // cb holds items [batch_start, batch_end)
+    film_tile t = *ft;
+    while (max_depth > 0) {
+        while (lanes < ACCEL_STREAM && started < items && started < added + WINDOW) {
+            if (started == batch_end) {
+                int n = items - started < CAMERA_BATCH ? items - started : CAMERA_BATCH;
+                sample_cursor_batch(it, tp, &cursor, n, &cb);
+                batch_start = started;
+                batch_end = started + n;
+            }
+            int i = started - batch_start;
+            ps[lanes] = path_start(NULL);
+            rays[lanes] = (ray){cb.o[i], cb.d[i], 0.0f, INFINITY, cb.time[i]};
+            mpath[lanes] = medium_path_start();
+            gen[lanes] = cb.r[i];
+            item[lanes++] = started++;
+        }
+        if (lanes == 0) break;
+        accel_intersect_stream(it->accel, lanes, rays, hits, found);
+        for (int l = 0; l < lanes;) {
+            ts->rays++;
+            if (path_vertex(pi, &ps[l], &rays[l], &mpath[l], found[l], &hits[l], &gen[l], ts, NULL, true) &&
+                ++ps[l].depth < max_depth) {
+                l++;
+                continue;
+            }
+            finished[item[l] % WINDOW] = ps[l].radiance;
+            is_finished[item[l] % WINDOW] = true;
+            // The last path in flight takes this place, with its hit still to be shaded.
+            lanes--;
+            ps[l] = ps[lanes], rays[l] = rays[lanes], mpath[l] = mpath[lanes];
+            gen[l] = gen[lanes], item[l] = item[lanes];
+            hits[l] = hits[lanes], found[l] = found[lanes];
+        }
+        for (; added < items && is_finished[added % WINDOW]; added++) {
+            if (tile_pass_stopping(tp)) {
+                film_tile_stop(&t);
+                *ft = t;
+                return false;
+            }
+            is_finished[added % WINDOW] = false;
+            if (!film_tile_add(&t, finished[added % WINDOW])) {
+                *ft = t;
+                return true;
+            }
+        }
+    }
+    // max_depth 0 traces nothing: every sample is black, as path_trace makes it.
+    for (; max_depth <= 0 && added < items; added++) {
+        if (tile_pass_stopping(tp)) {
+            film_tile_stop(&t);
+            *ft = t;
+            return false;
+        }
+        if (!film_tile_add(&t, v3s(0.0f))) break;
+    }
+    *ft = t;
+    return true;
+}
+
 // The tile loop without AOVs is kept free of the AOV bookkeeping (film_tile_add alone).
 static bool path_render_tile_plain(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
     return path_render_tile_with(it, tp, ft, ts, false);
@@ -513,7 +645,10 @@ static __attribute__((noinline)) bool path_render_tile_aov(const integrator *it,
 }
 
 static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
-    return ft->film->aovs ? path_render_tile_aov(it, tp, ft, ts) : path_render_tile_plain(it, tp, ft, ts);
+    if (ft->film->aovs) return path_render_tile_aov(it, tp, ft, ts);
+    const path_integrator *pi = (const path_integrator *)(const void *)it;
+    if (path_lean(pi) && accel_streams(it->accel)) return path_render_tile_stream(it, tp, ft, ts);
+    return path_render_tile_plain(it, tp, ft, ts);
 }
 
 static void path_release(integrator *it) {
