@@ -294,20 +294,36 @@ static inline bool path_lean(const path_integrator *pi) {
     return !s->light_count && !pi->sampled && !pi->env_sampled && !s->medium_count && !s->importance_sphere_count;
 }
 
+/// What the vertices of a render's paths need to know of the scene and the integrator, looked up once per path
+/// (not at every vertex). `lean`: none of the lights, media or importance sampling (path_lean).
+typedef struct path_setup {
+    bool has_lights;
+    const light_sampler *pl;
+    const envmap_sampler *es;
+    size_t media; ///< none: the vertex does no work for media but this one test
+    bool lean;
+} path_setup;
+
+// The setup of pi's paths; known_lean (a constant after inlining, true only where path_lean holds) leaves the
+// code for lights and media out of the vertices that use it.
+static inline path_setup path_setup_of(const path_integrator *pi, bool known_lean) {
+    const glint_scene *s = pi->base.scene;
+    if (known_lean) return (path_setup){false, NULL, NULL, 0, true};
+    return (path_setup){s->light_count > 0, pi->sampled, pi->env_sampled, s->medium_count, path_lean(pi)};
+}
+
 // What the path does where its ray *cur ends, at hit *h (found; by address, as the query wrote it: a copy would
 // load it whole, which waits for the query's stores to retire) or in the background, at depth ps->depth:
 // gathers light into ps->radiance and makes the next ray. False when the path ends there.
-static inline __attribute__((always_inline)) bool path_vertex(const path_integrator *pi, path_state *ps, ray *cur,
-                                                             medium_path *mpath, bool found, hit *h, rng *r,
-                                                             thread_stats *ts, film_aov_sample *aov, bool known_lean) {
+static inline __attribute__((always_inline)) bool path_vertex(const path_integrator *pi, path_setup setup,
+                                                             path_state *ps, ray *cur, medium_path *mpath, bool found,
+                                                             hit *h, rng *r, thread_stats *ts, film_aov_sample *aov) {
     const integrator *it = &pi->base;
     const glint_scene *s = it->scene;
-    // Known lean (a constant after inlining): the code for lights and media is left out of this copy.
-    bool has_lights = !known_lean && s->light_count > 0;
-    const light_sampler *pl = known_lean ? NULL : pi->sampled;
-    const envmap_sampler *es = known_lean ? NULL : pi->env_sampled;
-    size_t media = known_lean ? 0 : s->medium_count; // none: the vertex does no work for media but this one test
-    bool lean = known_lean || path_lean(pi);
+    bool has_lights = setup.has_lights, lean = setup.lean;
+    const light_sampler *pl = setup.pl;
+    const envmap_sampler *es = setup.es;
+    size_t media = setup.media;
     int depth = ps->depth;
     if (media) {
         if (!ps->unit) { // distances in the media are lengths: a unit direction, t in its units
@@ -458,6 +474,7 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
 static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts,
                        film_aov_sample *aov) {
     const glint_scene *s = pi->base.scene;
+    path_setup setup = path_setup_of(pi, false);
     path_state ps = path_start(aov);
     ray cur = {o, d, 0.0f, INFINITY, time};
     medium_path mpath = medium_path_start();
@@ -465,7 +482,7 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
         hit h;
         ts->rays++;
         bool found = accel_intersect(pi->base.accel, &cur, &h);
-        if (!path_vertex(pi, &ps, &cur, &mpath, found, &h, r, ts, aov, false)) break;
+        if (!path_vertex(pi, setup, &ps, &cur, &mpath, found, &h, r, ts, aov)) break;
     }
     return ps.radiance;
 }
@@ -559,6 +576,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
 static bool path_render_tile_stream(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
     int max_depth = it->scene->settings.max_depth;
+    path_setup setup = path_setup_of(pi, true); // only lean passes come here
     int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
     int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
     enum { WINDOW = 64 };                     // samples started and not yet added (a power of two)
@@ -595,7 +613,7 @@ static bool path_render_tile_stream(const integrator *it, const tile_pass *tp, f
         accel_intersect_stream(it->accel, lanes, rays, hits, found);
         for (int l = 0; l < lanes;) {
             ts->rays++;
-            if (path_vertex(pi, &ps[l], &rays[l], &mpath[l], found[l], &hits[l], &gen[l], ts, NULL, true) &&
+            if (path_vertex(pi, setup, &ps[l], &rays[l], &mpath[l], found[l], &hits[l], &gen[l], ts, NULL) &&
                 ++ps[l].depth < max_depth) {
                 l++;
                 continue;
