@@ -880,16 +880,31 @@ static void test_determinism_quads(void) {
     for (int i = 0; i < 2; i++) glint_image_free(imgs[i]);
 }
 
-// A lean scene (no lights to sample, no media) for the ray streams: the mixed spheres with a flattened mesh (a
-// tetrahedron, mirrored), a ground quad, a textured quad and an emissive quad, or (triangles_only) the tiny
+// Scenes for the ray streams. Kind 0, lean (no lights to sample, no media): the mixed spheres with a flattened
+// mesh (a tetrahedron, mirrored), a ground quad, a textured quad and an emissive quad. Kind 1, lean: the tiny
 // Cornell box's quads and a tetrahedron with no sphere, so that the world BVH holds triangle packets alone.
-static glint_scene *stream_scene(bool triangles_only, int depth) {
+// Kind 2: that box with its sphere, its light sampled (next-event estimation) and a point light. Kind 3: kind 2
+// in a chromatic fog, with a denser box of it around the tetrahedron.
+static glint_scene *stream_scene(int kind, int depth) {
+    bool triangles_only = kind >= 1;
     static const vec3 tetra[4] = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
     static const int faces[4][3] = {{0, 2, 1}, {0, 1, 3}, {0, 3, 2}, {1, 2, 3}};
     glint_scene *s;
     if (triangles_only) {
-        s = tiny_cornell(5, false, 3);
-        s->sphere_count = 0; // the box's sphere goes: quads and triangles only
+        s = tiny_cornell(5, kind == 2, 3);
+        if (kind == 1) s->sphere_count = 0; // the box's sphere goes: quads and triangles only
+        light l = {.kind = LIGHT_POINT, .intensity = v3s(20000.0f), .position = v3(100, 400, 200)};
+        if (kind >= 2) CHECK(scene_add_light(s, l));
+        if (kind == 3) {
+            medium fog = {.shape = MEDIUM_BOX, .lo = v3s(-1), .hi = v3s(556), .sigma_s = v3(5e-4f, 1e-3f, 2e-3f),
+                          .sigma_t = v3(1e-3f, 1.5e-3f, 2e-3f), .albedo_texture = -1, .g = 0.3f};
+            CHECK(scene_add_medium(s, fog));
+            fog.lo = v3(280, 180, 80);
+            fog.hi = v3(440, 340, 240);
+            fog.sigma_s = v3(0.02f, 0.01f, 0.005f);
+            fog.sigma_t = v3s(0.02f);
+            CHECK(scene_add_medium(s, fog));
+        }
         mat4 at = mat4_translate(v3(300, 200, 100)), size = mat4_scale(v3s(120));
         add_mesh_instance(s, tetra, 4, faces, 4, 0, mat4_mul(&at, &size));
     } else {
@@ -912,15 +927,16 @@ static glint_scene *stream_scene(bool triangles_only, int depth) {
     return s;
 }
 
-// The path tracer's streams (path_render_tile_stream, forced on small scenes by stream_min_bytes) give the same
-// bytes as its paths one by one, on 1 and 3 threads, at depth limits 1, 3 and 50.
+// The path tracer's streams (path_render_tile_stream_*, forced on small scenes by stream_min_bytes) give the same
+// bytes as its paths one by one, on 1 and 3 threads, at depth limits 1, 3 and 50, with and without lights and
+// media.
 static void test_streams_same_bytes(void) {
-    for (int kind = 0; kind < 2; kind++) {
+    for (int kind = 0; kind < 4; kind++) {
         for (int d = 0; d < 3; d++) {
             const int depths[3] = {1, 3, 50};
             glint_image *img[3];
             for (int i = 0; i < 3; i++) {
-                glint_scene *s = stream_scene(kind == 1, depths[d]);
+                glint_scene *s = stream_scene(kind, depths[d]);
                 s->settings.stream_min_bytes = i == 0 ? SIZE_MAX : 1;
                 if (i == 1) { // the structure this scene renders with does trace in streams
                     glint_error err;
@@ -928,14 +944,12 @@ static void test_streams_same_bytes(void) {
                     CHECK(a && accel_streams(a));
                     accel_free(a);
                 }
-                bool lean = without_nee;
                 img[i] = render(s, i == 2 ? 3 : 1, NULL);
-                without_nee = lean && i < 2; // the next render of this scene samples no lights either
                 glint_scene_free(s);
             }
             int w, h;
             const float *p0 = pixels(img[0], &w, &h);
-            CHECK(d == 0 || max_deviation(img[0], 0.0) > 0.0); // not a black image (at depth 1 the box is dark)
+            CHECK((d == 0 && kind == 1) || max_deviation(img[0], 0.0) > 0.0); // the lean box is dark at depth 1
             size_t bytes = sizeof(float) * 3 * (size_t)(w * h);
             for (int i = 1; i < 3; i++) CHECK(memcmp(p0, pixels(img[i], &w, &h), bytes) == 0);
             for (int i = 0; i < 3; i++) glint_image_free(img[i]);

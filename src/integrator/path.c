@@ -569,14 +569,16 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
     return true;
 }
 
-// A lean tile pass (path_lean) where the structure traces rays together (accel_streams): ACCEL_STREAM paths in
-// flight, the rays of each round traced together, a path that ends giving its place to the next sample. The
-// samples are added to the film in their order, from a window of finished ones: the same sums as
-// path_render_tile_with, so the same bytes.
-static bool path_render_tile_stream(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
+// A tile pass where the structure traces rays together (accel_streams): ACCEL_STREAM paths in flight, the rays
+// of each round traced together (shadow rays, one at a time, stay in path_vertex), a path that ends giving its
+// place to the next sample. The samples are added to the film in their order, from a window of finished ones:
+// the same sums as path_render_tile_with, so the same bytes. `lean` (a constant): path_lean holds.
+static inline __attribute__((always_inline)) bool path_render_tile_stream_with(const integrator *it,
+                                                                              const tile_pass *tp, film_tile *ft,
+                                                                              thread_stats *ts, bool lean) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
     int max_depth = it->scene->settings.max_depth;
-    path_setup setup = path_setup_of(pi, true); // only lean passes come here
+    path_setup setup = path_setup_of(pi, lean);
     int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
     int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
     enum { WINDOW = 64 };                     // samples started and not yet added (a power of two)
@@ -662,10 +664,21 @@ static __attribute__((noinline)) bool path_render_tile_aov(const integrator *it,
     return path_render_tile_with(it, tp, ft, ts, true);
 }
 
+// The stream loop for lean paths, without the code for lights and media.
+static bool path_render_tile_stream_lean(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
+    return path_render_tile_stream_with(it, tp, ft, ts, true);
+}
+
+static __attribute__((noinline)) bool path_render_tile_stream_any(const integrator *it, const tile_pass *tp,
+                                                                 film_tile *ft, thread_stats *ts) {
+    return path_render_tile_stream_with(it, tp, ft, ts, false);
+}
+
 static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
     if (ft->film->aovs) return path_render_tile_aov(it, tp, ft, ts);
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    if (path_lean(pi) && accel_streams(it->accel)) return path_render_tile_stream(it, tp, ft, ts);
+    if (accel_streams(it->accel))
+        return path_lean(pi) ? path_render_tile_stream_lean(it, tp, ft, ts) : path_render_tile_stream_any(it, tp, ft, ts);
     return path_render_tile_plain(it, tp, ft, ts);
 }
 
