@@ -56,6 +56,7 @@ static uint32_t add_texture(glint_scene *s, texture t) {
 }
 
 static bool without_nee; // the next render() samples no area lights (set by the scene builders)
+static unsigned with_aovs; // the AOV planes (glint_aov bits) the next render() makes
 
 static material lambertian(float a) {
     material m = material_default(MAT_LAMBERTIAN);
@@ -77,8 +78,9 @@ static glint_scene *plane_under_light(int nee, float rho) {
 // builder set without_nee (the choice holds for that one render); the image's linear pixels stay valid until
 // glint_image_free.
 static glint_image *render(glint_scene *s, int threads, glint_render_stats *stats) {
-    render_options opt = {.threads = threads, .integrator = {.no_light_sampling = without_nee}};
+    render_options opt = {.threads = threads, .aovs = with_aovs, .integrator = {.no_light_sampling = without_nee}};
     without_nee = false;
+    with_aovs = 0;
     glint_image *img = NULL;
     glint_error err;
     glint_render_stats local;
@@ -929,11 +931,12 @@ static glint_scene *stream_scene(int kind, int depth) {
 
 // The path tracer's streams (path_render_tile_stream_*, forced on small scenes by stream_min_bytes) give the same
 // bytes as its paths one by one, on 1 and 3 threads, at depth limits 1, 3 and 50, with and without lights and
-// media.
+// media, and so do their AOVs.
 static void test_streams_same_bytes(void) {
     for (int kind = 0; kind < 4; kind++) {
-        for (int d = 0; d < 3; d++) {
-            const int depths[3] = {1, 3, 50};
+        for (int d = 0; d < 4; d++) {
+            bool aovs = d == 3; // depth 50 again, with every AOV
+            const int depths[4] = {1, 3, 50, 50};
             glint_image *img[3];
             for (int i = 0; i < 3; i++) {
                 glint_scene *s = stream_scene(kind, depths[d]);
@@ -944,6 +947,7 @@ static void test_streams_same_bytes(void) {
                     CHECK(a && accel_streams(a));
                     accel_free(a);
                 }
+                with_aovs = aovs ? GLINT_AOV_ALL : 0;
                 img[i] = render(s, i == 2 ? 3 : 1, NULL);
                 glint_scene_free(s);
             }
@@ -951,7 +955,15 @@ static void test_streams_same_bytes(void) {
             const float *p0 = pixels(img[0], &w, &h);
             CHECK((d == 0 && kind == 1) || max_deviation(img[0], 0.0) > 0.0); // the lean box is dark at depth 1
             size_t bytes = sizeof(float) * 3 * (size_t)(w * h);
-            for (int i = 1; i < 3; i++) CHECK(memcmp(p0, pixels(img[i], &w, &h), bytes) == 0);
+            for (int i = 1; i < 3; i++) {
+                CHECK(memcmp(p0, pixels(img[i], &w, &h), bytes) == 0);
+                for (unsigned a = 1; aovs && a < GLINT_AOV_ALL; a <<= 1) {
+                    int ch = 0;
+                    const float *p = glint_image_aov(img[0], (glint_aov)a, &ch);
+                    const float *q = glint_image_aov(img[i], (glint_aov)a, NULL);
+                    CHECK(p && q && memcmp(p, q, sizeof(float) * (size_t)ch * (size_t)(w * h)) == 0);
+                }
+            }
             for (int i = 0; i < 3; i++) glint_image_free(img[i]);
         }
     }

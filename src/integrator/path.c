@@ -571,11 +571,13 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
 
 // A tile pass where the structure traces rays together (accel_streams): ACCEL_STREAM paths in flight, the rays
 // of each round traced together (shadow rays, one at a time, stay in path_vertex), a path that ends giving its
-// place to the next sample. The samples are added to the film in their order, from a window of finished ones:
-// the same sums as path_render_tile_with, so the same bytes. `lean` (a constant): path_lean holds.
+// place to the next sample. The samples (and their AOVs when `aovs`) are added to the film in their order, from a
+// window of finished ones: the same sums as path_render_tile_with, so the same bytes. `lean` (a constant):
+// path_lean holds. A depth limit of at least 1.
 static inline __attribute__((always_inline)) bool path_render_tile_stream_with(const integrator *it,
                                                                               const tile_pass *tp, film_tile *ft,
-                                                                              thread_stats *ts, bool lean) {
+                                                                              thread_stats *ts, bool lean,
+                                                                              bool aovs) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
     int max_depth = it->scene->settings.max_depth;
     path_setup setup = path_setup_of(pi, lean);
@@ -583,6 +585,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
     int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
     enum { WINDOW = 64 };                     // samples started and not yet added (a power of two)
     vec3 finished[WINDOW];
+    film_aov_sample finished_aov[WINDOW], aov[ACCEL_STREAM];
     bool is_finished[WINDOW] = {false};
     path_state ps[ACCEL_STREAM];
     rng gen[ACCEL_STREAM];
@@ -596,7 +599,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
     camera_batch cb;
     int batch_start = 0, batch_end = 0; // cb holds items [batch_start, batch_end)
     film_tile t = *ft;
-    while (max_depth > 0) {
+    for (;;) {
         while (lanes < ACCEL_STREAM && started < items && started < added + WINDOW) {
             if (started == batch_end) {
                 int n = items - started < CAMERA_BATCH ? items - started : CAMERA_BATCH;
@@ -605,7 +608,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
                 batch_end = started + n;
             }
             int i = started - batch_start;
-            ps[lanes] = path_start(NULL);
+            ps[lanes] = path_start(aovs ? &aov[lanes] : NULL);
             rays[lanes] = (ray){cb.o[i], cb.d[i], 0.0f, INFINITY, cb.time[i]};
             mpath[lanes] = medium_path_start();
             gen[lanes] = cb.r[i];
@@ -615,18 +618,21 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
         accel_intersect_stream(it->accel, lanes, rays, hits, found);
         for (int l = 0; l < lanes;) {
             ts->rays++;
-            if (path_vertex(pi, setup, &ps[l], &rays[l], &mpath[l], found[l], &hits[l], &gen[l], ts, NULL) &&
+            if (path_vertex(pi, setup, &ps[l], &rays[l], &mpath[l], found[l], &hits[l], &gen[l], ts,
+                            aovs ? &aov[l] : NULL) &&
                 ++ps[l].depth < max_depth) {
                 l++;
                 continue;
             }
             finished[item[l] % WINDOW] = ps[l].radiance;
+            if (aovs) finished_aov[item[l] % WINDOW] = aov[l];
             is_finished[item[l] % WINDOW] = true;
             // The last path in flight takes this place, with its hit still to be shaded.
             lanes--;
             ps[l] = ps[lanes], rays[l] = rays[lanes], mpath[l] = mpath[lanes];
             gen[l] = gen[lanes], item[l] = item[lanes];
             hits[l] = hits[lanes], found[l] = found[lanes];
+            if (aovs) aov[l] = aov[lanes];
         }
         for (; added < items && is_finished[added % WINDOW]; added++) {
             if (tile_pass_stopping(tp)) {
@@ -634,21 +640,13 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
                 *ft = t;
                 return false;
             }
-            is_finished[added % WINDOW] = false;
-            if (!film_tile_add(&t, finished[added % WINDOW])) {
+            int k = added % WINDOW;
+            is_finished[k] = false;
+            if (!(aovs ? film_tile_add_aov(&t, finished[k], &finished_aov[k]) : film_tile_add(&t, finished[k]))) {
                 *ft = t;
                 return true;
             }
         }
-    }
-    // max_depth 0 traces nothing: every sample is black, as path_trace makes it.
-    for (; max_depth <= 0 && added < items; added++) {
-        if (tile_pass_stopping(tp)) {
-            film_tile_stop(&t);
-            *ft = t;
-            return false;
-        }
-        if (!film_tile_add(&t, v3s(0.0f))) break;
     }
     *ft = t;
     return true;
@@ -664,21 +662,22 @@ static __attribute__((noinline)) bool path_render_tile_aov(const integrator *it,
     return path_render_tile_with(it, tp, ft, ts, true);
 }
 
-// The stream loop for lean paths, without the code for lights and media.
+// The stream loop for lean paths without AOVs: no code for lights, media or AOVs.
 static bool path_render_tile_stream_lean(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
-    return path_render_tile_stream_with(it, tp, ft, ts, true);
+    return path_render_tile_stream_with(it, tp, ft, ts, true, false);
 }
 
 static __attribute__((noinline)) bool path_render_tile_stream_any(const integrator *it, const tile_pass *tp,
                                                                  film_tile *ft, thread_stats *ts) {
-    return path_render_tile_stream_with(it, tp, ft, ts, false);
+    return path_render_tile_stream_with(it, tp, ft, ts, false, ft->film->aovs);
 }
 
 static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
-    if (ft->film->aovs) return path_render_tile_aov(it, tp, ft, ts);
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    if (accel_streams(it->accel))
-        return path_lean(pi) ? path_render_tile_stream_lean(it, tp, ft, ts) : path_render_tile_stream_any(it, tp, ft, ts);
+    if (accel_streams(it->accel) && it->scene->settings.max_depth > 0)
+        return path_lean(pi) && !ft->film->aovs ? path_render_tile_stream_lean(it, tp, ft, ts)
+                                                : path_render_tile_stream_any(it, tp, ft, ts);
+    if (ft->film->aovs) return path_render_tile_aov(it, tp, ft, ts);
     return path_render_tile_plain(it, tp, ft, ts);
 }
 
