@@ -26,19 +26,23 @@ typedef struct tri_hit {
 static inline tri_ray tri_ray_make(const ray *r) {
     tri_ray tr;
     tr.o = r->o;
-    float ax = fabsf(r->d.x), ay = fabsf(r->d.y), az = fabsf(r->d.z);
-    // z becomes the largest direction component so that the divisions below are by the largest value.
-    int kz = ax > ay ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
-    int kx = kz == 2 ? 0 : kz + 1;
-    int ky = kx == 2 ? 0 : kx + 1;
-    float dz = v3_comp(r->d, kz);
-    // Swapping x and y when dz < 0 keeps the winding, so the sign of the edge functions stays meaningful.
-    if (dz < 0.0f) { int tmp = kx; kx = ky; ky = tmp; }
+    const float d[3] = {r->d.x, r->d.y, r->d.z};
+    float ax = fabsf(d[0]), ay = fabsf(d[1]), az = fabsf(d[2]);
+    // z becomes the largest direction component so that the divisions below are by the largest value. Without
+    // branches: a bounce's direction is random, so branches on it would be mispredicted about half the time.
+    int x_first = (ax > ay) & (ax > az), y_first = !(ax > ay) & (ay > az);
+    int kz = 2 - 2 * x_first - y_first;
+    float dz = d[kz];
+    // x and y follow z cyclically; swapping them when dz < 0 keeps the winding, so the sign of the edge
+    // functions stays meaningful. (A table, which the compiler does not turn back into branches.)
+    static const uint8_t next[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+    int flip = dz < 0.0f;
+    int kx = next[kz][flip], ky = next[kz][1 - flip];
     tr.kx = kx;
     tr.ky = ky;
     tr.kz = kz;
-    tr.sx = v3_comp(r->d, kx) / dz;
-    tr.sy = v3_comp(r->d, ky) / dz;
+    tr.sx = d[kx] / dz;
+    tr.sy = d[ky] / dz;
     tr.sz = 1.0f / dz;
     return tr;
 }
