@@ -77,6 +77,11 @@ for bad in "--only meshes" "--threads 0" "--threads 1,x" "--mesh-spp 0" "--mesh-
     check "run.sh $bad: exit 2 with a message ($(cat "$TMP/err"))" test "$st" -eq 2 -a -s "$TMP/err"
 done
 
+# --- bench/instructions.sh: a scene it does not know is refused before anything is built (it needs valgrind to run)
+bash "$SRC/bench/instructions.sh" rtiow >/dev/null 2>"$TMP/err"
+st=$?
+check "instructions.sh rtiow: exit 2 with its usage ($(cat "$TMP/err"))" test "$st" -eq 2 -a -s "$TMP/err"
+
 # --- bench/plot.sh on made-up data
 bash "$SRC/bench/plot.sh" >/dev/null 2>&1
 st=$?
