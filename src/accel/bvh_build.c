@@ -1068,48 +1068,64 @@ typedef struct gather_job {
     build_prim *prims;
     uint32_t owner; ///< prim_ref.instance of every triangle
     size_t per_item;
+    box3 *item_box; ///< item_box[i]: the box of item i's triangles (NULL: not wanted)
 } gather_job;
 
 static void gather_triangles_run(void *ctx, size_t item) {
     const gather_job *job = ctx;
     size_t begin = item * job->per_item, count = job->m->triangle_count;
     size_t end = begin + job->per_item < count ? begin + job->per_item : count;
+    box3 all = box_empty();
     for (size_t k = begin; k < end; k++) {
         job->prims[k].box = box_padded(mesh_triangle_bounds(job->m, k));
         job->prims[k].ref = (prim_ref){.kind = PRIM_TRIANGLE, .index = (uint32_t)k, .instance = job->owner & PRIM_NO_INSTANCE};
+        box_grow(&all, &job->prims[k].box);
     }
+    if (job->item_box) job->item_box[item] = all;
 }
 
-// Gathers the triangles of m into prims[0, triangle_count), on the pool's threads when there is one.
-static void gather_triangles(thread_pool *pool, const mesh *m, uint32_t owner, build_prim *prims) {
-    gather_job job = {m, prims, owner, GATHER_PER_ITEM};
+// Gathers the triangles of m into prims[0, triangle_count), on the pool's threads when there is one, and grows
+// *all by their boxes (as one pass in index order would: each item's box, grown in item order).
+static void gather_triangles(thread_pool *pool, const mesh *m, uint32_t owner, build_prim *prims, box3 *all) {
     size_t items = (m->triangle_count + GATHER_PER_ITEM - 1) / GATHER_PER_ITEM;
+    gather_job job = {m, prims, owner, GATHER_PER_ITEM, malloc(items * sizeof(box3))};
     if (pool) thread_pool_run(pool, items, gather_triangles_run, &job);
     else
         for (size_t i = 0; i < items; i++) gather_triangles_run(&job, i);
+    if (job.item_box)
+        for (size_t i = 0; i < items; i++) box_grow(all, &job.item_box[i]);
+    else // no memory for the items' boxes: a pass of its own
+        for (size_t k = 0; k < m->triangle_count; k++) box_grow(all, &prims[k].box);
+    free(job.item_box);
 }
 
-static size_t gather_prims(const bvh_input *in, build_prim *prims, thread_pool *pool) {
+// Gathers the primitives of in into prims (returning how many), with the box of them all in *all and whether they
+// are all triangles and quads (triangle packets) in *triangles_only.
+static size_t gather_prims(const bvh_input *in, build_prim *prims, thread_pool *pool, box3 *all, bool *triangles_only) {
     size_t n = 0;
     const uint32_t none = PRIM_NO_INSTANCE;
+    *all = box_empty();
+    *triangles_only = in->sphere_count == 0 && in->moving_sphere_count == 0;
     for (size_t i = 0; i < in->sphere_count; i++) {
         prims[n].box = sphere_box(&in->spheres[i]);
         prims[n].ref = (prim_ref){.kind = PRIM_SPHERE, .index = (uint32_t)i, .instance = none};
+        box_grow(all, &prims[n].box);
         n++;
     }
     for (size_t i = 0; i < in->quad_count; i++) {
         prims[n].box = box_padded(quad_bounds(&in->quads[i]));
         prims[n].ref = (prim_ref){.kind = PRIM_QUAD, .index = (uint32_t)i, .instance = none};
+        box_grow(all, &prims[n].box);
         n++;
     }
     if (in->mesh) {
-        gather_triangles(pool, in->mesh, none, &prims[n]);
+        gather_triangles(pool, in->mesh, none, &prims[n], all);
         n += in->mesh->triangle_count;
     }
     for (size_t i = 0; i < in->instance_count; i++) {
         const instance *inst = &in->instances[i];
         if (in->flat && in->flat[i]) { // its triangles in world space, each a primitive of this BVH
-            gather_triangles(pool, in->flat[i], (uint32_t)i & PRIM_NO_INSTANCE, &prims[n]);
+            gather_triangles(pool, in->flat[i], (uint32_t)i & PRIM_NO_INSTANCE, &prims[n], all);
             n += in->flat[i]->triangle_count;
             continue;
         }
@@ -1122,6 +1138,8 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims, thread_pool *
             prims[n].box = box_padded(mat4_apply_bounds(&inst->xf.m, ob));
             prims[n].ref = (prim_ref){.kind = PRIM_INSTANCE, .index = (uint32_t)i, .instance = none};
         }
+        box_grow(all, &prims[n].box);
+        *triangles_only = false;
         n++;
     }
     for (size_t i = 0; i < in->moving_sphere_count; i++) {
@@ -1132,6 +1150,7 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims, thread_pool *
         box3 bb = sphere_box(&b);
         box_grow(&prims[n].box, &bb);
         prims[n].ref = (prim_ref){.kind = PRIM_MOVING_SPHERE, .index = (uint32_t)i, .instance = none};
+        box_grow(all, &prims[n].box);
         n++;
     }
     return n;
@@ -1212,18 +1231,13 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
         thread_pool_stop(pool);
         pool = NULL;
     }
-    size_t n = gather_prims(in, prims, pool);
+    box3 all;
+    size_t n = gather_prims(in, prims, pool, &all, &b->triangles_only);
     b->prim_count = n;
     if (n == 0) {
         thread_pool_stop(pool);
         free(prims);
         return true;
-    }
-    box3 all = box_empty();
-    b->triangles_only = true;
-    for (size_t i = 0; i < n; i++) {
-        box_grow(&all, &prims[i].box);
-        b->triangles_only = b->triangles_only && (prims[i].ref.kind == PRIM_TRIANGLE || prims[i].ref.kind == PRIM_QUAD);
     }
     b->bounds = (bounds3){v3(all.lo[0], all.lo[1], all.lo[2]), v3(all.hi[0], all.hi[1], all.hi[2])};
     // The wide BVH tests the huge spheres (the last `front` prims) on their own, the tree holds the rest.
