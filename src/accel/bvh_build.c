@@ -3,6 +3,7 @@
 #include "accel/bvh.h"
 #include "core/array.h"
 #include "core/thread_pool.h"
+#include "core/trace.h"
 
 #include <stdatomic.h>
 
@@ -1198,6 +1199,12 @@ static prim_ref *refs_in_place(build_prim *prims, size_t n) {
     return fit ? fit : refs;
 }
 
+// Records the build's step `name`, begun at `began`, on the calling thread's timeline (--trace); one branch when off.
+static void build_step_traced(const char *name, int64_t began) {
+    trace_lane *lane = trace_current();
+    if (lane) trace_add(lane, &(trace_event){name, "render", began, trace_clock(), 0, {{0}}});
+}
+
 bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     memset(b, 0, sizeof *b);
     b->spheres = in->spheres;
@@ -1232,7 +1239,9 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
         pool = NULL;
     }
     box3 all;
+    int64_t began = trace_current() ? trace_clock() : 0;
     size_t n = gather_prims(in, prims, pool, &all, &b->triangles_only);
+    build_step_traced("BVH boxes", began);
     b->prim_count = n;
     if (n == 0) {
         thread_pool_stop(pool);
@@ -1253,6 +1262,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     builder bd = {.prims = prims, .nodes = b->nodes2, .block_shift = shift, .block_mask = ((size_t)1 << shift) - 1,
                   .max_leaf = wide ? BVH_PACKET : BIN_MAX_LEAF, .stop = in->stop};
     bool built = true;
+    began = trace_current() ? trace_clock() : 0;
     if (tree) {
         if (pool && tree >= 2 * parallel_min) built = build_parallel(&bd, tree, pool, parallel_min);
         else build_range(&bd, 0, tree, 0, NULL);
@@ -1263,6 +1273,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
         bvh_release(b);
         return false;
     }
+    build_step_traced("BVH binary tree", began);
     b->node2_count = bd.node_count;
     b->ref_count = n;
     b->refs = refs_in_place(prims, n);
@@ -1285,6 +1296,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
         return false;
     }
     bvh2_node front_leaf = {.offset = (uint32_t)tree, .count = (uint32_t)front};
+    began = trace_current() ? trace_clock() : 0;
     sort_leaves(pool, b->nodes2, b->node2_count, b->refs);
     sort_refs(&b->refs[tree], front);
     if (front) b->front = note_leaf(&cl, &front_leaf);
@@ -1301,6 +1313,8 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
         return false;
     }
     b->slot_count = cl.slots;
+    build_step_traced("BVH wide nodes", began);
+    began = trace_current() ? trace_clock() : 0;
     emit_job job = {b, cl.spans, cl.span_count, EMIT_LEAVES_PER_ITEM};
     size_t items = (cl.span_count + EMIT_LEAVES_PER_ITEM - 1) / EMIT_LEAVES_PER_ITEM;
     if (pool) thread_pool_run(pool, items, emit_leaves, &job);
@@ -1312,6 +1326,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
         for (int k = 0; k < BVH_WIDTH; k++) b->wnodes[i].child[k] = leaf_placed(&cl, b->wnodes[i].child[k]);
     b->front = leaf_placed(&cl, b->front);
     b->root = leaf_placed(&cl, b->root);
+    build_step_traced("BVH leaf packets", began);
     free(cl.spans);
     // The packets hold what the wide traversal reads of the references (the binary one reads them).
     free(b->refs);
