@@ -178,8 +178,9 @@ typedef struct bins {
 } bins;
 
 // Empty bins over the centroid box of n primitives. Ranges below about 560 primitives use fewer than SAH_BINS,
-// about one per 20 (at least 8; one per primitive up to 8), as Embree's binner does: their trees trace as fast
-// (1.1M bunny, bunny, rtiow-final: `bench/ab.sh`), and the 1.1M bunny's binary tree builds in 329 ms, not 363 (one thread).
+// about one per 20 (at least 8; one per primitive up to 8), as Embree's binner does: their trees trace as
+// fast (1.1M bunny, bunny, rtiow-final: `bench/ab.sh`), and the 1.1M bunny's binary tree builds in 329 ms,
+// not 363 (one thread).
 static void bins_init(bins *b, size_t n, const box3 *cbounds) {
     size_t want = n <= 8 ? (n < 4 ? 4 : n) : (n < 80 ? 8 : 4 + n / 20);
     int nb = want < SAH_BINS ? (int)want : SAH_BINS;
