@@ -426,7 +426,7 @@ static uint32_t build_range(builder *bd, size_t begin, size_t end, uint64_t dept
 // than they save); the top leaves at least SUBTREES_PER_THREAD subtrees per thread, for the balance of the
 // threads; a step over a range is cut into at most CHUNKS_PER_THREAD chunks per thread, of at least
 // PARALLEL_MIN / CHUNK_DIVISOR primitives.
-enum { PARALLEL_MIN = 1 << 15, SUBTREES_PER_THREAD = 8, CHUNKS_PER_THREAD = 4, CHUNK_DIVISOR = 8 };
+enum { PARALLEL_MIN = 1 << 15, SUBTREES_PER_THREAD = 4, CHUNKS_PER_THREAD = 4, CHUNK_DIVISOR = 8 };
 #define NO_SUBTREE SIZE_MAX
 
 /// A range the top leaves to one thread.
