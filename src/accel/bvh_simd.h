@@ -28,8 +28,10 @@ typedef struct simd_ray {
 // Computes what trav_setup computes (the same IEEE operations, so the same values); false for a ray with a
 // NaN coordinate. Every traversal pays for it once, so it broadcasts from memory rather than shuffling. The
 // ray was just written field by field: loads that span several of those stores would wait for them to
-// retire (no store-to-load forwarding), so every load here reads one float.
-static inline bool simd_setup(const ray *r, simd_ray *s) {
+// retire (no store-to-load forwarding), so every load here reads one float. `boxes_only`: only what the box
+// tests read (a tree of triangles, whose constants are simd_tri's), where a stream's rays would store the rest
+// for nothing.
+static inline bool simd_setup(const ray *r, simd_ray *s, bool boxes_only) {
     __m128 o = _mm_setr_ps(r->o.x, r->o.y, r->o.z, 0.0f), d = _mm_setr_ps(r->d.x, r->d.y, r->d.z, 1.0f);
     if (_mm_movemask_ps(_mm_cmpunord_ps(o, d)) != 0) return false;
     const __m128 sign = _mm_set1_ps(-0.0f), eps = _mm_set1_ps(DIR_EPSILON);
@@ -43,13 +45,14 @@ static inline bool simd_setup(const ray *r, simd_ray *s) {
     s->noi[0] = _mm256_broadcastss_ps(noi);
     s->noi[1] = _mm256_broadcastss_ps(_mm_movehdup_ps(noi));
     s->noi[2] = _mm256_broadcastss_ps(_mm_movehl_ps(noi, noi));
+    s->tmin = PK(broadcast_ss)(&r->tmin);
+    if (boxes_only) return true;
     s->ox = PK(broadcast_ss)(&r->o.x);
     s->oy = PK(broadcast_ss)(&r->o.y);
     s->oz = PK(broadcast_ss)(&r->o.z);
     s->dx = PK(broadcast_ss)(&r->d.x);
     s->dy = PK(broadcast_ss)(&r->d.y);
     s->dz = PK(broadcast_ss)(&r->d.z);
-    s->tmin = PK(broadcast_ss)(&r->tmin);
     s->tmax = PK(broadcast_ss)(&r->tmax);
     float a = v3_dot(r->d, r->d);
     s->a = PK(set1_ps)(a);

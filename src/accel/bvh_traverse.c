@@ -397,7 +397,7 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
     simd_ray sr;
     simd_tri stri;
     if (simd) {
-        if (!simd_setup(r, &sr)) return false;
+        if (!simd_setup(r, &sr, leaves == LEAVES_TRIANGLES)) return false;
     } else
 #endif
     {
@@ -486,7 +486,7 @@ static inline __attribute__((always_inline)) void wide_stream(const bvh *b, int 
     int active[BVH_STREAM], live = 0;
     for (int i = 0; i < n; i++) {
         found[i] = false;
-        if (b->root == BVH_EMPTY || !simd_setup(&rays[i], &s[i].sr)) continue; // no tree, or a NaN ray
+        if (b->root == BVH_EMPTY || !simd_setup(&rays[i], &s[i].sr, leaves == LEAVES_TRIANGLES)) continue; // no tree, or a NaN ray
         s[i].tc.ready = false;
         if (leaves == LEAVES_TRIANGLES) {
             tri_for(&s[i].tc, &rays[i]);
