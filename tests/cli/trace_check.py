@@ -6,7 +6,8 @@ Usage: trace_check.py TRACE.json TILES PASSES THREADS [stopped]
 The file must be JSON in the Chrome trace-event format: thread-name metadata for "main", "worker 1" ...
 "worker THREADS-1" and "sample passes"; complete events with non-negative times; TILES x PASSES "tile" events
 (each tile pass once, on a worker's row) unless the render was stopped, one per pass on the passes' row, and
-one "scene load", "BVH build", "render" and "image write". Prints what is wrong and exits 1, or exits 0.
+one "scene load", "BVH build" (with its four steps inside it), "render" and "image write". Prints what is
+wrong and exits 1, or exits 0.
 """
 import json
 import sys
@@ -53,6 +54,15 @@ def problems(path, tiles, passes, threads, stopped):
         found = [e for e in complete if e["name"] == name]
         if len(found) != 1 or rows.get(found[0]["tid"]) != "main":
             yield "%d %r events on the main row, expected 1" % (len(found), name)
+    # The build's steps, one each for the world's tree, inside the build and in their order.
+    build = [e for e in complete if e["name"] == "BVH build"]
+    steps = [e for e in complete if e["name"] in ("BVH boxes", "BVH binary tree", "BVH wide nodes", "BVH leaf packets")]
+    if [e["name"] for e in sorted(steps, key=lambda e: e["ts"])] != [
+            "BVH boxes", "BVH binary tree", "BVH wide nodes", "BVH leaf packets"]:
+        yield "BVH steps %s, expected boxes, binary tree, wide nodes, leaf packets" % [e["name"] for e in steps]
+    elif len(build) == 1 and any(e["tid"] != build[0]["tid"] or e["ts"] < build[0]["ts"] or
+                                 e["ts"] + e["dur"] > build[0]["ts"] + build[0]["dur"] + 0.002 for e in steps):
+        yield "a BVH step is not inside the BVH build on its row"
 
 
 def main():
