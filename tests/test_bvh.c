@@ -335,7 +335,7 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
         CHECK(scene_add_mesh(s, &m) == (long)i);
     }
     for (size_t i = 0; i < instances; i++) {
-        instance in = {INSTANCE_MESH, 0, random_transform(&g), -1, 0};
+        instance in = {.kind = INSTANCE_MESH, .xf = random_transform(&g), .material = -1};
         if (meshes == 0 || rng_float(&g) < 0.3f) {
             sphere sp = {v3(urand(&g, -1, 1), urand(&g, -1, 1), urand(&g, -1, 1)), urand(&g, 0.3f, 1.5f), 0};
             in.kind = INSTANCE_SPHERE;

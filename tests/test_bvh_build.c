@@ -177,7 +177,7 @@ static void check_soup(void) {
     CHECK(make_soup(&g, 300000, &m));
     check_same_trees("soup of 300k triangles", (bvh_input){.mesh = &m});
     const mesh *meshes[1] = {&m};
-    instance inst = {INSTANCE_MESH, 0, transform_identity(), -1, 0};
+    instance inst = {.kind = INSTANCE_MESH, .xf = transform_identity(), .material = -1};
     accel_input in = {.meshes = meshes, .mesh_count = 1, .instances = &inst, .instance_count = 1};
     check_queries("soup of 300k triangles", &in, 3, 100, 5);
     mesh_free(&m);

@@ -3,6 +3,16 @@
 
 #include <math.h>
 
+// Sets q->magnitude from its corners (whenever they are set).
+static void set_magnitude(quad *q) {
+    float m = 0.0f;
+    for (int k = 0; k < 4; k++) {
+        vec3 p = q->p[k];
+        m = fmaxf(m, fmaxf(fabsf(p.x), fmaxf(fabsf(p.y), fabsf(p.z))));
+    }
+    q->magnitude = m;
+}
+
 bool quad_make(vec3 q, vec3 u, vec3 v, uint32_t material, quad *out) {
     if (!v3_is_finite(q) || !v3_is_finite(u) || !v3_is_finite(v)) return false;
     vec3 n = v3_cross(u, v);
@@ -20,6 +30,7 @@ bool quad_make(vec3 q, vec3 u, vec3 v, uint32_t material, quad *out) {
     out->inv_len_u = 1.0f / v3_len(u); // finite: u x v is not zero, so neither is u nor v
     out->inv_len_v = 1.0f / v3_len(v);
     out->material = material;
+    set_magnitude(out);
     return true;
 }
 
@@ -42,6 +53,7 @@ bool quad_box(vec3 a, vec3 b, uint32_t material, quad out[6]) {
             vec3 *p = &out[i].p[k];
             *p = v3(snap(p->x, lo.x, hi.x), snap(p->y, lo.y, hi.y), snap(p->z, lo.z, hi.z));
         }
+    for (int i = 0; i < 6; i++) set_magnitude(&out[i]);
     return true;
 }
 
@@ -61,5 +73,6 @@ bool quad_transform(const quad *q, const mat4 *m, quad *out) {
     }
     if (!quad_make(p[0], v3_sub(p[1], p[0]), v3_sub(p[3], p[0]), q->material, out)) return false;
     for (int k = 0; k < 4; k++) out->p[k] = p[k];
+    set_magnitude(out);
     return true;
 }

@@ -17,6 +17,7 @@ typedef struct quad {
     vec3 normal;       ///< unit u x v
     float area;        ///< |u x v|
     float inv_len_u, inv_len_v; ///< 1 / |u| and 1 / |v|: distances along an edge in parameter units (spawn.h)
+    float magnitude;   ///< the largest |coordinate| of its corners: what intersection errors scale with (spawn.h)
     uint32_t material; ///< index into the scene's materials
 } quad;
 

@@ -36,11 +36,7 @@ static inline float spawn_max_abs(vec3 p) {
 /// magnitude times the transform's largest row sum (its infinity norm, bounding how it stretches lengths).
 static inline float spawn_primitive_magnitude(const glint_scene *s, const surface *sf) {
     if (sf->instance == HIT_NO_INSTANCE) {
-        if (sf->kind != HIT_QUAD) return 0.0f;
-        const quad *q = &s->quads[sf->prim];
-        float m = spawn_max_abs(q->p[0]), k;
-        for (int i = 1; i < 4; i++) m = (k = spawn_max_abs(q->p[i])) > m ? k : m;
-        return m;
+        return sf->kind == HIT_QUAD ? s->quads[sf->prim].magnitude : 0.0f;
     }
     const instance *in = &s->instances[sf->instance];
     transform moved; // a moving instance at the hit's time
@@ -57,12 +53,7 @@ static inline float spawn_primitive_magnitude(const glint_scene *s, const surfac
         obj = (k = spawn_max_abs(p1)) > obj ? k : obj;
         obj = (k = spawn_max_abs(p2)) > obj ? k : obj;
     }
-    float norm = 0.0f;
-    for (int i = 0; i < 3; i++) {
-        const float *row = m->m[i];
-        norm = (k = fabsf(row[0]) + fabsf(row[1]) + fabsf(row[2])) > norm ? k : norm;
-    }
-    return obj * norm;
+    return obj * (in->motion ? mat4_stretch(m) : in->stretch);
 }
 
 /// The spawn point at p, re-projected onto a world sphere of radius r (sphere_hit_frame), with unit normal n,

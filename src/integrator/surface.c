@@ -18,14 +18,6 @@ static void orient(surface *out, const ray *r, vec3 outward, vec3 ns) {
     out->n = out->front ? ns : v3_neg(ns);
 }
 
-// Whether m's linear part is a positive multiple of the identity (a placement by scale and translation): it
-// turns no direction, so object-space unit normals are already the world's, and their transforms are skipped.
-static bool keeps_directions(const mat4 *m) {
-    float k = m->m[0][0];
-    return k > 0.0f && m->m[1][1] == k && m->m[2][2] == k && m->m[0][1] == 0.0f && m->m[0][2] == 0.0f &&
-           m->m[1][0] == 0.0f && m->m[1][2] == 0.0f && m->m[2][0] == 0.0f && m->m[2][1] == 0.0f;
-}
-
 surface surface_at_general(const glint_scene *s, const ray *r, const hit *h) {
     surface out;
     out.p = ray_at(r, h->t);
@@ -75,7 +67,7 @@ surface surface_at_general(const glint_scene *s, const ray *r, const hit *h) {
     tri_hit th = {h->t, 1.0f - h->b1 - h->b2, h->b1, h->b2};
     mesh_shading sh = mesh_shade(&sm->geometry, h->prim, &th);
     vec3 ng = sh.ng, ns = sh.ns;
-    if (!keeps_directions(&xf->m)) {
+    if (!(in->motion ? mat4_keeps_directions(&xf->m) : in->keeps_directions)) {
         ng = v3_unit(mat4_apply_normal(&xf->inv, sh.ng));
         ns = v3_unit(mat4_apply_normal(&xf->inv, sh.ns));
     }

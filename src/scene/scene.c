@@ -123,6 +123,7 @@ long scene_add_instance_sphere(glint_scene *s, sphere sp) {
 
 bool scene_add_instance(glint_scene *s, instance in) {
     if (!SCENE_RESERVE(s, instances, s->instance_count)) return false;
+    instance_cache(&in);
     s->instances[s->instance_count++] = in;
     return true;
 }

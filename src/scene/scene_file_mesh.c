@@ -196,6 +196,7 @@ bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
         return false;
     uint32_t motion_ref;
     if (!sf_read_motion(ld, o, &xf, ob, "mesh", &motion_ref)) return false;
-    instance in = {INSTANCE_MESH, entry->mesh, xf, override ? (int32_t)mat : -1, motion_ref};
+    instance in = {.kind = INSTANCE_MESH, .index = entry->mesh, .xf = xf, .material = override ? (int32_t)mat : -1,
+                   .motion = motion_ref};
     return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
 }
