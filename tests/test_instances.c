@@ -241,6 +241,18 @@ static void test_identity_transform(void) {
                 exact = exact && s->instances[0].xf.m.m[i][j] == (i == j ? 1.0f : 0.0f) &&
                         s->instances[0].xf.inv.m[i][j] == (i == j ? 1.0f : 0.0f);
         CHECK(exact); // the premise of the comparison: the composed matrix is exactly the identity
+        // What scene_add_instance caches of the transform, for shading.
+        CHECK(s->instances[0].stretch == 1.0f && s->instances[0].keeps_directions);
+    }
+    glint_scene_free(s);
+    s = parse_scene("{'type': 'mesh', 'file': 'gem.obj', 'transform': [{'rotate': {'axis': [0, 0, 1], 'degrees': 90}},"
+                    " {'scale': [2, 1, 1]}]}",
+                    WHITTED, "bvh");
+    CHECK(s && s->instance_count == 1);
+    if (s && s->instance_count == 1) {
+        const instance *in = &s->instances[0];
+        CHECK(in->stretch == mat4_stretch(&in->xf.m) && in->stretch > 1.9f && in->stretch < 2.1f);
+        CHECK(!in->keeps_directions);
     }
     glint_scene_free(s);
     check_same_images(composed, none, "identity transform vs none", false);

@@ -350,6 +350,29 @@ static void test_quad(void) {
     CHECK_NEAR(q.area, 6.0, 1e-6);
     CHECK_NEAR(q.normal.z, 1.0, 0);
     CHECK(q.material == 7);
+    CHECK(q.magnitude == 3.0f); // the largest |coordinate| of its corners (spawn offsets scale with it)
+    // Corners that are moved after quad_make (snapped to a box, transformed) keep the magnitude true.
+    quad box[6], moved;
+    CHECK(quad_box(v3(-5, 0.5f, 1), v3(1, 2, 4), 0, box));
+    for (int i = 0; i < 6; i++) CHECK(box[i].magnitude == (i == 1 ? 4.0f : 5.0f));
+    mat4 m = mat4_translate(v3(0, -10, 0));
+    CHECK(quad_transform(&q, &m, &moved) && moved.magnitude == 10.0f);
+    // Boxes whose far corners q + u + v round off the box until snapped: the magnitude is the snapped corners'.
+    rng g = rng_for_sample(9, 9, 9);
+    int checked = 0;
+    for (int t = 0; t < 200; t++) {
+        vec3 a = v3(rng_range(&g, -3, 3), rng_range(&g, -3, 3), rng_range(&g, -3, 3));
+        vec3 b = v3_add(a, v3(rng_range(&g, 0.1f, 3), rng_range(&g, 0.1f, 3), rng_range(&g, 0.1f, 3)));
+        if (!quad_box(a, b, 0, box)) continue;
+        for (int i = 0; i < 6; i++) {
+            float want = 0.0f;
+            for (int k = 0; k < 4; k++)
+                want = fmaxf(want, fmaxf(fabsf(box[i].p[k].x), fmaxf(fabsf(box[i].p[k].y), fabsf(box[i].p[k].z))));
+            CHECK(box[i].magnitude == want);
+            checked++;
+        }
+    }
+    CHECK(checked == 1200);
     ray r = mkray(v3(0.5f, 1.5f, -1), v3(0, 0, 1));
     tri_ray tr = tri_ray_make(&r);
     quad_hit h;

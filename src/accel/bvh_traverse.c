@@ -486,7 +486,8 @@ static inline __attribute__((always_inline)) void wide_stream(const bvh *b, int 
     int active[BVH_STREAM], live = 0;
     for (int i = 0; i < n; i++) {
         found[i] = false;
-        if (b->root == BVH_EMPTY || !simd_setup(&rays[i], &s[i].sr, leaves == LEAVES_TRIANGLES)) continue; // no tree, or a NaN ray
+        // No tree, or a NaN ray: nothing to trace.
+        if (b->root == BVH_EMPTY || !simd_setup(&rays[i], &s[i].sr, leaves == LEAVES_TRIANGLES)) continue;
         s[i].tc.ready = false;
         if (leaves == LEAVES_TRIANGLES) {
             tri_for(&s[i].tc, &rays[i]);

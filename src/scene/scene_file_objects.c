@@ -230,8 +230,8 @@ static bool read_sphere_shape(sf_loader *ld, const jr_obj *o, const char *what) 
     if (motion_ref) { // always an instance: its transform changes with time
         long i = scene_add_instance_sphere(ld->scene, s);
         if (i < 0) return sf_fail_oom(ld);
-        instance in = {
-            .kind = INSTANCE_SPHERE, .index = (uint32_t)i, .xf = xf, .material = (int32_t)s.material, .motion = motion_ref};
+        instance in = {.kind = INSTANCE_SPHERE, .index = (uint32_t)i, .xf = xf, .material = (int32_t)s.material,
+                       .motion = motion_ref};
         return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
     }
     size_t where = jr_member_offset(&ld->r, o, moved ? "transform" : "center");
