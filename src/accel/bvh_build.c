@@ -1,6 +1,7 @@
 // bvh_build.c — binned-SAH construction of the binary BVH, and its collapse into the wide BVH with
 // structure-of-arrays leaf packets.
 #include "accel/bvh.h"
+#include "accel/tri_split.h"
 #include "core/array.h"
 #include "core/thread_pool.h"
 #include "core/trace.h"
@@ -869,23 +870,32 @@ static uint32_t note_leaf(collapser *cl, const bvh2_node *leaf) {
 enum { SORT_NODES_PER_ITEM = 16384 };
 
 typedef struct sort_job {
-    const bvh2_node *nodes;
+    bvh2_node *nodes;
     prim_ref *refs;
     size_t count;
 } sort_job;
 
 // Sorts the references of every leaf among nodes [item * SORT_NODES_PER_ITEM, ...) by (kind, instance, index),
-// which groups them into packets and orders the lanes (leaves own disjoint ranges of refs).
+// which groups them into packets and orders the lanes (leaves own disjoint ranges of refs), and keeps one of
+// each: two pieces of a pre-split triangle may share a leaf.
 static void sort_leaves_run(void *ctx, size_t item) {
     const sort_job *job = ctx;
     size_t begin = item * SORT_NODES_PER_ITEM, end = begin + SORT_NODES_PER_ITEM;
     if (end > job->count) end = job->count;
-    for (size_t i = begin; i < end; i++)
-        if (job->nodes[i].count > 0) sort_refs(&job->refs[job->nodes[i].offset], job->nodes[i].count);
+    for (size_t i = begin; i < end; i++) {
+        bvh2_node *leaf = &job->nodes[i];
+        if (leaf->count == 0) continue;
+        prim_ref *refs = &job->refs[leaf->offset];
+        sort_refs(refs, leaf->count);
+        uint32_t kept = 1;
+        for (uint32_t k = 1; k < leaf->count; k++)
+            if (ref_order(&refs[k], &refs[kept - 1]) != 0) refs[kept++] = refs[k];
+        leaf->count = kept;
+    }
 }
 
 // sort_leaves_run over the whole binary tree, on the pool's threads when there is one.
-static void sort_leaves(thread_pool *pool, const bvh2_node *nodes, size_t count, prim_ref *refs) {
+static void sort_leaves(thread_pool *pool, bvh2_node *nodes, size_t count, prim_ref *refs) {
     sort_job job = {nodes, refs, count};
     size_t items = (count + SORT_NODES_PER_ITEM - 1) / SORT_NODES_PER_ITEM;
     if (pool) thread_pool_run(pool, items, sort_leaves_run, &job);
@@ -1160,6 +1170,103 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims, thread_pool *
     return n;
 }
 
+/* ------------------------------------------------------------------------------------------------ */
+/* Pre-splitting long, slanted triangles (tri_split.h)                                                */
+
+/// Primitives whose triangles one pool item looks at for pre-splitting.
+enum { SPLIT_PER_ITEM = 16384 };
+
+typedef struct split_job {
+    const bvh_input *in;
+    build_prim *prims;
+    size_t n;     ///< primitives gathered; the extra pieces go after them
+    size_t items;
+    size_t (*levels)[TRI_SPLIT_MAX_LEVELS + 1]; ///< levels[item][l]: the item's triangles asking for l levels
+    size_t *first; ///< first[item]: where the item's extra pieces start, after n
+} split_job;
+
+// The corners of triangle primitive p (of the BVH's mesh or of a flattened instance).
+static void prim_triangle(const bvh_input *in, prim_ref r, vec3 p[3]) {
+    uint32_t owner = prim_ref_instance(r);
+    const mesh *m = owner == HIT_NO_INSTANCE ? in->mesh : in->flat[owner];
+    mesh_triangle_positions(m, r.index, &p[0], &p[1], &p[2]);
+}
+
+static void split_count_run(void *ctx, size_t item) {
+    const split_job *job = ctx;
+    size_t begin = item * SPLIT_PER_ITEM, end = begin + SPLIT_PER_ITEM < job->n ? begin + SPLIT_PER_ITEM : job->n;
+    for (size_t k = begin; k < end; k++) {
+        if (job->prims[k].ref.kind != PRIM_TRIANGLE) continue;
+        vec3 p[3];
+        prim_triangle(job->in, job->prims[k].ref, p);
+        job->levels[item][tri_split_levels(p[0], p[1], p[2])]++;
+    }
+}
+
+// The pieces beyond the first of the triangles counted in levels.
+static size_t split_extra(const size_t levels[TRI_SPLIT_MAX_LEVELS + 1]) {
+    size_t extra = 0;
+    for (int l = 1; l <= TRI_SPLIT_MAX_LEVELS; l++) extra += levels[l] * (((size_t)1 << l) - 1);
+    return extra;
+}
+
+static void split_place_run(void *ctx, size_t item) {
+    const split_job *job = ctx;
+    if (split_extra(job->levels[item]) == 0) return;
+    size_t begin = item * SPLIT_PER_ITEM, end = begin + SPLIT_PER_ITEM < job->n ? begin + SPLIT_PER_ITEM : job->n;
+    size_t at = job->n + job->first[item];
+    for (size_t k = begin; k < end; k++) {
+        if (job->prims[k].ref.kind != PRIM_TRIANGLE) continue;
+        vec3 p[3];
+        prim_triangle(job->in, job->prims[k].ref, p);
+        int levels = tri_split_levels(p[0], p[1], p[2]);
+        if (levels == 0) continue;
+        bounds3 piece[1 << TRI_SPLIT_MAX_LEVELS];
+        int count = tri_split_bounds(p[0], p[1], p[2], levels, piece);
+        if (count == 0) continue; // cannot happen for a triangle that asks for levels; keep its whole box
+        job->prims[k].box = box_padded(piece[0]);
+        // Every piece counted has its place; a piece found empty (never for a real triangle) repeats the first.
+        for (int j = 1; j < 1 << levels; j++)
+            job->prims[at++] = (build_prim){box_padded(piece[j < count ? j : 0]), job->prims[k].ref};
+    }
+}
+
+// Splits the long, slanted triangles among (*prims)[0, n) into pieces, each a reference to its triangle with the
+// box of its part (tri_split.h), the extra pieces appended in order: the same array for any number of threads.
+// Returns the new count; n when nothing asks to be split or there is no memory for it (the tree is correct either way).
+static size_t presplit(const bvh_input *in, build_prim **prims, size_t n, thread_pool *pool) {
+    split_job job = {.in = in, .prims = *prims, .n = n, .items = (n + SPLIT_PER_ITEM - 1) / SPLIT_PER_ITEM};
+    job.levels = calloc(job.items, sizeof *job.levels);
+    job.first = malloc(job.items * sizeof *job.first);
+    size_t extra = 0;
+    if (!job.levels || !job.first) goto done;
+    if (pool) thread_pool_run(pool, job.items, split_count_run, &job);
+    else
+        for (size_t i = 0; i < job.items; i++) split_count_run(&job, i);
+    for (size_t i = 0; i < job.items; i++) {
+        job.first[i] = extra;
+        extra += split_extra(job.levels[i]);
+    }
+    // At most 1 << TRI_SPLIT_MAX_LEVELS references a triangle; nothing to split, or no room: the whole boxes.
+    if (extra == 0 || n + extra >= BVH_LEAF / 2) {
+        extra = 0;
+        goto done;
+    }
+    build_prim *grown = realloc(*prims, (n + extra) * sizeof *grown);
+    if (!grown) {
+        extra = 0;
+        goto done;
+    }
+    *prims = job.prims = grown;
+    if (pool) thread_pool_run(pool, job.items, split_place_run, &job);
+    else
+        for (size_t i = 0; i < job.items; i++) split_place_run(&job, i);
+done:
+    free(job.levels);
+    free(job.first);
+    return n + extra;
+}
+
 // A sphere whose box is at least this fraction of the scene's (by surface area) is not put in the wide tree but
 // tested after it, against the tree's nearest hit: nearly every ray enters its box anyway (the book's ground
 // of radius 1000, whose box is the scene's), and a test without the traversal's branches costs less than
@@ -1246,6 +1353,11 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     size_t n = gather_prims(in, prims, pool, &all, &b->triangles_only);
     build_step_traced("BVH boxes", began);
     b->prim_count = n;
+    if (wide && !in->no_presplit && n > 0) {
+        began = trace_current() ? trace_clock() : 0;
+        n = presplit(in, &prims, n, pool);
+        build_step_traced("BVH pre-split", began);
+    }
     if (n == 0) {
         thread_pool_stop(pool);
         free(prims);
