@@ -3,6 +3,7 @@
 // stopped from another thread returns false and frees everything (the sanitizer build checks the leaks).
 #include "accel/accel.h"
 #include "accel/bvh.h"
+#include "accel/tri_split.h"
 #include "core/rng.h"
 
 #include "check.h"
@@ -183,6 +184,109 @@ static void check_soup(void) {
     mesh_free(&m);
 }
 
+static float box_half_area3(bounds3 b) {
+    vec3 d = v3_sub(b.hi, b.lo);
+    return d.x * d.y + d.y * d.z + d.z * d.x;
+}
+
+// tri_split: well-shaped triangles at any orientation are left whole, slivers across their box cut three times;
+// the pieces' boxes lie in the triangle's box, are smaller together than it, and hold every point of the triangle.
+static void check_tri_split(void) {
+    rng g = rng_for_sample(21, 0, 0);
+    for (int i = 0; i < 2000; i++) { // equilateral triangles, randomly turned and placed
+        vec3 a = v3(urand(&g, -1, 1), urand(&g, -1, 1), urand(&g, -1, 1)), b = v3(urand(&g, -1, 1), urand(&g, -1, 1), urand(&g, -1, 1));
+        if (v3_len2(a) < 1e-3f || v3_len2(b) < 1e-3f) continue;
+        vec3 u = v3_unit(a), w = v3_unit(v3_cross(a, b)), v = v3_cross(w, u); // orthonormal u, v in the plane
+        vec3 c = v3(urand(&g, -50, 50), urand(&g, -50, 50), urand(&g, -50, 50));
+        float s = urand(&g, 0.01f, 10.0f), h = s * 0.8660254f;
+        vec3 p0 = c, p1 = v3_fma(c, u, s), p2 = v3_fma(v3_fma(c, u, 0.5f * s), v, h);
+        CHECK(tri_split_levels(p0, p1, p2) == 0);
+    }
+    CHECK(tri_split_levels(v3(0, 0, 0), v3(1, 1, 1), v3(2, 2, 2)) == 0); // degenerate
+    CHECK(tri_split_levels(v3(0, 0, 0), v3(10, 0, 0), v3(0, 0.01f, 0)) == 0); // long, but along an axis: a tight box
+    int cut = 0;
+    for (int i = 0; i < 500; i++) { // long slivers across their boxes
+        vec3 p0 = v3(urand(&g, -5, 5), urand(&g, -5, 5), urand(&g, -5, 5));
+        vec3 e = v3(urand(&g, 1, 4), urand(&g, 1, 4), urand(&g, -4, -1));
+        vec3 p1 = v3_add(p0, e), p2 = v3_add(p0, v3(urand(&g, -0.01f, 0.01f), urand(&g, -0.01f, 0.01f), 0.02f));
+        int levels = tri_split_levels(p0, p1, p2);
+        CHECK(levels >= 1 && levels <= TRI_SPLIT_MAX_LEVELS);
+        cut += levels == TRI_SPLIT_MAX_LEVELS;
+        bounds3 piece[1 << TRI_SPLIT_MAX_LEVELS];
+        int n = tri_split_bounds(p0, p1, p2, levels, piece);
+        CHECK(n == 1 << levels);
+        bounds3 whole = bounds3_add(bounds3_add(bounds3_add(bounds3_empty(), p0), p1), p2);
+        float pieces_area = 0.0f; // the pieces' boxes are far smaller together than the triangle's (half areas)
+        for (int k = 0; k < n; k++) {
+            CHECK(piece[k].lo.x >= whole.lo.x && piece[k].lo.y >= whole.lo.y && piece[k].lo.z >= whole.lo.z);
+            CHECK(piece[k].hi.x <= whole.hi.x && piece[k].hi.y <= whole.hi.y && piece[k].hi.z <= whole.hi.z);
+            pieces_area += box_half_area3(piece[k]);
+        }
+        CHECK(pieces_area < 0.75f * box_half_area3(whole));
+        for (int j = 0; j < 200; j++) { // points of the triangle, in double: each in some piece's box
+            double a = rng_float(&g), b = rng_float(&g);
+            if (a + b > 1.0) a = 1.0 - a, b = 1.0 - b;
+            if (j == 0) a = 0.0, b = 0.0; // the corners too
+            if (j == 1) a = 1.0, b = 0.0;
+            if (j == 2) a = 0.0, b = 1.0;
+            double q[3] = {p0.x + a * ((double)p1.x - p0.x) + b * ((double)p2.x - p0.x),
+                           p0.y + a * ((double)p1.y - p0.y) + b * ((double)p2.y - p0.y),
+                           p0.z + a * ((double)p1.z - p0.z) + b * ((double)p2.z - p0.z)};
+            bool inside = false;
+            for (int k = 0; k < n && !inside; k++) {
+                const float lo[3] = {piece[k].lo.x, piece[k].lo.y, piece[k].lo.z}, hi[3] = {piece[k].hi.x, piece[k].hi.y, piece[k].hi.z};
+                bool in = true;
+                for (int ax = 0; ax < 3; ax++) in = in && q[ax] >= (double)lo[ax] - 1e-12 && q[ax] <= (double)hi[ax] + 1e-12;
+                inside = in;
+            }
+            CHECK(inside);
+        }
+    }
+    CHECK(cut > 0);
+}
+
+// A sphere of slivers (bands from pole to pole, many thin segments): pre-split, so the BVH holds more leaves than
+// without, the same tree for any number of threads, and the same hits as brute force.
+static void check_slivers(void) {
+    enum { BANDS = 4, SEGMENTS = 3000 };
+    mesh m;
+    memset(&m, 0, sizeof m);
+    m.position_count = (BANDS + 1) * SEGMENTS;
+    m.triangle_count = 2 * BANDS * SEGMENTS;
+    m.positions = malloc(m.position_count * sizeof *m.positions);
+    m.triangles = malloc(m.triangle_count * sizeof *m.triangles);
+    CHECK(m.positions && m.triangles);
+    if (!m.positions || !m.triangles) {
+        mesh_free(&m);
+        return;
+    }
+    for (int i = 0; i <= BANDS; i++)
+        for (int j = 0; j < SEGMENTS; j++) {
+            double th = 3.14159265358979 * i / BANDS, ph = 2 * 3.14159265358979 * j / SEGMENTS;
+            m.positions[i * SEGMENTS + j] = v3((float)(5 * sin(th) * cos(ph)), (float)(5 * cos(th)), (float)(5 * sin(th) * sin(ph)));
+        }
+    size_t t = 0;
+    for (int i = 0; i < BANDS; i++)
+        for (int j = 0; j < SEGMENTS; j++) {
+            int32_t a = i * SEGMENTS + j, b = i * SEGMENTS + (j + 1) % SEGMENTS, c = a + SEGMENTS, d = b + SEGMENTS;
+            m.triangles[t++] = (mesh_triangle){{a, c, b}, -1};
+            m.triangles[t++] = (mesh_triangle){{b, c, d}, -1};
+        }
+    mesh_compute_bounds(&m);
+    bvh split, whole;
+    CHECK(bvh_build(&split, &(bvh_input){.mesh = &m}, true));
+    CHECK(bvh_build(&whole, &(bvh_input){.mesh = &m, .no_presplit = true}, true));
+    CHECK(split.stats.leaves > 2 * whole.stats.leaves);
+    bvh_release(&split);
+    bvh_release(&whole);
+    check_same_trees("sphere of slivers", (bvh_input){.mesh = &m, .parallel_min = 4096});
+    const mesh *meshes[1] = {&m};
+    instance inst = {.kind = INSTANCE_MESH, .xf = transform_identity(), .material = -1};
+    accel_input in = {.meshes = meshes, .mesh_count = 1, .instances = &inst, .instance_count = 1};
+    check_queries("sphere of slivers", &in, 2, 3000, 7);
+    mesh_free(&m);
+}
+
 static void check_sphere_scene(void) {
     rng g = rng_for_sample(12, 100, 0);
     size_t n = 100000;
@@ -272,6 +376,8 @@ static void check_stop(void) {
 
 int main(void) {
     check_small();
+    check_tri_split();
+    check_slivers();
     check_soup();
     check_sphere_scene();
     check_stop();
