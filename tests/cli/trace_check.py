@@ -56,10 +56,10 @@ def problems(path, tiles, passes, threads, stopped):
             yield "%d %r events on the main row, expected 1" % (len(found), name)
     # The build's steps, one each for the world's tree, inside the build and in their order.
     build = [e for e in complete if e["name"] == "BVH build"]
-    steps = [e for e in complete if e["name"] in ("BVH boxes", "BVH binary tree", "BVH wide nodes", "BVH leaf packets")]
-    if [e["name"] for e in sorted(steps, key=lambda e: e["ts"])] != [
-            "BVH boxes", "BVH binary tree", "BVH wide nodes", "BVH leaf packets"]:
-        yield "BVH steps %s, expected boxes, binary tree, wide nodes, leaf packets" % [e["name"] for e in steps]
+    order = ["BVH boxes", "BVH pre-split", "BVH binary tree", "BVH wide nodes", "BVH leaf packets"]
+    steps = [e for e in complete if e["name"] in order]
+    if [e["name"] for e in sorted(steps, key=lambda e: e["ts"])] != order:
+        yield "BVH steps %s, expected boxes, pre-split, binary tree, wide nodes, leaf packets" % [e["name"] for e in steps]
     elif len(build) == 1 and any(e["tid"] != build[0]["tid"] or e["ts"] < build[0]["ts"] or
                                  e["ts"] + e["dur"] > build[0]["ts"] + build[0]["dur"] + 0.002 for e in steps):
         yield "a BVH step is not inside the BVH build on its row"
