@@ -83,6 +83,7 @@ static float box_half_area(const box3 *b) {
 typedef struct build_prim {
     box3 box;
     prim_ref ref;
+    uint32_t split_levels; ///< a triangle's tri_split_levels, found while its corners are at hand (gather)
 } build_prim;
 
 /// Centroid of a primitive's box on axis a, computed where it is needed rather than stored (16 bytes a
@@ -1091,7 +1092,10 @@ static void gather_triangles_run(void *ctx, size_t item) {
     size_t end = begin + job->per_item < count ? begin + job->per_item : count;
     box3 all = box_empty();
     for (size_t k = begin; k < end; k++) {
-        job->prims[k].box = box_padded(mesh_triangle_bounds(job->m, k));
+        vec3 p[3];
+        mesh_triangle_positions(job->m, k, &p[0], &p[1], &p[2]);
+        job->prims[k].box = box_padded(bounds3_add(bounds3_add(bounds3_add(bounds3_empty(), p[0]), p[1]), p[2]));
+        job->prims[k].split_levels = (uint32_t)tri_split_levels(p[0], p[1], p[2]);
         job->prims[k].ref = (prim_ref){.kind = PRIM_TRIANGLE, .index = (uint32_t)k, .instance = job->owner & PRIM_NO_INSTANCE};
         box_grow(&all, &job->prims[k].box);
     }
@@ -1195,12 +1199,8 @@ static void prim_triangle(const bvh_input *in, prim_ref r, vec3 p[3]) {
 static void split_count_run(void *ctx, size_t item) {
     const split_job *job = ctx;
     size_t begin = item * SPLIT_PER_ITEM, end = begin + SPLIT_PER_ITEM < job->n ? begin + SPLIT_PER_ITEM : job->n;
-    for (size_t k = begin; k < end; k++) {
-        if (job->prims[k].ref.kind != PRIM_TRIANGLE) continue;
-        vec3 p[3];
-        prim_triangle(job->in, job->prims[k].ref, p);
-        job->levels[item][tri_split_levels(p[0], p[1], p[2])]++;
-    }
+    for (size_t k = begin; k < end; k++)
+        if (job->prims[k].ref.kind == PRIM_TRIANGLE) job->levels[item][job->prims[k].split_levels]++;
 }
 
 // The pieces beyond the first of the triangles counted in levels.
@@ -1216,18 +1216,17 @@ static void split_place_run(void *ctx, size_t item) {
     size_t begin = item * SPLIT_PER_ITEM, end = begin + SPLIT_PER_ITEM < job->n ? begin + SPLIT_PER_ITEM : job->n;
     size_t at = job->n + job->first[item];
     for (size_t k = begin; k < end; k++) {
-        if (job->prims[k].ref.kind != PRIM_TRIANGLE) continue;
+        if (job->prims[k].ref.kind != PRIM_TRIANGLE || job->prims[k].split_levels == 0) continue;
+        int levels = (int)job->prims[k].split_levels;
         vec3 p[3];
         prim_triangle(job->in, job->prims[k].ref, p);
-        int levels = tri_split_levels(p[0], p[1], p[2]);
-        if (levels == 0) continue;
         bounds3 piece[1 << TRI_SPLIT_MAX_LEVELS];
         int count = tri_split_bounds(p[0], p[1], p[2], levels, piece);
         if (count == 0) continue; // cannot happen for a triangle that asks for levels; keep its whole box
         job->prims[k].box = box_padded(piece[0]);
         // Every piece counted has its place; a piece found empty (never for a real triangle) repeats the first.
         for (int j = 1; j < 1 << levels; j++)
-            job->prims[at++] = (build_prim){box_padded(piece[j < count ? j : 0]), job->prims[k].ref};
+            job->prims[at++] = (build_prim){box_padded(piece[j < count ? j : 0]), job->prims[k].ref, 0};
     }
 }
 
