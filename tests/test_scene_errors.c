@@ -79,7 +79,7 @@ static const bad_scene cases[] = {
      "objects, lights"},
     {__LINE__, TEXT("{\"render\": {\"samples\": 4}}"),
      "bad.json:1:13: unknown key \"samples\" in render; expected one of: width, height, spp, max_depth, seed, "
-     "integrator, background, output, accel"},
+     "integrator, background, output, accel, presplit"},
     {__LINE__, TEXT("{\"camera\": {\"type\": \"viewport\", \"vfov\": 40}}"),
      "bad.json:1:33: unknown key \"vfov\" in camera (viewport); expected one of: type, position, viewport, distance, "
      "shutter"},
@@ -204,6 +204,7 @@ static const bad_scene cases[] = {
      "bad.json:1:51: \"specular\" must be an integer in [-1, 2147483647], got 9900.5"},
     {__LINE__, TEXT("{\"materials\": {\"r\": {\"type\": \"phong\", \"reflective\": -0.2}}}"),
      "bad.json:1:53: \"reflective\" must be a number in [0, 1], got -0.2"},
+    {__LINE__, TEXT("{\"render\": {\"presplit\": 1}}"), "bad.json:1:25: \"presplit\" must be true or false, got 1"},
     {__LINE__, TEXT("{\"materials\": {\"l\": {\"type\": \"diffuse_light\", \"two_sided\": \"yes\"}}}"),
      "bad.json:1:60: \"two_sided\" must be true or false, got \"yes\""},
     {__LINE__, TEXT("{\"materials\": {\"l\": {\"type\": \"diffuse_light\", \"emission\": 1e999}}}"),

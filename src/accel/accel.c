@@ -101,7 +101,7 @@ accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
         bool ok = !in->mesh_count || a->blas;
         for (size_t i = 0; ok && i < in->mesh_count; i++, a->blas_count++) {
             if (!mesh_needs_blas(a, in, i)) continue;
-            bvh_input mi = {.mesh = meshes[i], .stop = in->stop, .threads = in->threads};
+            bvh_input mi = {.mesh = meshes[i], .stop = in->stop, .threads = in->threads, .no_presplit = in->no_presplit};
             ok = bvh_build(&a->blas[i], &mi, wide);
             a->stats.nodes += a->blas[i].stats.nodes;
             a->stats.leaves += a->blas[i].stats.leaves;
@@ -122,7 +122,8 @@ accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
                            .time0 = in->time0,
                            .time1 = in->time1,
                            .stop = in->stop,
-                           .threads = in->threads};
+                           .threads = in->threads,
+                           .no_presplit = in->no_presplit};
         ok = ok && bvh_build(&a->world, &world, wide);
         if (!ok) {
             accel_free(a);

@@ -37,6 +37,7 @@ typedef struct accel_input {
     const atomic_int *stop; ///< nonzero once a stop is requested: the build gives up (NULL: never)
     int threads;            ///< threads that build the BVHs (the same BVHs for any number); 0: all online CPUs
     size_t stream_min_bytes; ///< smallest world BVH (nodes and leaves) for accel_streams; 0: ACCEL_STREAM_MIN_BYTES
+    bool no_presplit;        ///< the wide BVHs keep long, slanted triangles whole (bvh_input.no_presplit)
 } accel_input;
 
 /// Kinds of primitive a hit can be on.

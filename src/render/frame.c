@@ -45,7 +45,8 @@ accel *frame_accel_build(const glint_scene *s, int threads, const atomic_int *st
                       .time1 = s->camera.shutter_close,
                       .stop = stop,
                       .threads = threads,
-                      .stream_min_bytes = s->settings.stream_min_bytes};
+                      .stream_min_bytes = s->settings.stream_min_bytes,
+                      .no_presplit = s->settings.no_presplit};
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
     accel *a = accel_build(&in, s->settings.accel, err);

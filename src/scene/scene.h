@@ -39,6 +39,7 @@ typedef struct render_settings {
     vec3 sky_horizon, sky_zenith; ///< sky: lerp(horizon, zenith, 0.5 * (dir.y + 1))
     output_transform transform;
     accel_kind accel;
+    bool no_presplit;        ///< "presplit": false: long, slanted triangles keep whole boxes in the BVH (accel_input)
     size_t stream_min_bytes; ///< (tests) smallest BVH whose rays are traced in streams (accel_input); 0: the default
 } render_settings;
 

@@ -333,7 +333,7 @@ static bool read_camera(sf_loader *ld, jr_val v) {
 // Render settings
 
 static const char *const render_keys[] = {"width",      "height",     "spp",    "max_depth", "seed",
-                                          "integrator", "background", "output", "accel",     NULL};
+                                          "integrator", "background", "output", "accel",     "presplit", NULL};
 static const char *const whitted_keys[] = {"type", "mode", NULL};
 static const char *const path_keys[] = {"type", NULL};
 static const char *const sky_keys[] = {"type", "horizon", "zenith", NULL};
@@ -499,6 +499,9 @@ static bool read_render(sf_loader *ld, jr_val v) {
     if (output >= 0) rs->transform = transform_kinds[output];
     ld->output_given = output >= 0;
     if (structure >= 0) rs->accel = accel_kinds[structure];
+    bool presplit = !rs->no_presplit;
+    if (!jr_read_bool(&ld->r, &o, "presplit", &presplit)) return false;
+    rs->no_presplit = !presplit;
     rs->width = (int)width;
     rs->height = (int)height;
     rs->spp = (int)spp;
