@@ -6,7 +6,8 @@
 #include <math.h>
 
 // A triangle's box half area (dx dy + dy dz + dz dx) against its area: halve it once above the first ratio,
-// twice above the second, three times above the third. Well-shaped triangles stay below 3.5 at any orientation.
+// twice above the second, three times above the third. At their worst orientation an equilateral triangle reaches
+// 4.6, a right isosceles one 5.2, a right one with legs 1:2 6.5 (and 1:4 10.2): well-shaped triangles stay whole.
 static const double SPLIT_RATIO[TRI_SPLIT_MAX_LEVELS] = {8.0, 32.0, 128.0};
 
 
