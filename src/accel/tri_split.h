@@ -12,8 +12,8 @@
 enum { TRI_SPLIT_MAX_LEVELS = 3 };
 
 /// How many times triangle (p0, p1, p2) asks to be halved, 0 to TRI_SPLIT_MAX_LEVELS, by how far its box's half
-/// area exceeds its own area: 0 for the triangles of an evenly tessellated surface (a triangle's box is at most
-/// at most 4.6 times an equilateral triangle's area, whatever its orientation), 0 for degenerate ones.
+/// area exceeds its own area: 0 for the triangles of an evenly tessellated surface (an equilateral triangle's box
+/// has at most 4.6 times its area, whatever its orientation), 0 for degenerate ones.
 int tri_split_levels(vec3 p0, vec3 p1, vec3 p2);
 
 /// Cuts triangle (p0, p1, p2) `levels` times (each piece halved across the longest axis of its box) and writes
