@@ -40,7 +40,8 @@ def needles(path, count=100000, seed=7):
             c = [rnd.uniform(-0.09, 0.05), rnd.uniform(0.04, 0.18), rnd.uniform(-0.05, 0.05)]
             d = unit([rnd.gauss(0, 1) for _ in range(3)], 0.03)
             w = unit([rnd.gauss(0, 1) for _ in range(3)], 0.0015)
-            for p in ([c[k] - d[k] for k in range(3)], [c[k] + d[k] for k in range(3)], [c[k] + w[k] for k in range(3)]):
+            ends = ([c[k] - d[k] for k in range(3)], [c[k] + d[k] for k in range(3)], [c[k] + w[k] for k in range(3)])
+            for p in ends:
                 f.write("v %.6f %.6f %.6f\n" % tuple(p))
         for i in range(count):
             f.write("f %d %d %d\n" % (3 * i + 1, 3 * i + 2, 3 * i + 3))

@@ -189,12 +189,13 @@ static float box_half_area3(bounds3 b) {
     return d.x * d.y + d.y * d.z + d.z * d.x;
 }
 
-// tri_split: well-shaped triangles at any orientation are left whole, slivers across their box cut three times;
+// tri_split: well-shaped triangles at any orientation are left whole, slivers across their box cut up to three times;
 // the pieces' boxes lie in the triangle's box, are smaller together than it, and hold every point of the triangle.
 static void check_tri_split(void) {
     rng g = rng_for_sample(21, 0, 0);
     for (int i = 0; i < 2000; i++) { // equilateral triangles, randomly turned and placed
-        vec3 a = v3(urand(&g, -1, 1), urand(&g, -1, 1), urand(&g, -1, 1)), b = v3(urand(&g, -1, 1), urand(&g, -1, 1), urand(&g, -1, 1));
+        vec3 a = v3(urand(&g, -1, 1), urand(&g, -1, 1), urand(&g, -1, 1));
+        vec3 b = v3(urand(&g, -1, 1), urand(&g, -1, 1), urand(&g, -1, 1));
         if (v3_len2(a) < 1e-3f || v3_len2(b) < 1e-3f) continue;
         vec3 u = v3_unit(a), w = v3_unit(v3_cross(a, b)), v = v3_cross(w, u); // orthonormal u, v in the plane
         vec3 c = v3(urand(&g, -50, 50), urand(&g, -50, 50), urand(&g, -50, 50));
@@ -234,9 +235,11 @@ static void check_tri_split(void) {
                            p0.z + a * ((double)p1.z - p0.z) + b * ((double)p2.z - p0.z)};
             bool inside = false;
             for (int k = 0; k < n && !inside; k++) {
-                const float lo[3] = {piece[k].lo.x, piece[k].lo.y, piece[k].lo.z}, hi[3] = {piece[k].hi.x, piece[k].hi.y, piece[k].hi.z};
+                const float lo[3] = {piece[k].lo.x, piece[k].lo.y, piece[k].lo.z};
+                const float hi[3] = {piece[k].hi.x, piece[k].hi.y, piece[k].hi.z};
                 bool in = true;
-                for (int ax = 0; ax < 3; ax++) in = in && q[ax] >= (double)lo[ax] - 1e-12 && q[ax] <= (double)hi[ax] + 1e-12;
+                for (int ax = 0; ax < 3; ax++)
+                    in = in && q[ax] >= (double)lo[ax] - 1e-12 && q[ax] <= (double)hi[ax] + 1e-12;
                 inside = in;
             }
             CHECK(inside);
@@ -263,7 +266,8 @@ static void check_slivers(void) {
     for (int i = 0; i <= BANDS; i++)
         for (int j = 0; j < SEGMENTS; j++) {
             double th = 3.14159265358979 * i / BANDS, ph = 2 * 3.14159265358979 * j / SEGMENTS;
-            m.positions[i * SEGMENTS + j] = v3((float)(5 * sin(th) * cos(ph)), (float)(5 * cos(th)), (float)(5 * sin(th) * sin(ph)));
+            m.positions[i * SEGMENTS + j] =
+                v3((float)(5 * sin(th) * cos(ph)), (float)(5 * cos(th)), (float)(5 * sin(th) * sin(ph)));
         }
     size_t t = 0;
     for (int i = 0; i < BANDS; i++)

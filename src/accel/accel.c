@@ -101,7 +101,8 @@ accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
         bool ok = !in->mesh_count || a->blas;
         for (size_t i = 0; ok && i < in->mesh_count; i++, a->blas_count++) {
             if (!mesh_needs_blas(a, in, i)) continue;
-            bvh_input mi = {.mesh = meshes[i], .stop = in->stop, .threads = in->threads, .no_presplit = in->no_presplit};
+            bvh_input mi = {.mesh = meshes[i], .stop = in->stop, .threads = in->threads,
+                            .no_presplit = in->no_presplit};
             ok = bvh_build(&a->blas[i], &mi, wide);
             a->stats.nodes += a->blas[i].stats.nodes;
             a->stats.leaves += a->blas[i].stats.leaves;

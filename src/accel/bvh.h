@@ -138,7 +138,7 @@ typedef struct bvh_input {
     const atomic_int *stop;         ///< nonzero once a stop is requested: the build gives up (NULL: never)
     int threads;                    ///< threads that build a big tree (the tree is the same for any number); 0: all online CPUs
     size_t parallel_min;            ///< (tests) fewest primitives of a range split by all threads together; 0: the default
-    bool no_presplit;               ///< no pre-splitting of long, slanted triangles (tri_split.h): the scene's "presplit": false
+    bool no_presplit;               ///< long, slanted triangles kept whole (tri_split.h): the scene's "presplit": false
 } bvh_input;
 
 /// Everything the traversals need; built once, then read-only.
