@@ -166,6 +166,36 @@ static void check_queries(const char *what, const accel_input *in, int threads, 
     }
     CHECK(bad == 0);
     CHECK(hits > 0 && hits < rays); // both outcomes exercised
+    // Packets of 1 to ACCEL_COHERENT rays near one ray (one origin, directions a little apart, now and then one
+    // pointing elsewhere, a limited tmax or a NaN): the same hits as one ray at a time.
+    int packet_bad = 0, packets = 0;
+    for (int i = 0; i < rays / 4; i++) {
+        ray base = random_ray(&g, in->mesh_count ? in->meshes[0] : NULL, in->spheres, in->sphere_count);
+        int n = 1 + i % ACCEL_COHERENT;
+        ray pr[ACCEL_COHERENT];
+        hit ph[ACCEL_COHERENT], one;
+        bool pf[ACCEL_COHERENT];
+        float spread = i % 3 == 0 ? 0.3f : 0.01f;
+        for (int k = 0; k < n; k++) {
+            pr[k] = base;
+            pr[k].d = v3_add(base.d, v3_scale(v3(urand(&g, -1, 1), urand(&g, -1, 1), urand(&g, -1, 1)),
+                                              spread * sqrtf(v3_len2(base.d))));
+            if (rng_float(&g) < 0.05f) pr[k].d = v3_neg(pr[k].d);
+            if (rng_float(&g) < 0.1f) pr[k].tmax = urand(&g, 0.5f, 10.0f);
+            if (rng_float(&g) < 0.01f) pr[k].o.x = NAN;
+        }
+        memset(ph, 0, sizeof ph);
+        accel_intersect_coherent(a, n, pr, ph, pf);
+        for (int k = 0; k < n; k++) {
+            memset(&one, 0, sizeof one);
+            bool f1 = accel_intersect(a, &pr[k], &one);
+            if (!same_hit(f1, &one, pf[k], &ph[k]) && packet_bad++ < 3)
+                fprintf(stderr, "%s: packet %d ray %d: one ray %d prim %u t %.9g, packet %d prim %u t %.9g\n", what, i, k,
+                        f1, one.prim, (double)one.t, pf[k], ph[k].prim, (double)ph[k].t);
+        }
+        packets++;
+    }
+    CHECK(packets > 0 && packet_bad == 0);
     accel_free(a);
     accel_free(a2);
     accel_free(an);

@@ -165,6 +165,16 @@ bool accel_intersect(const accel *a, const ray *r, hit *h) {
     return false;
 }
 
+_Static_assert((int)ACCEL_COHERENT <= (int)BVH_COHERENT, "the packets the BVH takes");
+
+bool accel_coherent(const accel *a) { return a->kind == ACCEL_BVH && bvh_coherent(&a->world); }
+
+void accel_intersect_coherent(const accel *a, int n, const ray *rays, hit *hits, bool *found) {
+    if (accel_coherent(a)) bvh_intersect_coherent(&a->world, n, rays, hits, found);
+    else
+        for (int i = 0; i < n; i++) found[i] = accel_intersect(a, &rays[i], &hits[i]);
+}
+
 bool accel_streams(const accel *a) {
     size_t min = a->input.stream_min_bytes ? a->input.stream_min_bytes : ACCEL_STREAM_MIN_BYTES;
     return a->kind == ACCEL_BVH && bvh_streams(&a->world) &&

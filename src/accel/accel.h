@@ -87,6 +87,13 @@ void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, b
 /// instances (not only spheres, none of them huge) of at least accel_input.stream_min_bytes. Else it traces
 /// them one by one.
 bool accel_streams(const accel *a);
+/// Most rays accel_intersect_coherent takes at once.
+enum { ACCEL_COHERENT = 8 };
+/// Closest hits of n <= ACCEL_COHERENT rays that start close together and point alike (a pixel's camera rays):
+/// traversed as one packet where accel_coherent, else one by one; the same hits as accel_intersect either way.
+void accel_intersect_coherent(const accel *a, int n, const ray *rays, hit *hits, bool *found);
+/// Whether accel_intersect_coherent traces its rays as a packet (a BVH of triangles and quads only).
+bool accel_coherent(const accel *a);
 /// Whether anything lies on the ray with r->tmin < t < r->tmax (for shadow rays).
 bool accel_occluded(const accel *a, const ray *r);
 

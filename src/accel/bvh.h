@@ -211,6 +211,13 @@ void bvh_intersect_stream(const bvh *b, int n, const ray *rays, hit *hits, bool 
 /// Whether bvh_intersect_stream traces b's rays together (SIMD compiled in, not only spheres, no huge spheres),
 /// rather than one by one.
 bool bvh_streams(const bvh *b);
+/// Most rays bvh_intersect_coherent takes at once.
+enum { BVH_COHERENT = 8 };
+/// Closest hits of n <= BVH_COHERENT rays that start close together and point alike (a pixel's camera rays),
+/// traversed as one packet: the same hits as bvh_intersect on each.
+void bvh_intersect_coherent(const bvh *b, int n, const ray *rays, hit *hits, bool *found);
+/// Whether bvh_intersect_coherent traverses b's rays as a packet (a tree of triangles, SIMD compiled in).
+bool bvh_coherent(const bvh *b);
 /// Closest hit in the wide BVH by the portable scalar path (always compiled, for tests).
 bool bvh_intersect_scalar(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH by the portable scalar path.

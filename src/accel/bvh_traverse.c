@@ -514,6 +514,164 @@ static inline __attribute__((always_inline)) void wide_stream(const bvh *b, int 
     }
 }
 
+/// A packet of coherent rays (directions of one sign per axis) bounded for box tests: the range of their origins
+/// and of their inverse directions on each axis, broadcast.
+typedef struct packet_bounds {
+    __m256 olo[3], ohi[3], ilo[3], ihi[3];
+    bool neg[3]; ///< the directions point down the axis: a box is entered by its upper plane
+    float tmin;  ///< the smallest of the rays' tmin
+} packet_bounds;
+
+// The bounds of rays[0, n); false when their directions' signs differ on some axis (or a ray has a NaN).
+static bool packet_bounds_make(int n, const ray *rays, packet_bounds *pb) {
+    float olo[3], ohi[3], ilo[3], ihi[3];
+    pb->tmin = INFINITY;
+    pb->neg[0] = pb->neg[1] = pb->neg[2] = false;
+    if (n <= 0) return false;
+    for (int i = 0; i < n; i++) {
+        if (ray_is_nan(&rays[i])) return false;
+        trav_ray tr = trav_setup(&rays[i]);
+        const float o[3] = {rays[i].o.x, rays[i].o.y, rays[i].o.z};
+        for (int a = 0; a < 3; a++) {
+            bool neg = tr.inv[a] < 0.0f;
+            if (i == 0) {
+                pb->neg[a] = neg;
+                olo[a] = ohi[a] = o[a];
+                ilo[a] = ihi[a] = tr.inv[a];
+                continue;
+            }
+            if (neg != pb->neg[a]) return false;
+            olo[a] = o[a] < olo[a] ? o[a] : olo[a];
+            ohi[a] = o[a] > ohi[a] ? o[a] : ohi[a];
+            ilo[a] = tr.inv[a] < ilo[a] ? tr.inv[a] : ilo[a];
+            ihi[a] = tr.inv[a] > ihi[a] ? tr.inv[a] : ihi[a];
+        }
+        pb->tmin = rays[i].tmin < pb->tmin ? rays[i].tmin : pb->tmin;
+    }
+    for (int a = 0; a < 3; a++) {
+        pb->olo[a] = _mm256_set1_ps(olo[a]);
+        pb->ohi[a] = _mm256_set1_ps(ohi[a]);
+        pb->ilo[a] = _mm256_set1_ps(ilo[a]);
+        pb->ihi[a] = _mm256_set1_ps(ihi[a]);
+    }
+    return true;
+}
+
+// Interval product bounds: the least and greatest (b - o) inv over o in [olo, ohi], inv in [ilo, ihi].
+static inline __m256 ia_min(__m256 b, __m256 olo, __m256 ohi, __m256 ilo, __m256 ihi) {
+    __m256 dlo = _mm256_sub_ps(b, ohi), dhi = _mm256_sub_ps(b, olo);
+    return _mm256_min_ps(_mm256_min_ps(_mm256_mul_ps(dlo, ilo), _mm256_mul_ps(dlo, ihi)),
+                         _mm256_min_ps(_mm256_mul_ps(dhi, ilo), _mm256_mul_ps(dhi, ihi)));
+}
+static inline __m256 ia_max(__m256 b, __m256 olo, __m256 ohi, __m256 ilo, __m256 ihi) {
+    __m256 dlo = _mm256_sub_ps(b, ohi), dhi = _mm256_sub_ps(b, olo);
+    return _mm256_max_ps(_mm256_max_ps(_mm256_mul_ps(dlo, ilo), _mm256_mul_ps(dlo, ihi)),
+                         _mm256_max_ps(_mm256_mul_ps(dhi, ilo), _mm256_mul_ps(dhi, ihi)));
+}
+
+// The children of n that some ray of the packet may enter before tlimit, by interval arithmetic, and a lower bound
+// of where any of them enters each (tnear). Widened by 2^-18 of t each way: more than the rounding of these
+// products and of the rays' own slab tests, so that no child a ray enters is missed (the boxes' padding covers
+// the absolute errors).
+static inline unsigned packet_node_test(const bvh_wnode *n, const packet_bounds *pb, float tlimit, float *tnear) {
+    __m256 tn = _mm256_set1_ps(pb->tmin), tf = _mm256_set1_ps(INFINITY);
+    for (int a = 0; a < 3; a++) {
+        __m256 lo = _mm256_load_ps(n->box[a]), hi = _mm256_load_ps(n->box[3 + a]);
+        __m256 enter = pb->neg[a] ? hi : lo, leave = pb->neg[a] ? lo : hi;
+        tn = _mm256_max_ps(tn, ia_min(enter, pb->olo[a], pb->ohi[a], pb->ilo[a], pb->ihi[a]));
+        tf = _mm256_min_ps(tf, ia_max(leave, pb->olo[a], pb->ohi[a], pb->ilo[a], pb->ihi[a]));
+    }
+    const __m256 margin = _mm256_set1_ps(0x1p-18f), sign = _mm256_set1_ps(-0.0f);
+    tn = _mm256_sub_ps(tn, _mm256_mul_ps(_mm256_andnot_ps(sign, tn), margin));
+    tf = _mm256_add_ps(tf, _mm256_mul_ps(_mm256_andnot_ps(sign, tf), margin));
+    tf = _mm256_min_ps(tf, _mm256_set1_ps(tlimit));
+    // Empty slots have NaN boxes: unordered, never entered.
+    __m256 slot = _mm256_cmp_ps(_mm256_load_ps(n->box[0]), _mm256_load_ps(n->box[0]), _CMP_ORD_Q);
+    _mm256_storeu_ps(tnear, tn);
+    return (unsigned)_mm256_movemask_ps(_mm256_and_ps(slot, _mm256_cmp_ps(tn, tf, _CMP_LE_OQ)));
+}
+
+// Closest hits of n <= BVH_COHERENT rays through a tree of triangles, traversed together: one interval test of
+// a node for the whole packet, each leaf tested by every ray that may still find a nearer hit there. A ray tests
+// every leaf its own traversal would have reached (and maybe more), and bvh_better keeps the same hit whatever the
+// order: the hits are those of bvh_intersect.
+static void coherent_run(const bvh *b, int n, const ray *rays, hit *hits, bool *found) {
+    stream_ray s[BVH_COHERENT];
+    packet_bounds pb;
+    if (b->root == BVH_EMPTY || !packet_bounds_make(n, rays, &pb)) {
+        for (int i = 0; i < n; i++) found[i] = bvh_intersect(b, &rays[i], &hits[i]);
+        return;
+    }
+    float tlimit = 0.0f; // the farthest of the rays' best hits: beyond it no ray can gain
+    for (int i = 0; i < n; i++) {
+        simd_setup(&rays[i], &s[i].sr, true);
+        s[i].tc.ready = false;
+        tri_for(&s[i].tc, &rays[i]);
+        simd_tri_setup(&s[i].tc.tr, rays[i].tmin, rays[i].tmax, &s[i].stri);
+        s[i].best = bvh_no_hit(&rays[i]);
+        s[i].found = false;
+        tlimit = s[i].best.t > tlimit ? s[i].best.t : tlimit;
+    }
+    stack_entry stack[WIDE_STACK];
+    int sp = 0;
+    uint32_t ref = b->root;
+    float ref_t = pb.tmin;
+    for (;;) {
+        if (!(ref & BVH_LEAF)) {
+            const bvh_wnode *node = &b->wnodes[ref];
+            float tnear[BVH_WIDTH];
+            unsigned mask = packet_node_test(node, &pb, tlimit, tnear);
+            if (mask != 0) {
+                // Push every child entered, the nearest on top, and descend into it.
+                int base = sp;
+                do {
+                    int i = __builtin_ctz(mask);
+                    mask &= mask - 1;
+                    stack_entry e = {node->child[i], tnear[i]};
+                    int j = sp++;
+                    while (j > base && stack[j - 1].t < e.t) {
+                        stack[j] = stack[j - 1];
+                        j--;
+                    }
+                    stack[j] = e;
+                } while (mask);
+                sp--;
+                ref = stack[sp].ref;
+                ref_t = stack[sp].t;
+                continue;
+            }
+        } else {
+            tlimit = 0.0f;
+            for (int i = 0; i < n; i++) {
+                // A ray whose hit lies before any ray enters the leaf has nothing to find there.
+                if (!(s[i].best.t < ref_t) &&
+                    leaf_simd(b, ref, &rays[i], &s[i].sr, &s[i].stri, &s[i].tc, &s[i].best, HIT_NO_INSTANCE, false,
+                              LEAVES_TRIANGLES))
+                    s[i].found = true;
+                tlimit = s[i].best.t > tlimit ? s[i].best.t : tlimit;
+            }
+        }
+        // The nearest pending subtree that a ray can still gain from.
+        while (sp > 0 && stack[sp - 1].t > tlimit) sp--;
+        if (sp == 0) break;
+        sp--;
+        ref = stack[sp].ref;
+        ref_t = stack[sp].t;
+    }
+    for (int i = 0; i < n; i++) {
+        found[i] = s[i].found;
+        hits[i] = s[i].best;
+    }
+}
+
+bool bvh_coherent(const bvh *b) { return b->triangles_only && b->front == BVH_EMPTY; }
+
+void bvh_intersect_coherent(const bvh *b, int n, const ray *rays, hit *hits, bool *found) {
+    if (bvh_coherent(b)) coherent_run(b, n, rays, hits, found);
+    else
+        for (int i = 0; i < n; i++) found[i] = bvh_intersect(b, &rays[i], &hits[i]);
+}
+
 bool bvh_streams(const bvh *b) { return !b->spheres_only && b->front == BVH_EMPTY; }
 
 void bvh_intersect_stream(const bvh *b, int n, const ray *rays, hit *hits, bool *found) {
@@ -532,6 +690,15 @@ bool bvh_streams(const bvh *b) {
 }
 
 void bvh_intersect_stream(const bvh *b, int n, const ray *rays, hit *hits, bool *found) {
+    for (int i = 0; i < n; i++) found[i] = bvh_intersect(b, &rays[i], &hits[i]);
+}
+
+bool bvh_coherent(const bvh *b) {
+    (void)b;
+    return false;
+}
+
+void bvh_intersect_coherent(const bvh *b, int n, const ray *rays, hit *hits, bool *found) {
     for (int i = 0; i < n; i++) found[i] = bvh_intersect(b, &rays[i], &hits[i]);
 }
 #endif

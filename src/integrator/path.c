@@ -472,7 +472,7 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
 // copy: the AOV tests are predictable branches on a NULL pointer (a second, specialised copy cost the sphere
 // scenes 12 % through gcc's inlining budget).
 static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts,
-                       film_aov_sample *aov) {
+                       film_aov_sample *aov, const hit *first, bool first_found) {
     const glint_scene *s = pi->base.scene;
     path_setup setup = path_setup_of(pi, false);
     path_state ps = path_start(aov);
@@ -481,7 +481,13 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
     for (; ps.depth < s->settings.max_depth; ps.depth++) {
         hit h;
         ts->rays++;
-        bool found = accel_intersect(pi->base.accel, &cur, &h);
+        bool found;
+        if (first && ps.depth == 0) { // the camera ray, traced with its neighbours (accel_intersect_coherent)
+            h = *first;
+            found = first_found;
+        } else {
+            found = accel_intersect(pi->base.accel, &cur, &h);
+        }
         if (!path_vertex(pi, setup, &ps, &cur, &mpath, found, &h, r, ts, aov)) break;
     }
     return ps.radiance;
@@ -493,7 +499,7 @@ static vec3 path_sample(const integrator *it, int x, int y, uint32_t sample, rng
     (void)sample;
     ray primary = camera_sample_ray(&it->camera, x, y, r);
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    return path_trace(pi, primary.o, primary.d, primary.time, r, ts, aov);
+    return path_trace(pi, primary.o, primary.d, primary.time, r, ts, aov, NULL, false);
 }
 
 /// The next sample of a tile pass to make a camera ray for: pixel (x, y), its rng_pixel_key, sample k.
@@ -541,9 +547,19 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
     sample_cursor cursor = sample_cursor_start(it, tp); // runs ahead of the film tile's by up to CAMERA_BATCH items
     camera_batch cb;
     film_tile t = *ft; // a local copy whose address does not escape: its fields can live in registers
+    // A tree of triangles traces each batch's camera rays (a pixel's samples, or neighbours) as one packet.
+    bool coherent = accel_coherent(it->accel) && it->scene->settings.max_depth > 0;
+    _Static_assert((int)CAMERA_BATCH <= (int)ACCEL_COHERENT, "a batch of camera rays fits in one packet");
+    hit first[CAMERA_BATCH];
+    bool first_found[CAMERA_BATCH] = {false};
     for (int j = 0; j < items; j += CAMERA_BATCH) {
         int n = items - j < CAMERA_BATCH ? items - j : CAMERA_BATCH;
         sample_cursor_batch(it, tp, &cursor, n, &cb);
+        if (coherent) {
+            ray rays[CAMERA_BATCH];
+            for (int i = 0; i < n; i++) rays[i] = (ray){cb.o[i], cb.d[i], 0.0f, INFINITY, cb.time[i]};
+            accel_intersect_coherent(it->accel, n, rays, first, first_found);
+        }
         for (int i = 0; i < n; i++) {
             if (tile_pass_stopping(tp)) {
                 film_tile_stop(&t);
@@ -554,10 +570,12 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
             bool more;
             if (aovs) {
                 film_aov_sample a;
-                vec3 c = path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, &a);
+                vec3 c = path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, &a, coherent ? &first[i] : NULL,
+                                    first_found[i]);
                 more = film_tile_add_aov(&t, c, &a);
             } else {
-                more = film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, NULL));
+                more = film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, NULL,
+                                                    coherent ? &first[i] : NULL, first_found[i]));
             }
             if (!more) {
                 *ft = t;
