@@ -473,6 +473,21 @@ typedef struct stream_ray {
     bool found;
 } stream_ray;
 
+// Readies ray r to walk b from its root with the SIMD kernels (`triangles`: b holds only triangle packets, whose
+// constants are made up front); false for a NaN ray, which hits nothing.
+static inline bool stream_ray_start(const bvh *b, const ray *r, stream_ray *q, bool triangles) {
+    if (!simd_setup(r, &q->sr, triangles)) return false;
+    q->tc.ready = false;
+    if (triangles) {
+        tri_for(&q->tc, r);
+        simd_tri_setup(&q->tc.tr, r->tmin, r->tmax, &q->stri);
+    }
+    q->best = bvh_no_hit(r);
+    q->w = (walk){b->root, 0};
+    q->found = false;
+    return true;
+}
+
 // Closest hits of n <= BVH_STREAM rays through a wide BVH, one step of each ray in turn: a step ends by
 // prefetching the children it will visit, so while one ray waits for memory the others work. Each ray makes the
 // same steps in the same order as wide_run alone, so the hits are the same.
@@ -487,15 +502,7 @@ static inline __attribute__((always_inline)) void wide_stream(const bvh *b, int 
     for (int i = 0; i < n; i++) {
         found[i] = false;
         // No tree, or a NaN ray: nothing to trace.
-        if (b->root == BVH_EMPTY || !simd_setup(&rays[i], &s[i].sr, leaves == LEAVES_TRIANGLES)) continue;
-        s[i].tc.ready = false;
-        if (leaves == LEAVES_TRIANGLES) {
-            tri_for(&s[i].tc, &rays[i]);
-            simd_tri_setup(&s[i].tc.tr, rays[i].tmin, rays[i].tmax, &s[i].stri);
-        }
-        s[i].best = bvh_no_hit(&rays[i]);
-        s[i].w = (walk){b->root, 0};
-        s[i].found = false;
+        if (b->root == BVH_EMPTY || !stream_ray_start(b, &rays[i], &s[i], leaves == LEAVES_TRIANGLES)) continue;
         active[live++] = i;
     }
     while (live > 0) {
@@ -604,12 +611,7 @@ static void coherent_run(const bvh *b, int n, const ray *rays, hit *hits, bool *
     }
     float tlimit = 0.0f; // the farthest of the rays' best hits: beyond it no ray can gain
     for (int i = 0; i < n; i++) {
-        simd_setup(&rays[i], &s[i].sr, true);
-        s[i].tc.ready = false;
-        tri_for(&s[i].tc, &rays[i]);
-        simd_tri_setup(&s[i].tc.tr, rays[i].tmin, rays[i].tmax, &s[i].stri);
-        s[i].best = bvh_no_hit(&rays[i]);
-        s[i].found = false;
+        stream_ray_start(b, &rays[i], &s[i], true); // no NaN ray here: packet_bounds_make refused them
         tlimit = s[i].best.t > tlimit ? s[i].best.t : tlimit;
     }
     stack_entry stack[WIDE_STACK];
