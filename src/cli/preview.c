@@ -73,11 +73,16 @@ static int ignore_x_error(Display *d, XErrorEvent *e) {
 }
 #endif
 
-// After SDL has started X11 (which installs its own handler first): X errors no longer end the program.
-static void keep_x_errors_quiet(void) {
+// X errors no longer end the program. Called before SDL starts X11 too: SDL's handler passes errors on to the one
+// it found installed, and puts that one back when it lets go, so that the handler in force while SDL_Quit closes
+// the display (reading the last errors, such as a wakeup sent to a window just destroyed) is this one, never
+// Xlib's default.
+static void keep_x_errors_quiet(bool started) {
 #if defined(GLINT_HAVE_X11)
-    const char *driver = SDL_GetCurrentVideoDriver();
+    const char *driver = started ? SDL_GetCurrentVideoDriver() : "x11";
     if (driver && strcmp(driver, "x11") == 0) XSetErrorHandler(ignore_x_error);
+#else
+    (void)started;
 #endif
 }
 
@@ -137,8 +142,9 @@ static bool open_window(cli_preview *p, const char **why) {
     SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
     SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
     SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0"); // the window's pixels straight to X, not through OpenGL
+    keep_x_errors_quiet(false);
     if (!start_video(why)) return false;
-    keep_x_errors_quiet();
+    keep_x_errors_quiet(true); // in place of SDL's, which would pass them on to Xlib's default
     int w, h;
     window_size(p->width, p->height, &w, &h);
     p->window = SDL_CreateWindow("glint", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, w, h,
