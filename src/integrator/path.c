@@ -602,6 +602,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
     int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
     int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
     enum { WINDOW = 64 };                     // samples started and not yet added (a power of two)
+    enum { SHADE_AHEAD = 4 };                 // paths between a hit whose corners are fetched and its shading
     vec3 finished[WINDOW];
     film_aov_sample finished_aov[WINDOW], aov[ACCEL_STREAM];
     bool is_finished[WINDOW] = {false};
@@ -636,6 +637,8 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
         accel_intersect_stream(it->accel, lanes, rays, hits, found);
         for (int l = 0; l < lanes;) {
             ts->rays++;
+            // The corners of a hit a few paths ahead start coming from memory while this one is shaded.
+            if (l + SHADE_AHEAD < lanes && found[l + SHADE_AHEAD]) surface_prefetch(it->scene, &hits[l + SHADE_AHEAD]);
             if (path_vertex(pi, setup, &ps[l], &rays[l], &mpath[l], found[l], &hits[l], &gen[l], ts,
                             aovs ? &aov[l] : NULL) &&
                 ++ps[l].depth < max_depth) {
