@@ -3,7 +3,6 @@
 #include "accel/bvh.h"
 #include "accel/tri_split.h"
 #include "core/array.h"
-#include "core/big_alloc.h"
 #include "core/thread_pool.h"
 #include "core/trace.h"
 
@@ -1402,7 +1401,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
 
     // The wide nodes (at most one per binary inner node) and the list of leaves, one per binary leaf and the front.
     size_t inner = bd.node_count - bd.leaves;
-    b->wnodes = inner ? big_alloc(_Alignof(bvh_wnode), inner * sizeof *b->wnodes) : NULL;
+    b->wnodes = inner ? aligned_alloc(_Alignof(bvh_wnode), inner * sizeof *b->wnodes) : NULL;
     collapser cl = {.b = b, .spans = malloc((bd.leaves + 1) * sizeof *cl.spans)};
     if ((inner && !b->wnodes) || !cl.spans) {
         thread_pool_stop(pool);
@@ -1420,7 +1419,7 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide) {
     free(b->nodes2);
     b->nodes2 = NULL;
     b->node2_count = 0;
-    b->slots = cl.slots < BVH_LEAF ? big_alloc(_Alignof(bvh_slot), cl.slots * sizeof *b->slots) : NULL;
+    b->slots = cl.slots < BVH_LEAF ? aligned_alloc(_Alignof(bvh_slot), cl.slots * sizeof *b->slots) : NULL;
     if (!b->slots) {
         thread_pool_stop(pool);
         free(cl.spans);
