@@ -73,10 +73,10 @@ static int ignore_x_error(Display *d, XErrorEvent *e) {
 }
 #endif
 
-// X errors no longer end the program. Called before SDL starts X11 too: SDL's handler passes errors on to the one
-// it found installed, and puts that one back when it lets go, so that the handler in force while SDL_Quit closes
-// the display (reading the last errors, such as a wakeup sent to a window just destroyed) is this one, never
-// Xlib's default.
+// X errors no longer end the program. Called before SDL starts X11 too: SDL's own handler passes errors on to the
+// one it found installed, so with this one installed first no X error reaches Xlib's default handler, whichever
+// handler is in force while SDL_Quit closes the display (and reads the last errors, such as a wakeup sent to a
+// window just destroyed).
 static void keep_x_errors_quiet(bool started) {
 #if defined(GLINT_HAVE_X11)
     const char *driver = started ? SDL_GetCurrentVideoDriver() : "x11";
