@@ -73,16 +73,13 @@ static int ignore_x_error(Display *d, XErrorEvent *e) {
 }
 #endif
 
-// X errors no longer end the program. Called before SDL starts X11 too: SDL's own handler passes errors on to the
-// one it found installed, so with this one installed first no X error reaches Xlib's default handler, whichever
-// handler is in force while SDL_Quit closes the display (and reads the last errors, such as a wakeup sent to a
-// window just destroyed).
-static void keep_x_errors_quiet(bool started) {
+// X errors no longer end the program (harmless where SDL uses another driver: no X display is opened). Called
+// before SDL starts X11 too: SDL's own handler passes errors on to the one it found installed, so with this one
+// installed first no X error reaches Xlib's default handler, whichever handler is in force while SDL_Quit closes
+// the display (and reads the last errors, such as a wakeup sent to a window just destroyed).
+static void keep_x_errors_quiet(void) {
 #if defined(GLINT_HAVE_X11)
-    const char *driver = started ? SDL_GetCurrentVideoDriver() : "x11";
-    if (driver && strcmp(driver, "x11") == 0) XSetErrorHandler(ignore_x_error);
-#else
-    (void)started;
+    XSetErrorHandler(ignore_x_error);
 #endif
 }
 
@@ -142,9 +139,9 @@ static bool open_window(cli_preview *p, const char **why) {
     SDL_SetHint(SDL_HINT_NO_SIGNAL_HANDLERS, "1");
     SDL_SetHint(SDL_HINT_RENDER_DRIVER, "software");
     SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0"); // the window's pixels straight to X, not through OpenGL
-    keep_x_errors_quiet(false);
+    keep_x_errors_quiet();
     if (!start_video(why)) return false;
-    keep_x_errors_quiet(true); // in place of SDL's, which would pass them on to Xlib's default
+    keep_x_errors_quiet(); // in place of SDL's, which would pass them on to Xlib's default
     int w, h;
     window_size(p->width, p->height, &w, &h);
     p->window = SDL_CreateWindow("glint", SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, w, h,

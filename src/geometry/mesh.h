@@ -4,6 +4,7 @@
 #ifndef GLINT_MESH_H
 #define GLINT_MESH_H
 
+#include "core/prefetch.h"
 #include "core/vec.h"
 #include "geometry/transform.h"
 #include "geometry/triangle.h"
@@ -92,6 +93,21 @@ static inline void mesh_triangle_positions(const mesh *m, size_t i, vec3 *p0, ve
     *p0 = m->positions[tri->v[0]];
     *p1 = m->positions[tri->v[1]];
     *p2 = m->positions[tri->v[2]];
+}
+
+/// Starts fetching what mesh_shade reads of triangle i beyond its record (which this reads): the corners' positions
+/// and normals, scattered over arrays too large for the cache on a big mesh (uvs, rare on big meshes, come on
+/// demand). Always inlined, as core/prefetch.h says.
+static inline __attribute__((always_inline)) void mesh_prefetch_shade(const mesh *m, size_t i) {
+    const int32_t *v = m->triangles[i].v;
+    prefetch_read(&m->positions[v[0]]);
+    prefetch_read(&m->positions[v[1]]);
+    prefetch_read(&m->positions[v[2]]);
+    mesh_corners n = mesh_triangle_normals(m, i);
+    if (!mesh_corners_complete(n)) return;
+    prefetch_read(&m->normals[n.i[0]]);
+    prefetch_read(&m->normals[n.i[1]]);
+    prefetch_read(&m->normals[n.i[2]]);
 }
 
 /// Bounds of triangle i.

@@ -4,7 +4,6 @@
 #define GLINT_SURFACE_H
 
 #include "accel/accel.h"
-#include "core/prefetch.h"
 #include "core/vec.h"
 #include "scene/scene.h"
 
@@ -29,19 +28,14 @@ typedef struct surface {
 /// Shading data of a hit on anything but a world-space sphere (quads, triangles, instances, moving spheres).
 surface surface_at_general(const glint_scene *s, const ray *r, const hit *h);
 
-/// Starts fetching what surface_at will read of a hit on a mesh's triangle: its corners' positions and normals,
-/// scattered over arrays too large for the cache on a big mesh. For a loop that shades many hits in turn and can
-/// call this a few hits ahead; it reads the triangle's record, which the traversal fetched when it found the hit.
-static inline void surface_prefetch(const glint_scene *s, const hit *h) {
+/// Starts fetching what surface_at will read of a hit on a mesh's triangle (mesh_prefetch_shade), for a loop that
+/// shades many hits in turn and can call this a few hits ahead; the traversal fetched the triangle's record when it
+/// found the hit.
+static inline __attribute__((always_inline)) void surface_prefetch(const glint_scene *s, const hit *h) {
     if (h->kind != HIT_TRIANGLE || h->instance == HIT_NO_INSTANCE) return;
     const instance *in = &s->instances[h->instance];
     if (in->kind != INSTANCE_MESH) return;
-    const mesh *m = &s->meshes[in->index].geometry;
-    const int32_t *v = m->triangles[h->prim].v;
-    for (int k = 0; k < 3; k++) prefetch_read(&m->positions[v[k]]);
-    mesh_corners n = mesh_triangle_normals(m, h->prim);
-    if (mesh_corners_complete(n))
-        for (int k = 0; k < 3; k++) prefetch_read(&m->normals[n.i[k]]);
+    mesh_prefetch_shade(&s->meshes[in->index].geometry, h->prim);
 }
 
 /// Where ray r meets sphere sp at distance t: the point re-projected onto the sphere, c + q |r| / |q| with
