@@ -312,6 +312,14 @@ static inline path_setup path_setup_of(const path_integrator *pi, bool known_lea
     return (path_setup){s->light_count > 0, pi->sampled, pi->env_sampled, s->medium_count, path_lean(pi)};
 }
 
+// Makes the direction of the ray *cur that ended at hit *h a unit vector: the same ray, t in its units.
+static inline void path_unit_direction(path_state *ps, ray *cur, hit *h) {
+    float len = v3_len(cur->d);
+    cur->d = v3_scale(cur->d, 1.0f / len);
+    h->t *= len;
+    ps->unit = true;
+}
+
 // What the path does where its ray *cur ends, at hit *h (found; by address, as the query wrote it: a copy would
 // load it whole, which waits for the query's stores to retire) or in the background, at depth ps->depth:
 // gathers light into ps->radiance and makes the next ray. False when the path ends there.
@@ -403,14 +411,13 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
             return true;
         }
     }
-    if (!ps->unit) { // the general code below works with unit directions: the same ray, t in its units
-        float len = v3_len(cur->d);
-        cur->d = v3_scale(cur->d, 1.0f / len);
-        h->t *= len;
-        ps->unit = true;
-    }
+    // The general code below works with unit directions: the same ray, t in its units. A lean path's Lambertian
+    // surface needs none (the book's n + u, as at spheres above): it waits until the material is known.
+    if (!ps->unit && !lean) path_unit_direction(ps, cur, h);
     surface sf = surface_at(s, cur, h);
     const material *m = &s->materials[sf.material];
+    bool lean_diffuse = lean && m->kind == MAT_LAMBERTIAN;
+    if (!ps->unit && !lean_diffuse) path_unit_direction(ps, cur, h);
     if (m->kind == MAT_DIFFUSE_LIGHT) {
         vec3 tp = surface_texture_point(s, &sf, m->emission_texture);
         vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, tp);
@@ -428,7 +435,12 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
     scatter_event ev;
     vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
     if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, albedo, sf.n, m);
-    if (!mat_scatter(m, albedo, cur->d, sf.n, sf.front, r, &ev)) return false;
+    if (lean_diffuse) { // mat_scatter's direction, not normalised: the next ray's direction needs no unit length
+        ev = (scatter_event){mat_lambertian_sum(sf.n, sample_sphere_uniform(r)), albedo, true, false};
+        ps->unit = false;
+    } else if (!mat_scatter(m, albedo, cur->d, sf.n, sf.front, r, &ev)) {
+        return false;
+    }
     spawn_point sp = spawn_point_of(s, &sf);
     float in_side = v3_dot(cur->d, sf.ng);
     ps->light_sampled = ps->env_sampled = false;
