@@ -85,7 +85,8 @@ typedef struct bvh_wnode {
 /// header; `last` ends the leaf. `instance`: the instance whose flattened triangles the packet holds, else
 /// HIT_NO_INSTANCE (a packet holds one instance's triangles).
 typedef struct bvh_packet_header {
-    _Alignas(32) uint32_t kind, count, slots, last, instance;
+    _Alignas(32) uint32_t kind; // alone: an alignment specifier applies to every declarator of its declaration
+    uint32_t count, slots, last, instance;
 } bvh_packet_header;
 
 /// A packet of up to BVH_PACKET spheres as structure of arrays; unused lanes have NaN centres.

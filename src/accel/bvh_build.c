@@ -21,6 +21,7 @@
 
 enum { SAH_BINS = 32 };
 
+_Static_assert(sizeof(bvh_packet_header) == sizeof(bvh_slot), "a packet's header is one slot");
 _Static_assert(sizeof(bvh_sphere_packet) % sizeof(bvh_slot) == 0, "a packet is a whole number of slots");
 _Static_assert(offsetof(bvh_sphere_packet, cx) % (BVH_PACKET * sizeof(float)) == 0, "lanes aligned for SIMD loads");
 _Static_assert(sizeof(bvh_triangle_packet) % sizeof(bvh_slot) == 0, "a packet is a whole number of slots");
