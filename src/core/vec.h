@@ -44,6 +44,11 @@ static inline vec3 v3_min(vec3 a, vec3 b) { return v3(f_min(a.x, b.x), f_min(a.y
 static inline vec3 v3_max(vec3 a, vec3 b) { return v3(f_max(a.x, b.x), f_max(a.y, b.y), f_max(a.z, b.z)); }
 static inline float v3_comp(vec3 a, int axis) { return axis == 0 ? a.x : (axis == 1 ? a.y : a.z); }
 static inline float v3_max_comp(vec3 a) { return f_max(a.x, f_max(a.y, a.z)); }
+/// max(|x|, |y|, |z|), with plain comparisons (fmaxf is a libm call at -O3 without -ffinite-math-only).
+static inline float v3_max_abs(vec3 p) {
+    float ax = fabsf(p.x), ay = fabsf(p.y), az = fabsf(p.z);
+    return ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
+}
 static inline bool v3_is_finite(vec3 a) { return isfinite(a.x) && isfinite(a.y) && isfinite(a.z); }
 static inline bool v3_near_zero(vec3 a) {
     const float eps = 1e-8f;

@@ -47,6 +47,10 @@ mesh_shading mesh_shade(const mesh *m, size_t tri, const tri_hit *h) {
     mesh_shading s;
     vec3 p0, p1, p2;
     mesh_triangle_positions(m, tri, &p0, &p1, &p2);
+    float k;
+    s.magnitude = v3_max_abs(p0);
+    s.magnitude = (k = v3_max_abs(p1)) > s.magnitude ? k : s.magnitude;
+    s.magnitude = (k = v3_max_abs(p2)) > s.magnitude ? k : s.magnitude;
     s.ng = unit_or(v3_cross(v3_sub(p1, p0), v3_sub(p2, p0)), v3(0, 0, 1));
     s.ns = s.ng;
     if (mesh_corners_complete(n)) {

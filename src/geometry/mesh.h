@@ -54,6 +54,7 @@ typedef struct mesh_shading {
     vec3 ng;    ///< unit geometric normal; (p1 - p0) x (p2 - p0), turned to the side of ns when normals are given
     vec3 ns;    ///< unit shading normal: interpolated vertex normals (smooth shading), else ng
     float u, v; ///< interpolated texture coordinates, else the barycentrics (b1, b2)
+    float magnitude; ///< the largest |coordinate| of the corners: what the error of intersecting it scales with
 } mesh_shading;
 
 /// Frees the arrays and leaves an empty mesh.

@@ -32,19 +32,10 @@ static double quad_light_power(const glint_scene *s, const quad *q) {
     return light_power(&s->materials[q->material], q->area);
 }
 
-// The scene material of triangle `tri` of mesh instance `in`, as surface_at_general chooses it.
-static uint32_t instance_triangle_material(const glint_scene *s, const instance *in, size_t tri) {
-    const scene_mesh *sm = &s->meshes[in->index];
-    int32_t slot = sm->geometry.triangles[tri].material;
-    if (in->material >= 0) return (uint32_t)in->material;
-    if (slot >= 0 && (size_t)slot < sm->slot_count) return sm->slot_material[slot];
-    return sm->default_material;
-}
-
 // Triangle `tri` of mesh instance `ii` in world space, with its power (light_power; 0: not a light).
 static double tri_light_make(const glint_scene *s, uint32_t ii, uint32_t tri, tri_light *out) {
     const instance *in = &s->instances[ii];
-    const material *m = &s->materials[instance_triangle_material(s, in, tri)];
+    const material *m = &s->materials[surface_mesh_material(&s->meshes[in->index], in, tri)];
     if (m->kind != MAT_DIFFUSE_LIGHT) return 0.0; // most triangles: skip the transform
     vec3 p0, p1, p2;
     mesh_triangle_positions(&s->meshes[in->index].geometry, tri, &p0, &p1, &p2);

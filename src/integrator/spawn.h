@@ -23,43 +23,10 @@ typedef struct spawn_point {
     float time; ///< of the ray that arrived: the rays spawned here keep it
 } spawn_point;
 
-/// max(|x|, |y|, |z|), with plain comparisons (fmaxf is a libm call at -O3 without -ffinite-math-only).
-static inline float spawn_max_abs(vec3 p) {
-    float ax = fabsf(p.x), ay = fabsf(p.y), az = fabsf(p.z);
-    return ax > ay ? (ax > az ? ax : az) : (ay > az ? ay : az);
-}
-
-/// Largest coordinate magnitude of the primitive a surface point lies on, in world units: what the float
-/// error of intersecting it (and its neighbours) again scales with. A 2000-wide floor hit near the origin
-/// has a small hit point but corners of 1000, and a nearby origin's position relative to those corners is
-/// only known to their precision. Instanced primitives are intersected in object space: their object-space
-/// magnitude times the transform's largest row sum (its infinity norm, bounding how it stretches lengths).
-static inline float spawn_primitive_magnitude(const glint_scene *s, const surface *sf) {
-    if (sf->instance == HIT_NO_INSTANCE) {
-        return sf->kind == HIT_QUAD ? s->quads[sf->prim].magnitude : 0.0f;
-    }
-    const instance *in = &s->instances[sf->instance];
-    transform moved; // a moving instance at the hit's time
-    if (in->motion) motion_at(&s->motions[in->motion - 1], sf->time, &moved);
-    const mat4 *m = in->motion ? &moved.m : &in->xf.m;
-    float obj, k;
-    if (in->kind == INSTANCE_SPHERE) {
-        const sphere *sp = &s->instance_spheres[in->index];
-        obj = spawn_max_abs(sp->center) + fabsf(sp->radius);
-    } else {
-        vec3 p0, p1, p2;
-        mesh_triangle_positions(&s->meshes[in->index].geometry, sf->prim, &p0, &p1, &p2);
-        obj = spawn_max_abs(p0);
-        obj = (k = spawn_max_abs(p1)) > obj ? k : obj;
-        obj = (k = spawn_max_abs(p2)) > obj ? k : obj;
-    }
-    return obj * (in->motion ? mat4_stretch(m) : in->stretch);
-}
-
 /// The spawn point at p, re-projected onto a world sphere of radius r (sphere_hit_frame), with unit normal n,
 /// for rays at `time`: offset by SPAWN_OFFSET_REL (max|p_i| + |r|).
 static inline spawn_point spawn_point_sphere(vec3 p, vec3 n, float r, float time) {
-    spawn_point out = {p, n, SPAWN_OFFSET_REL * (spawn_max_abs(p) + fabsf(r)) + 1e-30f, time};
+    spawn_point out = {p, n, SPAWN_OFFSET_REL * (v3_max_abs(p) + fabsf(r)) + 1e-30f, time};
     return out;
 }
 
@@ -77,7 +44,7 @@ static inline vec3 spawn_inside_edges(vec3 p, float x, vec3 e, float inv_len, fl
 /// Where rays leave surface sf, at its time. A world-space or moving sphere's point, re-projected onto it by
 /// surface_at, is offset as spawn_point_sphere says. Any other surface (quad, triangle, instanced sphere) keeps its point
 /// and is offset by its error bound sf->error (the rounding of p, from surface_at) plus SPAWN_OFFSET_REL
-/// times the larger of max|p_i| and the primitive's own magnitude (spawn_primitive_magnitude); a world
+/// times the larger of max|p_i| and the primitive's own magnitude (surface.magnitude); a world
 /// quad's point is also kept that offset inside its edges (spawn_inside_edges).
 static inline spawn_point spawn_point_of(const glint_scene *s, const surface *sf) {
     if (sf->kind == HIT_SPHERE && sf->instance == HIT_NO_INSTANCE)
@@ -87,7 +54,7 @@ static inline spawn_point spawn_point_of(const glint_scene *s, const surface *sf
     out.time = sf->time;
     out.n = sf->ng;
     out.p = sf->p;
-    float mag = spawn_max_abs(sf->p), prim = spawn_primitive_magnitude(s, sf);
+    float mag = v3_max_abs(sf->p), prim = sf->magnitude;
     out.offset = sf->error + SPAWN_OFFSET_REL * (prim > mag ? prim : mag) + 1e-30f;
     if (sf->kind == HIT_QUAD && sf->instance == HIT_NO_INSTANCE) { // (u, v) are the quad's (alpha, beta)
         const quad *q = &s->quads[sf->prim];
