@@ -243,7 +243,7 @@ float light_sampler_pdf(const light_sampler *pl, const glint_scene *s, const sur
 }
 
 // The emitted radiance of triangle light tl at barycentrics (b1, b2), point x, towards unit direction wi
-// (from the receiver to the light): the side and texture coordinates as surface_at_general gives them to a
+// (from the receiver to the light): the side and texture coordinates as surface_at gives them to a
 // ray that hits it there, so that both strategies see the same emission.
 vec3 light_sampler_tri_emitted(const glint_scene *s, const tri_light *tl, float b1, float b2, vec3 x, vec3 wi) {
     const instance *in = &s->instances[tl->instance];
