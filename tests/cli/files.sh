@@ -2,6 +2,12 @@
 # symbolic links are written through; the scene file and read-only files are never replaced.
 source "$2/tests/cli/common.bash"
 
+# The random delays below come from a seed this prints, so that a failure's delays can be run again
+# (GLINT_TEST_SEED=N; the moments glint is killed at still depend on the machine's load).
+seed=${GLINT_TEST_SEED:-$(( $(date +%s%N) % 32768 ))}
+RANDOM=$seed
+echo "files.sh: seed $seed (GLINT_TEST_SEED=$seed repeats its delays)"
+
 TINY=$DATA/tiny.json
 BIG=(--quiet --width 1000 --height 1000 --spp 1) # a 12 MB PFM, written in about a tenth of a second
 
