@@ -712,6 +712,43 @@ static void add_mesh_instance(glint_scene *s, const vec3 *pos, int np, const int
     CHECK(scene_add_instance(s, in));
 }
 
+// The lean vertex at quads and meshes (surface_at_flat, the direction n + u left unnormalised), which scenes
+// without lights take: in the white furnace an open box of albedo-1 Lambertian quads holding flat-shaded
+// tetrahedra (one placed once, flattened into the world BVH; one placed twice, its BVH shared) conserves energy,
+// so every sample is 1; and test_sky_plane's plane as a quad gives the same exact radiance.
+static void test_lean_quads_and_meshes(void) {
+    glint_scene *s = new_scene(24, 24, 8, 1000, v3(0, 1.2f, 1.5f), v3(0, 0.3f, -1), v3(0, 1, 0), 70);
+    uint32_t white = add_material(s, lambertian(1.0f));
+    add_quad(s, v3(-2, 0, 1), v3(4, 0, 0), v3(0, 0, -4), white);     // floor, facing up
+    add_quad(s, v3(-2, 0, -3), v3(4, 0, 0), v3(0, 2, 0), white);     // back wall
+    add_quad(s, v3(-2, 0, 1), v3(0, 0, -4), v3(0, 2, 0), white);     // left wall, facing +x
+    add_quad(s, v3(2, 0, -3), v3(0, 0, 4), v3(0, 2, 0), white);      // right wall, facing -x
+    const vec3 pos[4] = {v3(-0.5f, 0, -0.5f), v3(0.5f, 0, -0.5f), v3(0, 0, 0.5f), v3(0, 0.8f, 0)};
+    const int tri[4][3] = {{0, 2, 1}, {0, 1, 3}, {1, 2, 3}, {2, 0, 3}};
+    add_mesh_instance(s, pos, 4, tri, 4, white, mat4_translate(v3(-0.9f, 0, -1.2f)));
+    add_mesh_instance(s, pos, 4, tri, 4, white, mat4_translate(v3(0.9f, 0, -1.8f)));
+    add_mesh_instance(s, pos, 4, tri, 4, white, mat4_translate(v3(0.9f, 0, -0.6f)));
+    glint_image *img = render(s, 1, NULL);
+    CHECK_NEAR(max_deviation(img, 1.0), 0.0, 1e-5);
+    glint_image_free(img);
+    glint_scene_free(s);
+
+    s = new_scene(32, 32, 16, 50, v3(0, 1, 0), v3(0, 0, 0), v3(0, 0, -1), 30);
+    s->settings.background = BACKGROUND_SKY;
+    add_quad(s, v3(-50, 0, 50), v3(100, 0, 0), v3(0, 0, -100), add_material(s, lambertian(0.5f)));
+    img = render(s, 1, NULL);
+    int w, h;
+    const float *rgb = pixels(img, &w, &h);
+    double mean[3] = {0, 0, 0};
+    for (int i = 0; i < w * h; i++)
+        for (int c = 0; c < 3; c++) mean[c] += (double)rgb[i * 3 + c] / (w * h);
+    double t = 0.5 * (1.0 + 2.0 / 3.0);
+    const double zenith[3] = {0.5, 0.7, 1.0};
+    for (int c = 0; c < 3; c++) CHECK_NEAR(mean[c], 0.5 * ((1 - t) + t * zenith[c]), 1.2e-3); // as test_sky_plane
+    glint_image_free(img);
+    glint_scene_free(s);
+}
+
 // The plane under a square light of test_quad_light_irradiance, the light now two emissive triangles of a
 // mesh instance: the same exact radiance rho Le F with light sampling and with BSDF sampling alone. Layouts:
 // world-space vertices wound to face down; a unit square in the xy plane (facing +z) placed by a scale, a
@@ -987,6 +1024,7 @@ int main(void) {
     test_cornell_estimators_agree();
     test_flat_robust();
     test_triangle_light_irradiance();
+    test_lean_quads_and_meshes();
     test_cornell_obj_noise();
     test_convergence();
     test_determinism();
