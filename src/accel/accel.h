@@ -76,7 +76,7 @@ void accel_get_stats(const accel *a, accel_stats *out);
 /// Nearest hit with r->tmin < t < r->tmax, moving primitives where they are at r->time; false when the ray escapes.
 bool accel_intersect(const accel *a, const ray *r, hit *h);
 /// Rays accel_intersect_stream traces together at most.
-#define ACCEL_STREAM 32
+#define ACCEL_STREAM 64
 /// Smallest world BVH, in bytes of nodes and leaves, whose rays are worth tracing in streams: a smaller one stays
 /// in the caches, where a stream costs more than one ray at a time (docs/benchmarks.md, "ray streams"). Measured
 /// between bunnies of 159k triangles (9.8 MB: streams 0.978) and 215k (13.7 MB: 1.024), about 190k triangles.

@@ -634,7 +634,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
     path_setup setup = path_setup_of(pi, lean);
     int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
     int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
-    enum { WINDOW = 128 };                    // samples started and not yet added (a power of two)
+    enum { WINDOW = 256 };                    // samples started and not yet added (a power of two)
     enum { SHADE_AHEAD = 4 };                 // paths between a hit whose corners are fetched and its shading
     vec3 finished[WINDOW];
     film_aov_sample finished_aov[WINDOW], aov[ACCEL_STREAM];
