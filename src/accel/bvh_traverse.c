@@ -492,16 +492,15 @@ static inline bool stream_ray_start(const bvh *b, const ray *r, stream_ray *q, b
     return true;
 }
 
-// Closest hits of n <= BVH_STREAM rays through a wide BVH, one step of each ray in turn: a step ends by
-// prefetching the children it will visit, so while one ray waits for memory the others work. Each ray makes the
-// same steps in the same order as wide_run alone, so the hits are the same.
-static inline __attribute__((always_inline)) void wide_stream(const bvh *b, int n, const ray *rays, hit *hits,
-                                                              bool *found, int leaves) {
+/// Deepest tree whose rays a stream traces all at once (deeper trees' go in smaller groups), and the stack entries a
+/// ray of it may need.
+enum { STREAM_DEPTH = 24, STREAM_STACK = STREAM_DEPTH * (BVH_WIDTH - 1) + 1 };
+
+// wide_stream for a group of n rays whose stacks of `stride` entries fit in the group's room.
+static inline __attribute__((always_inline)) void wide_stream_group(const bvh *b, int n, const ray *rays, hit *hits,
+                                                                    bool *found, int leaves, size_t stride) {
     stream_ray s[BVH_STREAM];
-    // Each ray's stack holds at most BVH_WIDTH - 1 entries per level of the tree: packed that close, the stacks
-    // in use share few cache lines.
-    stack_entry stacks[BVH_STREAM * WIDE_STACK];
-    size_t stride = b->stats.depth < BVH_MAX_DEPTH ? (size_t)b->stats.depth * (BVH_WIDTH - 1) + 1 : WIDE_STACK;
+    stack_entry stacks[BVH_STREAM * STREAM_STACK];
     int active[BVH_STREAM], live = 0;
     for (int i = 0; i < n; i++) {
         found[i] = false;
@@ -522,6 +521,23 @@ static inline __attribute__((always_inline)) void wide_stream(const bvh *b, int 
             hits[i] = q->best;
             active[k] = active[--live]; // done: its place goes to the last ray in flight
         }
+    }
+}
+
+// Closest hits of n <= BVH_STREAM rays through a wide BVH, one step of each ray in turn: a step ends by
+// prefetching the children it will visit, so while one ray waits for memory the others work. Each ray makes the
+// same steps in the same order as wide_run alone, so the hits are the same.
+static inline __attribute__((always_inline)) void wide_stream(const bvh *b, int n, const ray *rays, hit *hits,
+                                                              bool *found, int leaves) {
+    // Each ray's stack holds at most BVH_WIDTH - 1 entries per level of the tree: packed that close, the stacks
+    // in use share few cache lines. Room for STREAM_DEPTH levels keeps the frame small (a library's caller may
+    // render on a thread with a small stack); a deeper tree's rays go in smaller groups.
+    size_t stride = b->stats.depth < BVH_MAX_DEPTH ? (size_t)b->stats.depth * (BVH_WIDTH - 1) + 1 : WIDE_STACK;
+    size_t group = BVH_STREAM * STREAM_STACK / stride;
+    if (group > BVH_STREAM) group = BVH_STREAM;
+    for (int first = 0; first < n; first += (int)group) {
+        int count = n - first < (int)group ? n - first : (int)group;
+        wide_stream_group(b, count, rays + first, hits + first, found + first, leaves, stride);
     }
 }
 
