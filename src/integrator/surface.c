@@ -20,6 +20,8 @@ surface surface_at_general(const glint_scene *s, const ray *r, const hit *h) {
         out.error = out.magnitude = 0.0f;
         return out;
     }
+    // A world quad: surface_at takes it inline, but this stays whole for any other caller (no instance to read).
+    if (h->instance == HIT_NO_INSTANCE && surface_at_flat(s, r, h, &out)) return out;
     const instance *in = &s->instances[h->instance];
     transform moved; // a moving instance's transform at the ray's time (the one the hit was found with)
     if (in->motion) motion_at(&s->motions[in->motion - 1], r->time, &moved);

@@ -27,8 +27,8 @@ typedef struct surface {
     float time;    ///< the ray's time: rays leaving the surface keep it
 } surface;
 
-/// Shading data of a hit on a moving sphere, an instanced sphere or a triangle of an instance that moves or turns
-/// directions (surface_at takes the others inline).
+/// Shading data of a hit on anything but a world-space sphere; surface_at calls it only for moving spheres,
+/// instanced spheres and the triangles of instances that move or turn directions (it takes the others inline).
 surface surface_at_general(const glint_scene *s, const ray *r, const hit *h);
 
 /// Bound on the rounding error of a point computed as o + t d in float, relative to its magnitude: a few
