@@ -145,8 +145,9 @@ static void test_records(void) {
         if (h.kind == HIT_QUAD) {
             seen[SEEN_QUAD]++;
             // surface_at_general, called directly, takes a world quad too (surface_at never asks it)
-            surface g = surface_at_general(s, &r, &h);
-            CHECK(same_vec(g.p, sf.p) && same_vec(g.ng, sf.ng) && g.material == sf.material && g.magnitude == sf.magnitude);
+            surface general = surface_at_general(s, &r, &h);
+            CHECK(same_vec(general.p, sf.p) && same_vec(general.ng, sf.ng) && general.material == sf.material &&
+                  general.magnitude == sf.magnitude);
         } else if (h.instance == 3) {
             seen[SEEN_TURNED_MESH]++;
             // surface_at_general: the turned normals are unit and face the ray; the magnitude is the world's.
