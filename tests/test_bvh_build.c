@@ -408,7 +408,39 @@ static void check_stop(void) {
     mesh_free(&m);
 }
 
+// A floor (a large quad) is padded on each axis by that axis's own magnitude: its box is as thin as its height
+// needs, so a ray spawned off it (offset by 2^-21 of the quad's magnitude, spawn.h) starts above the box and does
+// not test the floor again. The queries (check_queries) still find every hit, ties included.
+static void check_floor_padding(void) {
+    enum { SMALL = 40 };
+    quad quads[SMALL + 1];
+    CHECK(quad_make(v3(-50.0f, 0.25f, 50.0f), v3(100.0f, 0.0f, 0.0f), v3(0.0f, 0.0f, -100.0f), 0, &quads[0]));
+    rng g = rng_for_sample(14, 1, 0);
+    for (int i = 1; i <= SMALL; i++) // small tiles above the floor, so that the floor is a child of a node
+        CHECK(quad_make(v3(urand(&g, -1, 1), urand(&g, 1, 2), urand(&g, -1, 1)), v3(0.1f, 0.0f, 0.0f),
+                        v3(0.0f, 0.1f, 0.05f), 0, &quads[i]));
+    bvh b;
+    CHECK(bvh_build(&b, &(bvh_input){.quads = quads, .quad_count = SMALL + 1}, true));
+    CHECK(b.root != BVH_EMPTY && !(b.root & BVH_LEAF));
+    bool seen = false;
+    if (b.root != BVH_EMPTY && !(b.root & BVH_LEAF)) {
+        const bvh_wnode *n = &b.wnodes[b.root];
+        for (int i = 0; i < BVH_WIDTH; i++) {
+            if (!(n->box[3][i] - n->box[0][i] > 99.0f)) continue; // the floor's leaf: 100 wide
+            seen = true;
+            float spawned = 0.25f + 0x1p-21f * 50.0f; // a point off the floor, as spawn_point_of offsets it
+            CHECK(n->box[4][i] >= 0.25f && n->box[4][i] < spawned);
+            CHECK(n->box[1][i] <= 0.25f && n->box[4][i] - n->box[1][i] <= 0x1p-18f);
+        }
+    }
+    CHECK(seen);
+    bvh_release(&b);
+    accel_input in = {.quads = quads, .quad_count = SMALL + 1};
+    check_queries("floor and tiles", &in, 2, 3000, 8);
+}
+
 int main(void) {
+    check_floor_padding();
     check_small();
     check_tri_split();
     check_slivers();

@@ -1064,6 +1064,22 @@ static box3 box_padded(bounds3 bb) {
     return b;
 }
 
+// Pads the exact bounds of a triangle's or quad's corners on each axis by that axis's own magnitude: the slab test
+// of an axis rounds by about 2^-24 of its plane's and the origin's coordinates, and an origin far beyond the plane
+// (|o| > 2 |plane|) makes an error under 2^-22 of t, which the exit distance's widening covers (SLAB_FAR_SCALE).
+// So a floor's box is no thicker than its height needs, and a ray spawned off the floor starts outside it rather than
+// testing it again. (Boxes computed with rounding, of transformed or clipped geometry, keep box_padded.)
+static box3 box_padded_axes(bounds3 bb) {
+    const float lo[3] = {bb.lo.x, bb.lo.y, bb.lo.z}, hi[3] = {bb.hi.x, bb.hi.y, bb.hi.z};
+    box3 b = box_empty();
+    for (int k = 0; k < 3; k++) {
+        float pad = max2(fabsf(lo[k]), fabsf(hi[k])) * 0x1p-19f + 0x1p-100f;
+        b.lo[k] = lo[k] - pad;
+        b.hi[k] = hi[k] + pad;
+    }
+    return b;
+}
+
 // Object-space bounds of what an instance places.
 static bounds3 instance_object_bounds(const bvh_input *in, const instance *inst) {
     if (inst->kind == INSTANCE_SPHERE) {
@@ -1095,7 +1111,7 @@ static void gather_triangles_run(void *ctx, size_t item) {
     for (size_t k = begin; k < end; k++) {
         vec3 p[3];
         mesh_triangle_positions(job->m, k, &p[0], &p[1], &p[2]);
-        job->prims[k].box = box_padded(bounds3_add(bounds3_add(bounds3_add(bounds3_empty(), p[0]), p[1]), p[2]));
+        job->prims[k].box = box_padded_axes(bounds3_add(bounds3_add(bounds3_add(bounds3_empty(), p[0]), p[1]), p[2]));
         job->prims[k].split_levels = (uint32_t)tri_split_levels(p[0], p[1], p[2]);
         job->prims[k].ref = (prim_ref){.kind = PRIM_TRIANGLE, .index = (uint32_t)k, .instance = job->owner & PRIM_NO_INSTANCE};
         box_grow(&all, &job->prims[k].box);
@@ -1132,7 +1148,7 @@ static size_t gather_prims(const bvh_input *in, build_prim *prims, thread_pool *
         n++;
     }
     for (size_t i = 0; i < in->quad_count; i++) {
-        prims[n].box = box_padded(quad_bounds(&in->quads[i]));
+        prims[n].box = box_padded_axes(quad_bounds(&in->quads[i]));
         prims[n].ref = (prim_ref){.kind = PRIM_QUAD, .index = (uint32_t)i, .instance = none};
         box_grow(all, &prims[n].box);
         n++;

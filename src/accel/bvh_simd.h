@@ -79,8 +79,8 @@ static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, fl
 #endif
     // Operand order as in wnode_test_scalar: an empty slot's NaN reaches tn.
     __m256 tn = _mm256_max_ps(_mm256_max_ps(tmin, nx), _mm256_max_ps(ny, nz));
-    __m256 tf = _mm256_mul_ps(_mm256_min_ps(_mm256_min_ps(fx, fy), fz), _mm256_set1_ps(SLAB_FAR_SCALE));
-    tf = _mm256_min_ps(tf, _mm256_set1_ps(tlimit));
+    __m256 tf = _mm256_min_ps(_mm256_min_ps(_mm256_min_ps(fx, fy), fz), _mm256_set1_ps(tlimit));
+    tf = _mm256_mul_ps(tf, _mm256_set1_ps(SLAB_FAR_SCALE));
     _mm256_storeu_ps(tnear, tn);
     return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
 }

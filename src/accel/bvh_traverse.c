@@ -175,8 +175,7 @@ static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr,
         float fz = slab_t(n->box[tr->far[2]][i], tr->inv[2], tr->noi[2]);
         // The slab distances as second operands: an empty slot's NaN reaches tn, and tn <= tf fails.
         float tn = max_sse(max_sse(tr->r->tmin, nx), max_sse(ny, nz));
-        float tf = min_sse(min_sse(fx, fy), fz) * SLAB_FAR_SCALE;
-        tf = min_sse(tf, tlimit);
+        float tf = min_sse(min_sse(min_sse(fx, fy), fz), tlimit) * SLAB_FAR_SCALE;
         tnear[i] = tn;
         if (tn <= tf) mask |= 1u << i;
     }
@@ -382,7 +381,7 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
     // Pop the nearest pending subtree that can still hold a nearer hit.
     while (w->sp > 0) {
         stack_entry e = stack[--w->sp];
-        if (e.t <= best->t) {
+        if (e.t <= best->t * SLAB_FAR_SCALE) {
             w->ref = e.ref;
             return STEP_MORE;
         }
