@@ -548,29 +548,30 @@ typedef struct packet_bounds {
     float tmin;  ///< the smallest of the rays' tmin
 } packet_bounds;
 
-// The bounds of rays[0, n); false when their directions' signs differ on some axis (or a ray has a NaN).
-static bool packet_bounds_make(int n, const ray *rays, packet_bounds *pb) {
+// The bounds of rays[0, n), readied in s (their inverse directions made there); false when their directions'
+// signs differ on some axis.
+static bool packet_bounds_make(int n, const ray *rays, const stream_ray *s, packet_bounds *pb) {
     float olo[3], ohi[3], ilo[3], ihi[3];
     pb->tmin = INFINITY;
     pb->neg[0] = pb->neg[1] = pb->neg[2] = false;
     if (n <= 0) return false;
     for (int i = 0; i < n; i++) {
-        if (ray_is_nan(&rays[i])) return false;
-        trav_ray tr = trav_setup(&rays[i]);
         const float o[3] = {rays[i].o.x, rays[i].o.y, rays[i].o.z};
+        const float inv[3] = {_mm256_cvtss_f32(s[i].sr.inv[0]), _mm256_cvtss_f32(s[i].sr.inv[1]),
+                              _mm256_cvtss_f32(s[i].sr.inv[2])};
         for (int a = 0; a < 3; a++) {
-            bool neg = tr.inv[a] < 0.0f;
+            bool neg = inv[a] < 0.0f;
             if (i == 0) {
                 pb->neg[a] = neg;
                 olo[a] = ohi[a] = o[a];
-                ilo[a] = ihi[a] = tr.inv[a];
+                ilo[a] = ihi[a] = inv[a];
                 continue;
             }
             if (neg != pb->neg[a]) return false;
             olo[a] = o[a] < olo[a] ? o[a] : olo[a];
             ohi[a] = o[a] > ohi[a] ? o[a] : ohi[a];
-            ilo[a] = tr.inv[a] < ilo[a] ? tr.inv[a] : ilo[a];
-            ihi[a] = tr.inv[a] > ihi[a] ? tr.inv[a] : ihi[a];
+            ilo[a] = inv[a] < ilo[a] ? inv[a] : ilo[a];
+            ihi[a] = inv[a] > ihi[a] ? inv[a] : ihi[a];
         }
         pb->tmin = rays[i].tmin < pb->tmin ? rays[i].tmin : pb->tmin;
     }
@@ -624,15 +625,14 @@ static inline unsigned packet_node_test(const bvh_wnode *n, const packet_bounds 
 static void coherent_run(const bvh *b, int n, const ray *rays, hit *hits, bool *found) {
     stream_ray s[BVH_COHERENT];
     packet_bounds pb;
-    if (b->root == BVH_EMPTY || !packet_bounds_make(n, rays, &pb)) {
+    bool ready = b->root != BVH_EMPTY;
+    for (int i = 0; ready && i < n; i++) ready = stream_ray_start(b, &rays[i], &s[i], true); // false: a NaN ray
+    if (!ready || !packet_bounds_make(n, rays, s, &pb)) {
         for (int i = 0; i < n; i++) found[i] = bvh_intersect(b, &rays[i], &hits[i]);
         return;
     }
     float tlimit = 0.0f; // the farthest of the rays' best hits: beyond it no ray can gain
-    for (int i = 0; i < n; i++) {
-        stream_ray_start(b, &rays[i], &s[i], true); // no NaN ray here: packet_bounds_make refused them
-        tlimit = s[i].best.t > tlimit ? s[i].best.t : tlimit;
-    }
+    for (int i = 0; i < n; i++) tlimit = s[i].best.t > tlimit ? s[i].best.t : tlimit;
     stack_entry stack[WIDE_STACK];
     int sp = 0;
     uint32_t ref = b->root;
