@@ -408,39 +408,52 @@ static void check_stop(void) {
     mesh_free(&m);
 }
 
-// A floor (a large quad) is padded on each axis by that axis's own magnitude: its box is as thin as its height
-// needs, so a ray spawned off it (offset by 2^-21 of the quad's magnitude, spawn.h) starts above the box and does
-// not test the floor again. The queries (check_queries) still find every hit, ties included.
-static void check_floor_padding(void) {
-    enum { SMALL = 40 };
-    quad quads[SMALL + 1];
-    CHECK(quad_make(v3(-50.0f, 0.25f, 50.0f), v3(100.0f, 0.0f, 0.0f), v3(0.0f, 0.0f, -100.0f), 0, &quads[0]));
+// A floor (a large quad) is padded on each axis by that axis's own magnitude, and it has a leaf of its own even
+// where triangles lie on it: its box is as thin as its height needs, so a ray spawned off it (offset by 2^-21 of
+// the quad's magnitude, spawn.h) starts above every box the floor is in and tests nothing there. The queries
+// (check_queries) still find every hit, ties included.
+static void check_floor_leaf(void) {
+    quad floor;
+    CHECK(quad_make(v3(-50.0f, 0.25f, 50.0f), v3(100.0f, 0.0f, 0.0f), v3(0.0f, 0.0f, -100.0f), 0, &floor));
     rng g = rng_for_sample(14, 1, 0);
-    for (int i = 1; i <= SMALL; i++) // small tiles above the floor, so that the floor is a child of a node
-        CHECK(quad_make(v3(urand(&g, -1, 1), urand(&g, 1, 2), urand(&g, -1, 1)), v3(0.1f, 0.0f, 0.0f),
-                        v3(0.0f, 0.1f, 0.05f), 0, &quads[i]));
+    mesh m;
+    CHECK(make_soup(&g, 300, &m));
+    for (size_t i = 0; i < m.position_count; i++) // small triangles lying just above the floor
+        m.positions[i] = v3(m.positions[i].x * 0.1f, 0.26f + fabsf(m.positions[i].y) * 0.01f, m.positions[i].z * 0.1f);
+    mesh_compute_bounds(&m);
     bvh b;
-    CHECK(bvh_build(&b, &(bvh_input){.quads = quads, .quad_count = SMALL + 1}, true));
-    CHECK(b.root != BVH_EMPTY && !(b.root & BVH_LEAF));
-    bool seen = false;
-    if (b.root != BVH_EMPTY && !(b.root & BVH_LEAF)) {
-        const bvh_wnode *n = &b.wnodes[b.root];
+    CHECK(bvh_build(&b, &(bvh_input){.quads = &floor, .quad_count = 1, .mesh = &m}, true));
+    int floor_leaves = 0;
+    float spawned = 0.25f + 0x1p-21f * 50.0f; // a point off the floor, as spawn_point_of offsets it
+    for (size_t w = 0; w < b.wnode_count; w++)
         for (int i = 0; i < BVH_WIDTH; i++) {
-            if (!(n->box[3][i] - n->box[0][i] > 99.0f)) continue; // the floor's leaf: 100 wide
-            seen = true;
-            float spawned = 0.25f + 0x1p-21f * 50.0f; // a point off the floor, as spawn_point_of offsets it
-            CHECK(n->box[4][i] >= 0.25f && n->box[4][i] < spawned);
-            CHECK(n->box[1][i] <= 0.25f && n->box[4][i] - n->box[1][i] <= 0x1p-18f);
+            uint32_t c = b.wnodes[w].child[i];
+            if (c == BVH_EMPTY || !(c & BVH_LEAF)) continue;
+            const bvh_packet_header *hd = (const bvh_packet_header *)(const void *)&b.slots[c & ~BVH_LEAF];
+            bool has_floor = false, has_other = false;
+            for (;; hd += hd->slots) {
+                if (hd->kind == PRIM_QUAD) has_floor = true;
+                else has_other = true;
+                if (hd->last) break;
+            }
+            if (!has_floor) continue;
+            floor_leaves++;
+            CHECK(!has_other); // the floor's leaf holds nothing else
+            CHECK(b.wnodes[w].box[4][i] >= 0.25f && b.wnodes[w].box[4][i] < spawned);
+            CHECK(b.wnodes[w].box[1][i] <= 0.25f && b.wnodes[w].box[4][i] - b.wnodes[w].box[1][i] <= 0x1p-18f);
         }
-    }
-    CHECK(seen);
+    CHECK(floor_leaves == 1);
     bvh_release(&b);
-    accel_input in = {.quads = quads, .quad_count = SMALL + 1};
-    check_queries("floor and tiles", &in, 2, 3000, 8);
+    instance inst = {.kind = INSTANCE_MESH, .xf = transform_identity(), .material = -1};
+    const mesh *meshes[1] = {&m};
+    accel_input in = {.quads = &floor, .quad_count = 1, .meshes = meshes, .mesh_count = 1, .instances = &inst,
+                      .instance_count = 1};
+    check_queries("a floor under triangles", &in, 2, 3000, 8);
+    mesh_free(&m);
 }
 
 int main(void) {
-    check_floor_padding();
+    check_floor_leaf();
     check_small();
     check_tri_split();
     check_slivers();

@@ -285,11 +285,22 @@ static split best_split(const builder *bd, const bins *b, const box3 *bounds) {
     return best;
 }
 
-// Whether a range of n primitives at `depth` stays a leaf: one primitive, the depth limit, or a leaf that the
-// SAH prefers to the best split (unless it holds too many primitives for a leaf).
-static bool keep_leaf(const builder *bd, size_t n, uint64_t depth, float split_cost) {
+// Whether prims[begin, begin + n) are of one kind (and, flattened triangles, of one instance): one packet's worth.
+static bool one_kind(const build_prim *prims, size_t begin, size_t n) {
+    for (size_t i = begin + 1; i < begin + n; i++)
+        if (prims[i].ref.kind != prims[begin].ref.kind || prims[i].ref.instance != prims[begin].ref.instance)
+            return false;
+    return true;
+}
+
+// Whether prims[begin, begin + n) at `depth` stay a leaf: one primitive, the depth limit, or a leaf of one kind that
+// the SAH prefers to the best split (unless it holds too many primitives for a leaf). Kinds go to packets of their
+// own, and a floor's quad in a leaf with the triangles beside it would make that leaf's box as wide as the floor
+// and as high as the triangles: every ray leaving the floor would start in it and test them all.
+static bool keep_leaf(const builder *bd, size_t begin, size_t n, uint64_t depth, float split_cost) {
     if (n <= 1 || depth + 1 >= BVH_MAX_DEPTH) return true;
-    return n <= (size_t)bd->max_leaf && leaf_blocks(bd, n) * SAH_INTERSECT_COST <= split_cost;
+    return n <= (size_t)bd->max_leaf && leaf_blocks(bd, n) * SAH_INTERSECT_COST <= split_cost &&
+           one_kind(bd->prims, begin, n);
 }
 
 // A stop request ends the build: every range left becomes a leaf, and bvh_build discards the tree.
@@ -394,7 +405,7 @@ static uint32_t build_range(builder *bd, size_t begin, size_t end, uint64_t dept
         bins_add(&b, bd->prims, begin, end);
         s = best_split(bd, &b, &bounds);
     }
-    if (stopped || keep_leaf(bd, n, depth, s.cost)) {
+    if (stopped || keep_leaf(bd, begin, n, depth, s.cost)) {
         node_set_leaf(bd, node, begin, n);
         return id;
     }
@@ -664,7 +675,7 @@ static size_t top_range(par_build *pb, size_t begin, size_t end, uint64_t depth)
         for (size_t k = 0; k < st.count; k++) bins_merge(&b, &pb->chunk_bins[k]);
         s = best_split(bd, &b, &bounds);
     }
-    if (stopped || keep_leaf(bd, n, depth, s.cost)) {
+    if (stopped || keep_leaf(bd, begin, n, depth, s.cost)) {
         node_set_leaf(bd, &pb->top[id].node, begin, n);
         return id;
     }
