@@ -3,13 +3,13 @@
 #include "accel/bvh_kernel.h"
 
 // Entry distance of the ray into a binary node's box, or +inf when it misses within (tmin, tlimit].
-static inline float box2_enter(const bvh2_node *n, const trav_ray *tr, float tlimit) {
+static inline float box2_enter(const bvh2_node *n, const trav_ray *tr, float tlimit, bool ties) {
     float tn = tr->r->tmin, tf = INFINITY;
     for (int k = 0; k < 3; k++) {
         tn = max_sse(slab_t(n->box[tr->near[k]], tr->inv[k], tr->noi[k]), tn);
         tf = min_sse(slab_t(n->box[tr->far[k]], tr->inv[k], tr->noi[k]), tf);
     }
-    tf = min_sse(tf, tlimit) * SLAB_FAR_SCALE;
+    tf = ties ? min_sse(tf, tlimit) * SLAB_FAR_SCALE : min_sse(tf * SLAB_FAR_SCALE, tlimit); // bvh_kernel.h
     return tn <= tf ? tn : INFINITY;
 }
 
@@ -20,13 +20,14 @@ bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any)
     stack_entry stack[BIN_STACK];
     int sp = 0;
     bool found = false;
-    if (box2_enter(&b->nodes2[0], &tr, best->t) == INFINITY) return false;
+    if (box2_enter(&b->nodes2[0], &tr, best->t, !any) == INFINITY) return false;
     uint32_t id = 0;
     for (;;) {
         const bvh2_node *n = &b->nodes2[id];
         if (n->count == 0) {
             uint32_t c0 = id + 1, c1 = n->offset;
-            float t0 = box2_enter(&b->nodes2[c0], &tr, best->t), t1 = box2_enter(&b->nodes2[c1], &tr, best->t);
+            float t0 = box2_enter(&b->nodes2[c0], &tr, best->t, !any);
+            float t1 = box2_enter(&b->nodes2[c1], &tr, best->t, !any);
             if (t0 != INFINITY && t1 != INFINITY) {
                 if (t1 < t0) {
                     uint32_t tmp = c0; c0 = c1; c1 = tmp;
@@ -50,7 +51,7 @@ bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any)
         for (;;) {
             if (sp == 0) return found;
             stack_entry e = stack[--sp];
-            if (e.t <= best->t * SLAB_FAR_SCALE) { id = e.ref; break; }
+            if (e.t <= (any ? best->t : best->t * SLAB_FAR_SCALE)) { id = e.ref; break; }
         }
     }
 }

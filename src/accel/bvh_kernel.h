@@ -7,10 +7,11 @@
 
 #include <math.h>
 
-// Relative widening of every box's exit distance, capped by the best hit so far, so that float rounding of the
-// slab test (about 2^-23 of t) never culls a box the ray touches, nor one that holds a hit at the best hit's very
-// distance (which may win the tie, bvh_better); absolute errors are covered by the boxes' padding (sphere_box,
-// box_padded). Popped subtrees are kept by the same rule.
+// Relative widening of every box's exit distance, so that float rounding of the slab test (about 2^-23 of t) never
+// culls a box the ray touches; absolute errors are covered by the boxes' padding (sphere_box, box_padded). A
+// closest-hit query widens it after the cap by the best hit so far (and keeps popped subtrees by the same rule): a
+// box that holds a hit at the best hit's very distance may win the tie (bvh_better). An any-hit query caps after
+// widening: a hit at its tmax does not count, and a shadow ray would otherwise test the light it ends at.
 static const float SLAB_FAR_SCALE = 1.0f + 0x1p-20f;
 // Direction components smaller than this are replaced by it (with their sign): finite inverses.
 static const float DIR_EPSILON = 1e-20f;

@@ -61,7 +61,7 @@ static inline bool simd_setup(const ray *r, simd_ray *s, bool boxes_only) {
     return true;
 }
 
-static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, float tlimit, float *tnear) {
+static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, float tlimit, bool ties, float *tnear) {
     // Both planes of every slab, the nearer by min and the farther by max: the same values as choosing the
     // rows by the direction's signs (trav_setup's near and far), without per-ray row offsets to keep live.
     __m256 lx = _mm256_fmadd_ps(_mm256_load_ps(n->box[0]), s->inv[0], s->noi[0]);
@@ -79,8 +79,10 @@ static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, fl
 #endif
     // Operand order as in wnode_test_scalar: an empty slot's NaN reaches tn.
     __m256 tn = _mm256_max_ps(_mm256_max_ps(tmin, nx), _mm256_max_ps(ny, nz));
-    __m256 tf = _mm256_min_ps(_mm256_min_ps(_mm256_min_ps(fx, fy), fz), _mm256_set1_ps(tlimit));
-    tf = _mm256_mul_ps(tf, _mm256_set1_ps(SLAB_FAR_SCALE));
+    // Widened after the cap by the best hit where ties count (closest hits), before it otherwise (bvh_kernel.h).
+    __m256 tf = _mm256_min_ps(_mm256_min_ps(fx, fy), fz), far = _mm256_set1_ps(SLAB_FAR_SCALE);
+    tf = ties ? _mm256_mul_ps(_mm256_min_ps(tf, _mm256_set1_ps(tlimit)), far)
+              : _mm256_min_ps(_mm256_mul_ps(tf, far), _mm256_set1_ps(tlimit));
     _mm256_storeu_ps(tnear, tn);
     return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
 }

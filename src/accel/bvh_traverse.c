@@ -162,7 +162,8 @@ bool bvh_prim_hit(const bvh *b, prim_ref ref, const ray *r, tri_cache *tc, hit *
 
 // Box tests of every child of a wide node; returns the mask of children the ray enters before
 // tlimit, and their entry distances in tnear.
-static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr, float tlimit, float *tnear) {
+static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr, float tlimit, bool ties,
+                                         float *tnear) {
     unsigned mask = 0;
     for (int i = 0; i < BVH_WIDTH; i++) {
         // The same values as the SIMD path: it takes both planes of a slab by min and max where this picks the
@@ -175,7 +176,8 @@ static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr,
         float fz = slab_t(n->box[tr->far[2]][i], tr->inv[2], tr->noi[2]);
         // The slab distances as second operands: an empty slot's NaN reaches tn, and tn <= tf fails.
         float tn = max_sse(max_sse(tr->r->tmin, nx), max_sse(ny, nz));
-        float tf = min_sse(min_sse(min_sse(fx, fy), fz), tlimit) * SLAB_FAR_SCALE;
+        float tf = min_sse(min_sse(fx, fy), fz);
+        tf = ties ? min_sse(tf, tlimit) * SLAB_FAR_SCALE : min_sse(tf * SLAB_FAR_SCALE, tlimit);
         tnear[i] = tn;
         if (tn <= tf) mask |= 1u << i;
     }
@@ -310,10 +312,10 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
         float tnear[BVH_WIDTH];
         unsigned mask;
 #if BVH_SIMD
-        if (simd) mask = wnode_test_simd(n, sr, best->t, tnear);
+        if (simd) mask = wnode_test_simd(n, sr, best->t, !any, tnear);
         else
 #endif
-            mask = wnode_test_scalar(n, tr, best->t, tnear);
+            mask = wnode_test_scalar(n, tr, best->t, !any, tnear);
         if (mask != 0) {
 #if BVH_SIMD
             // Start fetching every child the ray enters: the nearest is read next, the others soon after, and
@@ -381,7 +383,7 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
     // Pop the nearest pending subtree that can still hold a nearer hit.
     while (w->sp > 0) {
         stack_entry e = stack[--w->sp];
-        if (e.t <= best->t * SLAB_FAR_SCALE) {
+        if (e.t <= (any ? best->t : best->t * SLAB_FAR_SCALE)) {
             w->ref = e.ref;
             return STEP_MORE;
         }
