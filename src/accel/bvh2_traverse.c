@@ -9,7 +9,7 @@ static inline float box2_enter(const bvh2_node *n, const trav_ray *tr, float tli
         tn = max_sse(slab_t(n->box[tr->near[k]], tr->inv[k], tr->noi[k]), tn);
         tf = min_sse(slab_t(n->box[tr->far[k]], tr->inv[k], tr->noi[k]), tf);
     }
-    tf = ties ? min_sse(tf, tlimit) * SLAB_FAR_SCALE : min_sse(tf * SLAB_FAR_SCALE, tlimit); // bvh_kernel.h
+    tf = slab_exit(tf, tlimit, ties);
     return tn <= tf ? tn : INFINITY;
 }
 
@@ -51,7 +51,7 @@ bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any)
         for (;;) {
             if (sp == 0) return found;
             stack_entry e = stack[--sp];
-            if (e.t <= (any ? best->t : best->t * SLAB_FAR_SCALE)) { id = e.ref; break; }
+            if (slab_keeps(e.t, best->t, any)) { id = e.ref; break; }
         }
     }
 }

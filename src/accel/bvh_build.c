@@ -1060,36 +1060,31 @@ static uint32_t leaf_placed(const collapser *cl, uint32_t ref) {
     return ref == BVH_EMPTY || !(ref & BVH_LEAF) ? ref : BVH_LEAF | cl->spans[ref & ~BVH_LEAF].slot;
 }
 
-// Pads a box so that it stays conservative after the float rounding of the slab test.
-static box3 box_padded(bounds3 bb) {
-    float m = max2(max2(max2(fabsf(bb.lo.x), fabsf(bb.hi.x)), max2(fabsf(bb.lo.y), fabsf(bb.hi.y))),
-                   max2(fabsf(bb.lo.z), fabsf(bb.hi.z)));
-    float pad = m * 0x1p-19f + 0x1p-100f;
-    box3 b = box_empty();
-    b.lo[0] = bb.lo.x - pad;
-    b.lo[1] = bb.lo.y - pad;
-    b.lo[2] = bb.lo.z - pad;
-    b.hi[0] = bb.hi.x + pad;
-    b.hi[1] = bb.hi.y + pad;
-    b.hi[2] = bb.hi.z + pad;
-    return b;
-}
-
-// Pads the exact bounds of a triangle's or quad's corners on each axis by that axis's own magnitude: the slab test
-// of an axis rounds by about 2^-24 of its plane's and the origin's coordinates, and an origin far beyond the plane
-// (|o| > 2 |plane|) makes an error under 2^-22 of t, which the exit distance's widening covers (SLAB_FAR_SCALE).
-// So a floor's box is no thicker than its height needs, and a ray spawned off the floor starts outside it rather than
-// testing it again. (Boxes computed with rounding, of transformed or clipped geometry, keep box_padded.)
-static box3 box_padded_axes(bounds3 bb) {
+// Pads a box so that it stays conservative after the float rounding of the slab test: by 2^-19 of its largest
+// coordinate on every axis, or (`per_axis`) of each axis's own. The slab test of an axis rounds by about 2^-24 of its
+// plane's and the origin's coordinates, and an origin far beyond the plane (|o| > 2 |plane|) makes an error under
+// 2^-22 of t, which the exit distance's widening covers (SLAB_FAR_SCALE); so per axis suffices for boxes whose
+// corners are exact (a triangle's, a quad's), and a floor's box is then no thicker than its height needs: a ray
+// spawned off the floor starts outside it rather than testing it again. Boxes computed with rounding, of
+// transformed or clipped geometry, take the largest coordinate.
+static box3 box_padded_by(bounds3 bb, bool per_axis) {
     const float lo[3] = {bb.lo.x, bb.lo.y, bb.lo.z}, hi[3] = {bb.hi.x, bb.hi.y, bb.hi.z};
+    float m[3], all = 0.0f;
+    for (int k = 0; k < 3; k++) {
+        m[k] = max2(fabsf(lo[k]), fabsf(hi[k]));
+        all = max2(all, m[k]);
+    }
     box3 b = box_empty();
     for (int k = 0; k < 3; k++) {
-        float pad = max2(fabsf(lo[k]), fabsf(hi[k])) * 0x1p-19f + 0x1p-100f;
+        float pad = (per_axis ? m[k] : all) * 0x1p-19f + 0x1p-100f;
         b.lo[k] = lo[k] - pad;
         b.hi[k] = hi[k] + pad;
     }
     return b;
 }
+
+static box3 box_padded(bounds3 bb) { return box_padded_by(bb, false); }
+static box3 box_padded_axes(bounds3 bb) { return box_padded_by(bb, true); }
 
 // Object-space bounds of what an instance places.
 static bounds3 instance_object_bounds(const bvh_input *in, const instance *inst) {

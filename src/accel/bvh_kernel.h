@@ -67,6 +67,15 @@ static inline float slab_t(float b, float inv, float noi) {
 static inline float max_sse(float a, float b) { return a > b ? a : b; }
 static inline float min_sse(float a, float b) { return a < b ? a : b; }
 
+// A box's exit distance tf as the box tests compare it, widened by SLAB_FAR_SCALE after the cap tlimit where ties
+// count (`ties`: a closest-hit query), before it otherwise.
+static inline float slab_exit(float tf, float tlimit, bool ties) {
+    return ties ? min_sse(tf, tlimit) * SLAB_FAR_SCALE : min_sse(tf * SLAB_FAR_SCALE, tlimit);
+}
+
+// Whether a pending subtree entered at t can still hold the hit a query wants, by the same rule.
+static inline bool slab_keeps(float t, float best_t, bool any) { return t <= (any ? best_t : best_t * SLAB_FAR_SCALE); }
+
 /// Per-ray constants of the watertight triangle test, made the first time a quad or triangle needs them.
 typedef struct tri_cache {
     bool ready;

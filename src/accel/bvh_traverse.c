@@ -177,7 +177,7 @@ static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr,
         // The slab distances as second operands: an empty slot's NaN reaches tn, and tn <= tf fails.
         float tn = max_sse(max_sse(tr->r->tmin, nx), max_sse(ny, nz));
         float tf = min_sse(min_sse(fx, fy), fz);
-        tf = ties ? min_sse(tf, tlimit) * SLAB_FAR_SCALE : min_sse(tf * SLAB_FAR_SCALE, tlimit);
+        tf = slab_exit(tf, tlimit, ties);
         tnear[i] = tn;
         if (tn <= tf) mask |= 1u << i;
     }
@@ -383,7 +383,7 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
     // Pop the nearest pending subtree that can still hold a nearer hit.
     while (w->sp > 0) {
         stack_entry e = stack[--w->sp];
-        if (e.t <= (any ? best->t : best->t * SLAB_FAR_SCALE)) {
+        if (slab_keeps(e.t, best->t, any)) {
             w->ref = e.ref;
             return STEP_MORE;
         }
