@@ -550,30 +550,63 @@ typedef struct packet_bounds {
     float tmin;  ///< the smallest of the rays' tmin
 } packet_bounds;
 
-// The bounds of rays[0, n), readied in s (their inverse directions made there); false when their directions'
-// signs differ on some axis.
-static bool packet_bounds_make(int n, const ray *rays, const stream_ray *s, packet_bounds *pb) {
+_Static_assert(BVH_COHERENT == 8, "a packet's rays are the lanes of one AVX register");
+
+/// The triangle-test constants of a packet's rays, lane i for ray i: what tri_ray_make and simd_tri_setup make
+/// for each ray alone, before the broadcasts (each leaf test broadcasts its ray's lane).
+typedef struct packet_rays {
+    _Alignas(32) float ox[BVH_COHERENT], oy[BVH_COHERENT], oz[BVH_COHERENT]; ///< in ray-space order (x = kx, ...)
+    _Alignas(32) float sx[BVH_COHERENT], sy[BVH_COHERENT], sz[BVH_COHERENT];
+    tri_ray tr[BVH_COHERENT]; ///< whole, for the lanes that take tri_intersect's double path
+} packet_rays;
+
+// Lane by lane, a where mask is set, else b.
+static inline __m256 pick(__m256 mask, __m256 a, __m256 b) { return _mm256_blendv_ps(b, a, mask); }
+
+// Readies rays[0, n) (0 < n <= BVH_COHERENT) in pr and pb: in each lane the operations simd_setup and
+// tri_ray_make perform for that ray alone, so the same values, but the divisions of all the rays in six vector
+// instructions rather than forty-eight scalar ones, and no broadcast stored. Lanes past n repeat ray 0. False for
+// a NaN ray (which hits nothing) or directions whose signs differ on some axis: then the rays go one by one.
+static bool packet_setup(int n, const ray *rays, packet_rays *pr, packet_bounds *pb) {
+    _Alignas(32) float o[3][BVH_COHERENT], d[3][BVH_COHERENT], inv[3][BVH_COHERENT];
+    for (int i = 0; i < BVH_COHERENT; i++) {
+        const ray *r = &rays[i < n ? i : 0];
+        o[0][i] = r->o.x, o[1][i] = r->o.y, o[2][i] = r->o.z;
+        d[0][i] = r->d.x, d[1][i] = r->d.y, d[2][i] = r->d.z;
+    }
+    __m256 ov[3], dv[3], nan = _mm256_setzero_ps();
+    const __m256 sign = _mm256_set1_ps(-0.0f), eps = _mm256_set1_ps(DIR_EPSILON), one = _mm256_set1_ps(1.0f),
+                 zero = _mm256_setzero_ps();
+    unsigned neg[3];
+    for (int a = 0; a < 3; a++) {
+        ov[a] = _mm256_load_ps(o[a]);
+        dv[a] = _mm256_load_ps(d[a]);
+        nan = _mm256_or_ps(nan, _mm256_or_ps(_mm256_cmp_ps(ov[a], ov[a], _CMP_UNORD_Q),
+                                             _mm256_cmp_ps(dv[a], dv[a], _CMP_UNORD_Q)));
+        // The box tests' inverse direction, a component too small for it made +-DIR_EPSILON (simd_setup).
+        __m256 tiny = _mm256_cmp_ps(_mm256_andnot_ps(sign, dv[a]), eps, _CMP_LT_OQ);
+        __m256 iv = _mm256_div_ps(one, pick(tiny, _mm256_or_ps(_mm256_and_ps(sign, dv[a]), eps), dv[a]));
+        _mm256_store_ps(inv[a], iv);
+        neg[a] = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(iv, zero, _CMP_LT_OQ));
+    }
+    if (_mm256_movemask_ps(nan) != 0) return false;
+    for (int a = 0; a < 3; a++) {
+        if (neg[a] != 0 && neg[a] != 0xffu) return false;
+        pb->neg[a] = neg[a] != 0;
+    }
+    // The range of origins and inverse directions, ray by ray in order (as tri_ray_make's callers saw them).
     float olo[3], ohi[3], ilo[3], ihi[3];
-    pb->tmin = INFINITY;
-    pb->neg[0] = pb->neg[1] = pb->neg[2] = false;
-    if (n <= 0) return false;
-    for (int i = 0; i < n; i++) {
-        const float o[3] = {rays[i].o.x, rays[i].o.y, rays[i].o.z};
-        const float inv[3] = {_mm256_cvtss_f32(s[i].sr.inv[0]), _mm256_cvtss_f32(s[i].sr.inv[1]),
-                              _mm256_cvtss_f32(s[i].sr.inv[2])};
+    pb->tmin = rays[0].tmin;
+    for (int a = 0; a < 3; a++) {
+        olo[a] = ohi[a] = o[a][0];
+        ilo[a] = ihi[a] = inv[a][0];
+    }
+    for (int i = 1; i < n; i++) {
         for (int a = 0; a < 3; a++) {
-            bool neg = inv[a] < 0.0f;
-            if (i == 0) {
-                pb->neg[a] = neg;
-                olo[a] = ohi[a] = o[a];
-                ilo[a] = ihi[a] = inv[a];
-                continue;
-            }
-            if (neg != pb->neg[a]) return false;
-            olo[a] = o[a] < olo[a] ? o[a] : olo[a];
-            ohi[a] = o[a] > ohi[a] ? o[a] : ohi[a];
-            ilo[a] = inv[a] < ilo[a] ? inv[a] : ilo[a];
-            ihi[a] = inv[a] > ihi[a] ? inv[a] : ihi[a];
+            olo[a] = o[a][i] < olo[a] ? o[a][i] : olo[a];
+            ohi[a] = o[a][i] > ohi[a] ? o[a][i] : ohi[a];
+            ilo[a] = inv[a][i] < ilo[a] ? inv[a][i] : ilo[a];
+            ihi[a] = inv[a][i] > ihi[a] ? inv[a][i] : ihi[a];
         }
         pb->tmin = rays[i].tmin < pb->tmin ? rays[i].tmin : pb->tmin;
     }
@@ -582,6 +615,31 @@ static bool packet_bounds_make(int n, const ray *rays, const stream_ray *s, pack
         pb->ohi[a] = _mm256_set1_ps(ohi[a]);
         pb->ilo[a] = _mm256_set1_ps(ilo[a]);
         pb->ihi[a] = _mm256_set1_ps(ihi[a]);
+    }
+    // tri_ray_make in every lane: z the axis of the largest |d| (x before y before z on ties, as there), x and y
+    // the next two cyclically, swapped when d.z < 0.
+    __m256 ax = _mm256_andnot_ps(sign, dv[0]), ay = _mm256_andnot_ps(sign, dv[1]), az = _mm256_andnot_ps(sign, dv[2]);
+    __m256 x_over_y = _mm256_cmp_ps(ax, ay, _CMP_GT_OQ);
+    __m256 x_first = _mm256_and_ps(x_over_y, _mm256_cmp_ps(ax, az, _CMP_GT_OQ));
+    __m256 y_first = _mm256_andnot_ps(x_over_y, _mm256_cmp_ps(ay, az, _CMP_GT_OQ));
+    // Per lane, the component on axis kz and on the two after it (kz + 1 and kz + 2, cyclically).
+    __m256 dz = pick(x_first, dv[0], pick(y_first, dv[1], dv[2]));
+    __m256 d1 = pick(x_first, dv[1], pick(y_first, dv[2], dv[0])), d2 = pick(x_first, dv[2], pick(y_first, dv[0], dv[1]));
+    __m256 oz = pick(x_first, ov[0], pick(y_first, ov[1], ov[2]));
+    __m256 o1 = pick(x_first, ov[1], pick(y_first, ov[2], ov[0])), o2 = pick(x_first, ov[2], pick(y_first, ov[0], ov[1]));
+    __m256 flip = _mm256_cmp_ps(dz, zero, _CMP_LT_OQ);
+    _mm256_store_ps(pr->sx, _mm256_div_ps(pick(flip, d2, d1), dz));
+    _mm256_store_ps(pr->sy, _mm256_div_ps(pick(flip, d1, d2), dz));
+    _mm256_store_ps(pr->sz, _mm256_div_ps(one, dz));
+    _mm256_store_ps(pr->ox, pick(flip, o2, o1));
+    _mm256_store_ps(pr->oy, pick(flip, o1, o2));
+    _mm256_store_ps(pr->oz, oz);
+    unsigned xf = (unsigned)_mm256_movemask_ps(x_first), yf = (unsigned)_mm256_movemask_ps(y_first),
+             fl = (unsigned)_mm256_movemask_ps(flip);
+    for (int i = 0; i < n; i++) {
+        int kz = xf >> i & 1u ? 0 : yf >> i & 1u ? 1 : 2, k1 = kz == 2 ? 0 : kz + 1, k2 = kz == 0 ? 2 : kz - 1;
+        bool f = fl >> i & 1u;
+        pr->tr[i] = (tri_ray){rays[i].o, f ? k2 : k1, f ? k1 : k2, kz, pr->sx[i], pr->sy[i], pr->sz[i]};
     }
     return true;
 }
@@ -625,16 +683,20 @@ static inline unsigned packet_node_test(const bvh_wnode *n, const packet_bounds 
 // every leaf its own traversal would have reached (and maybe more), and bvh_better keeps the same hit whatever the
 // order: the hits are those of bvh_intersect.
 static void coherent_run(const bvh *b, int n, const ray *rays, hit *hits, bool *found) {
-    stream_ray s[BVH_COHERENT];
+    packet_rays pr;
     packet_bounds pb;
-    bool ready = b->root != BVH_EMPTY;
-    for (int i = 0; ready && i < n; i++) ready = stream_ray_start(b, &rays[i], &s[i], true); // false: a NaN ray
-    if (!ready || !packet_bounds_make(n, rays, s, &pb)) {
+    if (b->root == BVH_EMPTY || n <= 0 || !packet_setup(n, rays, &pr, &pb)) {
         for (int i = 0; i < n; i++) found[i] = bvh_intersect(b, &rays[i], &hits[i]);
         return;
     }
+    hit best[BVH_COHERENT];
+    bool hit_any[BVH_COHERENT];
     float tlimit = 0.0f; // the farthest of the rays' best hits: beyond it no ray can gain
-    for (int i = 0; i < n; i++) tlimit = s[i].best.t > tlimit ? s[i].best.t : tlimit;
+    for (int i = 0; i < n; i++) {
+        best[i] = bvh_no_hit(&rays[i]);
+        hit_any[i] = false;
+        tlimit = best[i].t > tlimit ? best[i].t : tlimit;
+    }
     stack_entry stack[WIDE_STACK];
     int sp = 0;
     uint32_t ref = b->root;
@@ -667,11 +729,18 @@ static void coherent_run(const bvh *b, int n, const ray *rays, hit *hits, bool *
             tlimit = 0.0f;
             for (int i = 0; i < n; i++) {
                 // A ray whose hit lies before any ray enters the leaf has nothing to find there.
-                if (!(s[i].best.t < ref_t) &&
-                    leaf_simd(b, ref, &rays[i], &s[i].sr, &s[i].stri, &s[i].tc, &s[i].best, HIT_NO_INSTANCE, false,
-                              LEAVES_TRIANGLES))
-                    s[i].found = true;
-                tlimit = s[i].best.t > tlimit ? s[i].best.t : tlimit;
+                if (!(best[i].t < ref_t)) {
+                    const tri_ray *tr = &pr.tr[i];
+                    simd_tri st = {PK(set1_ps)(pr.ox[i]), PK(set1_ps)(pr.oy[i]), PK(set1_ps)(pr.oz[i]),
+                                   PK(set1_ps)(pr.sx[i]), PK(set1_ps)(pr.sy[i]), PK(set1_ps)(pr.sz[i]),
+                                   PK(set1_ps)(rays[i].tmin), PK(set1_ps)(rays[i].tmax), tr->kx, tr->ky, tr->kz,
+                                   rays[i].tmin, rays[i].tmax, tr};
+                    tri_cache unused = {.ready = false};
+                    if (leaf_simd(b, ref, &rays[i], NULL, &st, &unused, &best[i], HIT_NO_INSTANCE, false,
+                                  LEAVES_TRIANGLES))
+                        hit_any[i] = true;
+                }
+                tlimit = best[i].t > tlimit ? best[i].t : tlimit;
             }
         }
         // The nearest pending subtree that a ray can still gain from.
@@ -682,8 +751,8 @@ static void coherent_run(const bvh *b, int n, const ray *rays, hit *hits, bool *
         ref_t = stack[sp].t;
     }
     for (int i = 0; i < n; i++) {
-        found[i] = s[i].found;
-        hits[i] = s[i].best;
+        found[i] = hit_any[i];
+        hits[i] = best[i];
     }
 }
 
