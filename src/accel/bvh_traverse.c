@@ -557,7 +557,9 @@ _Static_assert(BVH_COHERENT == 8, "a packet's rays are the lanes of one AVX regi
 typedef struct packet_rays {
     _Alignas(32) float ox[BVH_COHERENT], oy[BVH_COHERENT], oz[BVH_COHERENT]; ///< in ray-space order (x = kx, ...)
     _Alignas(32) float sx[BVH_COHERENT], sy[BVH_COHERENT], sz[BVH_COHERENT];
+    _Alignas(32) float tmin[BVH_COHERENT], tmax[BVH_COHERENT];
     tri_ray tr[BVH_COHERENT]; ///< whole, for the lanes that take tri_intersect's double path
+    bool uniform;             ///< every ray has the same kx, ky, kz: leaves can test all the rays at once (leaf_rays)
 } packet_rays;
 
 // Lane by lane, a where mask is set, else b.
@@ -636,6 +638,11 @@ static bool packet_setup(int n, const ray *rays, packet_rays *pr, packet_bounds 
     _mm256_store_ps(pr->oz, oz);
     unsigned xf = (unsigned)_mm256_movemask_ps(x_first), yf = (unsigned)_mm256_movemask_ps(y_first),
              fl = (unsigned)_mm256_movemask_ps(flip);
+    pr->uniform = (xf == 0 || xf == 0xffu) && (yf == 0 || yf == 0xffu) && (fl == 0 || fl == 0xffu);
+    for (int i = 0; i < BVH_COHERENT; i++) {
+        pr->tmin[i] = rays[i < n ? i : 0].tmin;
+        pr->tmax[i] = rays[i < n ? i : 0].tmax;
+    }
     for (int i = 0; i < n; i++) {
         int kz = xf >> i & 1u ? 0 : yf >> i & 1u ? 1 : 2, k1 = kz == 2 ? 0 : kz + 1, k2 = kz == 0 ? 2 : kz - 1;
         bool f = fl >> i & 1u;
@@ -676,6 +683,94 @@ static inline unsigned packet_node_test(const bvh_wnode *n, const packet_bounds 
     __m256 slot = _mm256_cmp_ps(_mm256_load_ps(n->box[0]), _mm256_load_ps(n->box[0]), _CMP_ORD_Q);
     _mm256_storeu_ps(tnear, tn);
     return (unsigned)_mm256_movemask_ps(_mm256_and_ps(slot, _mm256_cmp_ps(tn, tf, _CMP_LE_OQ)));
+}
+
+// Ray i of a packet against triangle k of packet p in tri_intersect itself, for each ray in `lanes` (where
+// leaf_rays found an edge function of zero), its result written into lane i of t, b1, b2. Returns the rays hit.
+static __attribute__((noinline)) unsigned rays_exact(const bvh_triangle_packet *p, int k, const packet_rays *pr,
+                                                     unsigned lanes, float *t, float *b1, float *b2) {
+    vec3 v[3];
+    for (int j = 0; j < 3; j++) v[j] = v3(p->v[j][0][k], p->v[j][1][k], p->v[j][2][k]);
+    unsigned found = 0;
+    do {
+        int i = __builtin_ctz(lanes);
+        lanes &= lanes - 1;
+        tri_hit th;
+        if (!tri_intersect(&pr->tr[i], v[0], v[1], v[2], pr->tmin[i], pr->tmax[i], &th)) continue;
+        t[i] = th.t;
+        b1[i] = th.b1;
+        b2[i] = th.b2;
+        found |= 1u << i;
+    } while (lanes);
+    return found;
+}
+
+// Leaf `ref` tested by the packet's rays in `lanes` (all of the same kx, ky, kz) at once, one triangle at a time
+// against every ray: each lane computes exactly what triangles_simd computes for its ray (the same operations on
+// the same values), so each ray finds the hits its own leaf test finds. A leaf of fewer triangles than rays
+// (the ground quad's two) costs fewer tests than the rays one by one. Sets hit_any[i] where ray i hit something.
+static void leaf_rays(const bvh *b, uint32_t ref, const packet_rays *pr, unsigned lanes, hit *best, bool *hit_any) {
+    const int kx = pr->tr[0].kx, ky = pr->tr[0].ky, kz = pr->tr[0].kz;
+    const __m256 ox = _mm256_load_ps(pr->ox), oy = _mm256_load_ps(pr->oy), oz = _mm256_load_ps(pr->oz);
+    const __m256 sx = _mm256_load_ps(pr->sx), sy = _mm256_load_ps(pr->sy), sz = _mm256_load_ps(pr->sz);
+    const __m256 tmin = _mm256_load_ps(pr->tmin), tmax = _mm256_load_ps(pr->tmax);
+    const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
+    const bvh_slot *slot = &b->slots[ref & ~BVH_LEAF];
+    for (;;) {
+        const bvh_triangle_packet *p = (const bvh_triangle_packet *)(const void *)slot;
+        int count = (int)(p->h.kind == PRIM_QUAD ? 2 * p->h.count : p->h.count); // a quad is two lanes
+        const mesh *m = p->h.kind != PRIM_TRIANGLE ? NULL : p->h.instance == HIT_NO_INSTANCE ? b->mesh : b->flat[p->h.instance];
+        for (int k = 0; k < count; k++) {
+            __m256 x[3], y[3], z[3];
+            for (int j = 0; j < 3; j++) { // as triangles_simd: vertex j - o, sheared
+                z[j] = _mm256_sub_ps(_mm256_set1_ps(p->v[j][kz][k]), oz);
+                x[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_set1_ps(p->v[j][kx][k]), ox), _mm256_mul_ps(sx, z[j]));
+                y[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_set1_ps(p->v[j][ky][k]), oy), _mm256_mul_ps(sy, z[j]));
+            }
+            __m256 u = _mm256_sub_ps(_mm256_mul_ps(x[2], y[1]), _mm256_mul_ps(y[2], x[1]));
+            __m256 v = _mm256_sub_ps(_mm256_mul_ps(x[0], y[2]), _mm256_mul_ps(y[0], x[2]));
+            __m256 w = _mm256_sub_ps(_mm256_mul_ps(x[1], y[0]), _mm256_mul_ps(y[1], x[0]));
+            __m256 neg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
+                                      _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
+            __m256 pos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
+                                      _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
+            __m256 zeros = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
+                                        _mm256_cmp_ps(w, zero, _CMP_EQ_OQ));
+            unsigned exact = (unsigned)_mm256_movemask_ps(zeros) & lanes;
+            unsigned inside = ~(unsigned)_mm256_movemask_ps(_mm256_and_ps(neg, pos)) & lanes & ~exact;
+            if (!(inside | exact)) continue; // the common case: the triangle misses every ray
+            _Alignas(32) float t[BVH_COHERENT], b1[BVH_COHERENT], b2[BVH_COHERENT];
+            unsigned mask = 0;
+            if (inside) {
+                __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+                __m256 scaled = _mm256_mul_ps(
+                    _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, z[0]), _mm256_mul_ps(v, z[1])), _mm256_mul_ps(w, z[2])),
+                    sz);
+                __m256 inv = _mm256_div_ps(one, det);
+                __m256 tv = _mm256_mul_ps(scaled, inv);
+                __m256 ok = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ),
+                                          _mm256_and_ps(_mm256_cmp_ps(tv, tmin, _CMP_GT_OQ), _mm256_cmp_ps(tv, tmax, _CMP_LT_OQ)));
+                mask = inside & (unsigned)_mm256_movemask_ps(ok);
+                if (mask) {
+                    _mm256_store_ps(t, tv);
+                    _mm256_store_ps(b1, _mm256_mul_ps(v, inv));
+                    _mm256_store_ps(b2, _mm256_mul_ps(w, inv));
+                }
+            }
+            if (exact) mask |= rays_exact(p, k, pr, exact, t, b1, b2);
+            while (mask) {
+                int i = __builtin_ctz(mask);
+                mask &= mask - 1;
+                hit_any[i] = true;
+                float before = best[i].t;
+                offer_triangle(&best[i], p, k, t[i], b1[i], b2[i], HIT_NO_INSTANCE);
+                // A nearer triangle of a mesh: fetch its record for shading, as leaf_simd does.
+                if (m && best[i].t < before) _mm_prefetch((const char *)&m->triangles[best[i].prim], _MM_HINT_T0);
+            }
+        }
+        if (p->h.last) return;
+        slot += p->h.slots;
+    }
 }
 
 // Closest hits of n <= BVH_COHERENT rays through a tree of triangles, traversed together: one interval test of
@@ -727,8 +822,14 @@ static void coherent_run(const bvh *b, int n, const ray *rays, hit *hits, bool *
             }
         } else {
             tlimit = 0.0f;
-            for (int i = 0; i < n; i++) {
+            if (pr.uniform) {
                 // A ray whose hit lies before any ray enters the leaf has nothing to find there.
+                unsigned lanes = 0;
+                for (int i = 0; i < n; i++) lanes |= (unsigned)!(best[i].t < ref_t) << i;
+                if (lanes) leaf_rays(b, ref, &pr, lanes, best, hit_any);
+                for (int i = 0; i < n; i++) tlimit = best[i].t > tlimit ? best[i].t : tlimit;
+            } else for (int i = 0; i < n; i++) {
+                // As above, ray by ray.
                 if (!(best[i].t < ref_t)) {
                     const tri_ray *tr = &pr.tr[i];
                     simd_tri st = {PK(set1_ps)(pr.ox[i]), PK(set1_ps)(pr.oy[i]), PK(set1_ps)(pr.oz[i]),
