@@ -89,7 +89,7 @@ void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, b
 /// them one by one.
 bool accel_streams(const accel *a);
 /// Most rays accel_intersect_coherent takes at once.
-enum { ACCEL_COHERENT = 8 };
+enum { ACCEL_COHERENT = 16 };
 /// Closest hits of n <= ACCEL_COHERENT rays that start close together and point alike (a pixel's camera rays):
 /// traversed as one packet where accel_coherent, else one by one; the same hits as accel_intersect either way.
 void accel_intersect_coherent(const accel *a, int n, const ray *rays, hit *hits, bool *found);

@@ -213,7 +213,7 @@ void bvh_intersect_stream(const bvh *b, int n, const ray *rays, hit *hits, bool 
 /// rather than one by one.
 bool bvh_streams(const bvh *b);
 /// Most rays bvh_intersect_coherent takes at once.
-enum { BVH_COHERENT = 8 };
+enum { BVH_COHERENT = 16 };
 /// Closest hits of n <= BVH_COHERENT rays that start close together and point alike (a pixel's camera rays),
 /// traversed as one packet: the same hits as bvh_intersect on each.
 void bvh_intersect_coherent(const bvh *b, int n, const ray *rays, hit *hits, bool *found);

@@ -550,7 +550,9 @@ typedef struct packet_bounds {
     float tmin;  ///< the smallest of the rays' tmin
 } packet_bounds;
 
-_Static_assert(BVH_COHERENT == 8, "a packet's rays are the lanes of one AVX register");
+/// A packet's rays are set up and tested in groups of eight, the lanes of an AVX register.
+enum { PACKET_GROUP = 8 };
+_Static_assert(BVH_COHERENT % PACKET_GROUP == 0 && BVH_COHERENT <= 16, "whole groups, ray masks in an unsigned");
 
 /// The triangle-test constants of a packet's rays, lane i for ray i: what tri_ray_make and simd_tri_setup make
 /// for each ray alone, before the broadcasts (each leaf test broadcasts its ray's lane).
@@ -575,28 +577,64 @@ static bool packet_setup(int n, const ray *rays, packet_rays *pr, packet_bounds 
         const ray *r = &rays[i < n ? i : 0];
         o[0][i] = r->o.x, o[1][i] = r->o.y, o[2][i] = r->o.z;
         d[0][i] = r->d.x, d[1][i] = r->d.y, d[2][i] = r->d.z;
+        pr->tmin[i] = r->tmin;
+        pr->tmax[i] = r->tmax;
     }
-    __m256 ov[3], dv[3], nan = _mm256_setzero_ps();
     const __m256 sign = _mm256_set1_ps(-0.0f), eps = _mm256_set1_ps(DIR_EPSILON), one = _mm256_set1_ps(1.0f),
                  zero = _mm256_setzero_ps();
-    unsigned neg[3];
-    for (int a = 0; a < 3; a++) {
-        ov[a] = _mm256_load_ps(o[a]);
-        dv[a] = _mm256_load_ps(d[a]);
-        nan = _mm256_or_ps(nan, _mm256_or_ps(_mm256_cmp_ps(ov[a], ov[a], _CMP_UNORD_Q),
-                                             _mm256_cmp_ps(dv[a], dv[a], _CMP_UNORD_Q)));
-        // The box tests' inverse direction, a component too small for it made +-DIR_EPSILON (simd_setup).
-        __m256 tiny = _mm256_cmp_ps(_mm256_andnot_ps(sign, dv[a]), eps, _CMP_LT_OQ);
-        __m256 iv = _mm256_div_ps(one, pick(tiny, _mm256_or_ps(_mm256_and_ps(sign, dv[a]), eps), dv[a]));
-        _mm256_store_ps(inv[a], iv);
-        neg[a] = (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(iv, zero, _CMP_LT_OQ));
+    // Bit i of each: ray i has a NaN; a negative direction on axis a; z is its x axis, its y axis; x and y swapped.
+    unsigned nan = 0, neg[3] = {0, 0, 0}, xf = 0, yf = 0, fl = 0;
+    for (int g = 0; g < BVH_COHERENT; g += PACKET_GROUP) {
+        __m256 ov[3], dv[3], nanv = zero;
+        for (int a = 0; a < 3; a++) {
+            ov[a] = _mm256_load_ps(&o[a][g]);
+            dv[a] = _mm256_load_ps(&d[a][g]);
+            nanv = _mm256_or_ps(nanv, _mm256_or_ps(_mm256_cmp_ps(ov[a], ov[a], _CMP_UNORD_Q),
+                                                   _mm256_cmp_ps(dv[a], dv[a], _CMP_UNORD_Q)));
+            // The box tests' inverse direction, a component too small for it made +-DIR_EPSILON (simd_setup).
+            __m256 tiny = _mm256_cmp_ps(_mm256_andnot_ps(sign, dv[a]), eps, _CMP_LT_OQ);
+            __m256 iv = _mm256_div_ps(one, pick(tiny, _mm256_or_ps(_mm256_and_ps(sign, dv[a]), eps), dv[a]));
+            _mm256_store_ps(&inv[a][g], iv);
+            neg[a] |= (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(iv, zero, _CMP_LT_OQ)) << g;
+        }
+        nan |= (unsigned)_mm256_movemask_ps(nanv) << g;
+        // tri_ray_make in every lane: z the axis of the largest |d| (x before y before z on ties, as there), x and
+        // y the next two cyclically, swapped when d.z < 0.
+        __m256 ax = _mm256_andnot_ps(sign, dv[0]), ay = _mm256_andnot_ps(sign, dv[1]),
+               az = _mm256_andnot_ps(sign, dv[2]);
+        __m256 x_over_y = _mm256_cmp_ps(ax, ay, _CMP_GT_OQ);
+        __m256 x_first = _mm256_and_ps(x_over_y, _mm256_cmp_ps(ax, az, _CMP_GT_OQ));
+        __m256 y_first = _mm256_andnot_ps(x_over_y, _mm256_cmp_ps(ay, az, _CMP_GT_OQ));
+        // Per lane, the component on axis kz and on the two after it (kz + 1 and kz + 2, cyclically).
+        __m256 dz = pick(x_first, dv[0], pick(y_first, dv[1], dv[2]));
+        __m256 d1 = pick(x_first, dv[1], pick(y_first, dv[2], dv[0]));
+        __m256 d2 = pick(x_first, dv[2], pick(y_first, dv[0], dv[1]));
+        __m256 o1 = pick(x_first, ov[1], pick(y_first, ov[2], ov[0]));
+        __m256 o2 = pick(x_first, ov[2], pick(y_first, ov[0], ov[1]));
+        __m256 flip = _mm256_cmp_ps(dz, zero, _CMP_LT_OQ);
+        _mm256_store_ps(&pr->sx[g], _mm256_div_ps(pick(flip, d2, d1), dz));
+        _mm256_store_ps(&pr->sy[g], _mm256_div_ps(pick(flip, d1, d2), dz));
+        _mm256_store_ps(&pr->sz[g], _mm256_div_ps(one, dz));
+        _mm256_store_ps(&pr->ox[g], pick(flip, o2, o1));
+        _mm256_store_ps(&pr->oy[g], pick(flip, o1, o2));
+        _mm256_store_ps(&pr->oz[g], pick(x_first, ov[0], pick(y_first, ov[1], ov[2])));
+        xf |= (unsigned)_mm256_movemask_ps(x_first) << g;
+        yf |= (unsigned)_mm256_movemask_ps(y_first) << g;
+        fl |= (unsigned)_mm256_movemask_ps(flip) << g;
     }
-    if (_mm256_movemask_ps(nan) != 0) return false;
+    const unsigned all = (1u << BVH_COHERENT) - 1u;
+    if (nan != 0) return false;
     for (int a = 0; a < 3; a++) {
-        if (neg[a] != 0 && neg[a] != 0xffu) return false;
+        if (neg[a] != 0 && neg[a] != all) return false;
         pb->neg[a] = neg[a] != 0;
     }
-    // The range of origins and inverse directions, ray by ray in order (as tri_ray_make's callers saw them).
+    pr->uniform = (xf == 0 || xf == all) && (yf == 0 || yf == all) && (fl == 0 || fl == all);
+    for (int i = 0; i < n; i++) {
+        int kz = xf >> i & 1u ? 0 : yf >> i & 1u ? 1 : 2, k1 = kz == 2 ? 0 : kz + 1, k2 = kz == 0 ? 2 : kz - 1;
+        bool f = fl >> i & 1u;
+        pr->tr[i] = (tri_ray){rays[i].o, f ? k2 : k1, f ? k1 : k2, kz, pr->sx[i], pr->sy[i], pr->sz[i]};
+    }
+    // The range of origins and inverse directions, ray by ray in order.
     float olo[3], ohi[3], ilo[3], ihi[3];
     pb->tmin = rays[0].tmin;
     for (int a = 0; a < 3; a++) {
@@ -617,36 +655,6 @@ static bool packet_setup(int n, const ray *rays, packet_rays *pr, packet_bounds 
         pb->ohi[a] = _mm256_set1_ps(ohi[a]);
         pb->ilo[a] = _mm256_set1_ps(ilo[a]);
         pb->ihi[a] = _mm256_set1_ps(ihi[a]);
-    }
-    // tri_ray_make in every lane: z the axis of the largest |d| (x before y before z on ties, as there), x and y
-    // the next two cyclically, swapped when d.z < 0.
-    __m256 ax = _mm256_andnot_ps(sign, dv[0]), ay = _mm256_andnot_ps(sign, dv[1]), az = _mm256_andnot_ps(sign, dv[2]);
-    __m256 x_over_y = _mm256_cmp_ps(ax, ay, _CMP_GT_OQ);
-    __m256 x_first = _mm256_and_ps(x_over_y, _mm256_cmp_ps(ax, az, _CMP_GT_OQ));
-    __m256 y_first = _mm256_andnot_ps(x_over_y, _mm256_cmp_ps(ay, az, _CMP_GT_OQ));
-    // Per lane, the component on axis kz and on the two after it (kz + 1 and kz + 2, cyclically).
-    __m256 dz = pick(x_first, dv[0], pick(y_first, dv[1], dv[2]));
-    __m256 d1 = pick(x_first, dv[1], pick(y_first, dv[2], dv[0])), d2 = pick(x_first, dv[2], pick(y_first, dv[0], dv[1]));
-    __m256 oz = pick(x_first, ov[0], pick(y_first, ov[1], ov[2]));
-    __m256 o1 = pick(x_first, ov[1], pick(y_first, ov[2], ov[0])), o2 = pick(x_first, ov[2], pick(y_first, ov[0], ov[1]));
-    __m256 flip = _mm256_cmp_ps(dz, zero, _CMP_LT_OQ);
-    _mm256_store_ps(pr->sx, _mm256_div_ps(pick(flip, d2, d1), dz));
-    _mm256_store_ps(pr->sy, _mm256_div_ps(pick(flip, d1, d2), dz));
-    _mm256_store_ps(pr->sz, _mm256_div_ps(one, dz));
-    _mm256_store_ps(pr->ox, pick(flip, o2, o1));
-    _mm256_store_ps(pr->oy, pick(flip, o1, o2));
-    _mm256_store_ps(pr->oz, oz);
-    unsigned xf = (unsigned)_mm256_movemask_ps(x_first), yf = (unsigned)_mm256_movemask_ps(y_first),
-             fl = (unsigned)_mm256_movemask_ps(flip);
-    pr->uniform = (xf == 0 || xf == 0xffu) && (yf == 0 || yf == 0xffu) && (fl == 0 || fl == 0xffu);
-    for (int i = 0; i < BVH_COHERENT; i++) {
-        pr->tmin[i] = rays[i < n ? i : 0].tmin;
-        pr->tmax[i] = rays[i < n ? i : 0].tmax;
-    }
-    for (int i = 0; i < n; i++) {
-        int kz = xf >> i & 1u ? 0 : yf >> i & 1u ? 1 : 2, k1 = kz == 2 ? 0 : kz + 1, k2 = kz == 0 ? 2 : kz - 1;
-        bool f = fl >> i & 1u;
-        pr->tr[i] = (tri_ray){rays[i].o, f ? k2 : k1, f ? k1 : k2, kz, pr->sx[i], pr->sy[i], pr->sz[i]};
     }
     return true;
 }
@@ -685,22 +693,22 @@ static inline unsigned packet_node_test(const bvh_wnode *n, const packet_bounds 
     return (unsigned)_mm256_movemask_ps(_mm256_and_ps(slot, _mm256_cmp_ps(tn, tf, _CMP_LE_OQ)));
 }
 
-// Ray i of a packet against triangle k of packet p in tri_intersect itself, for each ray in `lanes` (where
-// leaf_rays found an edge function of zero), its result written into lane i of t, b1, b2. Returns the rays hit.
-static __attribute__((noinline)) unsigned rays_exact(const bvh_triangle_packet *p, int k, const packet_rays *pr,
+// Rays g + l of a packet against triangle k of packet p in tri_intersect itself, for each l in `lanes` (where
+// leaf_rays found an edge function of zero), the result written into lane l of t, b1, b2. Returns the lanes hit.
+static __attribute__((noinline)) unsigned rays_exact(const bvh_triangle_packet *p, int k, const packet_rays *pr, int g,
                                                      unsigned lanes, float *t, float *b1, float *b2) {
     vec3 v[3];
     for (int j = 0; j < 3; j++) v[j] = v3(p->v[j][0][k], p->v[j][1][k], p->v[j][2][k]);
     unsigned found = 0;
     do {
-        int i = __builtin_ctz(lanes);
+        int l = __builtin_ctz(lanes), i = g + l;
         lanes &= lanes - 1;
         tri_hit th;
         if (!tri_intersect(&pr->tr[i], v[0], v[1], v[2], pr->tmin[i], pr->tmax[i], &th)) continue;
-        t[i] = th.t;
-        b1[i] = th.b1;
-        b2[i] = th.b2;
-        found |= 1u << i;
+        t[l] = th.t;
+        b1[l] = th.b1;
+        b2[l] = th.b2;
+        found |= 1u << l;
     } while (lanes);
     return found;
 }
@@ -711,66 +719,100 @@ static __attribute__((noinline)) unsigned rays_exact(const bvh_triangle_packet *
 // (the ground quad's two) costs fewer tests than the rays one by one. Sets hit_any[i] where ray i hit something.
 static void leaf_rays(const bvh *b, uint32_t ref, const packet_rays *pr, unsigned lanes, hit *best, bool *hit_any) {
     const int kx = pr->tr[0].kx, ky = pr->tr[0].ky, kz = pr->tr[0].kz;
-    const __m256 ox = _mm256_load_ps(pr->ox), oy = _mm256_load_ps(pr->oy), oz = _mm256_load_ps(pr->oz);
-    const __m256 sx = _mm256_load_ps(pr->sx), sy = _mm256_load_ps(pr->sy), sz = _mm256_load_ps(pr->sz);
-    const __m256 tmin = _mm256_load_ps(pr->tmin), tmax = _mm256_load_ps(pr->tmax);
     const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.0f);
     const bvh_slot *slot = &b->slots[ref & ~BVH_LEAF];
     for (;;) {
         const bvh_triangle_packet *p = (const bvh_triangle_packet *)(const void *)slot;
         int count = (int)(p->h.kind == PRIM_QUAD ? 2 * p->h.count : p->h.count); // a quad is two lanes
-        const mesh *m = p->h.kind != PRIM_TRIANGLE ? NULL : p->h.instance == HIT_NO_INSTANCE ? b->mesh : b->flat[p->h.instance];
+        const mesh *m = p->h.kind != PRIM_TRIANGLE           ? NULL
+                        : p->h.instance == HIT_NO_INSTANCE ? b->mesh
+                                                           : b->flat[p->h.instance];
         for (int k = 0; k < count; k++) {
-            __m256 x[3], y[3], z[3];
-            for (int j = 0; j < 3; j++) { // as triangles_simd: vertex j - o, sheared
-                z[j] = _mm256_sub_ps(_mm256_set1_ps(p->v[j][kz][k]), oz);
-                x[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_set1_ps(p->v[j][kx][k]), ox), _mm256_mul_ps(sx, z[j]));
-                y[j] = _mm256_sub_ps(_mm256_sub_ps(_mm256_set1_ps(p->v[j][ky][k]), oy), _mm256_mul_ps(sy, z[j]));
+            __m256 vx[3], vy[3], vz[3];
+            for (int j = 0; j < 3; j++) {
+                vx[j] = _mm256_set1_ps(p->v[j][kx][k]);
+                vy[j] = _mm256_set1_ps(p->v[j][ky][k]);
+                vz[j] = _mm256_set1_ps(p->v[j][kz][k]);
             }
-            __m256 u = _mm256_sub_ps(_mm256_mul_ps(x[2], y[1]), _mm256_mul_ps(y[2], x[1]));
-            __m256 v = _mm256_sub_ps(_mm256_mul_ps(x[0], y[2]), _mm256_mul_ps(y[0], x[2]));
-            __m256 w = _mm256_sub_ps(_mm256_mul_ps(x[1], y[0]), _mm256_mul_ps(y[1], x[0]));
-            __m256 neg = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
-                                      _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
-            __m256 pos = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
-                                      _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
-            __m256 zeros = _mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
-                                        _mm256_cmp_ps(w, zero, _CMP_EQ_OQ));
-            unsigned exact = (unsigned)_mm256_movemask_ps(zeros) & lanes;
-            unsigned inside = ~(unsigned)_mm256_movemask_ps(_mm256_and_ps(neg, pos)) & lanes & ~exact;
-            if (!(inside | exact)) continue; // the common case: the triangle misses every ray
-            _Alignas(32) float t[BVH_COHERENT], b1[BVH_COHERENT], b2[BVH_COHERENT];
-            unsigned mask = 0;
-            if (inside) {
-                __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
-                __m256 scaled = _mm256_mul_ps(
-                    _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, z[0]), _mm256_mul_ps(v, z[1])), _mm256_mul_ps(w, z[2])),
-                    sz);
-                __m256 inv = _mm256_div_ps(one, det);
-                __m256 tv = _mm256_mul_ps(scaled, inv);
-                __m256 ok = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ),
-                                          _mm256_and_ps(_mm256_cmp_ps(tv, tmin, _CMP_GT_OQ), _mm256_cmp_ps(tv, tmax, _CMP_LT_OQ)));
-                mask = inside & (unsigned)_mm256_movemask_ps(ok);
-                if (mask) {
-                    _mm256_store_ps(t, tv);
-                    _mm256_store_ps(b1, _mm256_mul_ps(v, inv));
-                    _mm256_store_ps(b2, _mm256_mul_ps(w, inv));
+            for (int g = 0; g < BVH_COHERENT; g += PACKET_GROUP) {
+                unsigned group = lanes >> g & ((1u << PACKET_GROUP) - 1u);
+                if (!group) continue;
+                const __m256 ox = _mm256_load_ps(&pr->ox[g]), oy = _mm256_load_ps(&pr->oy[g]),
+                             oz = _mm256_load_ps(&pr->oz[g]);
+                const __m256 sx = _mm256_load_ps(&pr->sx[g]), sy = _mm256_load_ps(&pr->sy[g]);
+                __m256 x[3], y[3], z[3];
+                for (int j = 0; j < 3; j++) { // as triangles_simd: vertex j - o, sheared
+                    z[j] = _mm256_sub_ps(vz[j], oz);
+                    x[j] = _mm256_sub_ps(_mm256_sub_ps(vx[j], ox), _mm256_mul_ps(sx, z[j]));
+                    y[j] = _mm256_sub_ps(_mm256_sub_ps(vy[j], oy), _mm256_mul_ps(sy, z[j]));
                 }
-            }
-            if (exact) mask |= rays_exact(p, k, pr, exact, t, b1, b2);
-            while (mask) {
-                int i = __builtin_ctz(mask);
-                mask &= mask - 1;
-                hit_any[i] = true;
-                float before = best[i].t;
-                offer_triangle(&best[i], p, k, t[i], b1[i], b2[i], HIT_NO_INSTANCE);
-                // A nearer triangle of a mesh: fetch its record for shading, as leaf_simd does.
-                if (m && best[i].t < before) _mm_prefetch((const char *)&m->triangles[best[i].prim], _MM_HINT_T0);
+                __m256 u = _mm256_sub_ps(_mm256_mul_ps(x[2], y[1]), _mm256_mul_ps(y[2], x[1]));
+                __m256 v = _mm256_sub_ps(_mm256_mul_ps(x[0], y[2]), _mm256_mul_ps(y[0], x[2]));
+                __m256 w = _mm256_sub_ps(_mm256_mul_ps(x[1], y[0]), _mm256_mul_ps(y[1], x[0]));
+                __m256 neg = _mm256_or_ps(
+                    _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_LT_OQ), _mm256_cmp_ps(v, zero, _CMP_LT_OQ)),
+                    _mm256_cmp_ps(w, zero, _CMP_LT_OQ));
+                __m256 pos = _mm256_or_ps(
+                    _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_GT_OQ), _mm256_cmp_ps(v, zero, _CMP_GT_OQ)),
+                    _mm256_cmp_ps(w, zero, _CMP_GT_OQ));
+                __m256 zeros = _mm256_or_ps(
+                    _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
+                    _mm256_cmp_ps(w, zero, _CMP_EQ_OQ));
+                unsigned exact = (unsigned)_mm256_movemask_ps(zeros) & group;
+                unsigned inside = ~(unsigned)_mm256_movemask_ps(_mm256_and_ps(neg, pos)) & group & ~exact;
+                if (!(inside | exact)) continue; // the common case: the triangle misses every ray of the group
+                _Alignas(32) float t[PACKET_GROUP], b1[PACKET_GROUP], b2[PACKET_GROUP];
+                unsigned mask = 0;
+                if (inside) {
+                    __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
+                    __m256 scaled = _mm256_mul_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, z[0]), _mm256_mul_ps(v, z[1])),
+                                                                _mm256_mul_ps(w, z[2])),
+                                                  _mm256_load_ps(&pr->sz[g]));
+                    __m256 inv = _mm256_div_ps(one, det);
+                    __m256 tv = _mm256_mul_ps(scaled, inv);
+                    __m256 ok = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ),
+                                              _mm256_and_ps(_mm256_cmp_ps(tv, _mm256_load_ps(&pr->tmin[g]), _CMP_GT_OQ),
+                                                            _mm256_cmp_ps(tv, _mm256_load_ps(&pr->tmax[g]), _CMP_LT_OQ)));
+                    mask = inside & (unsigned)_mm256_movemask_ps(ok);
+                    if (mask) {
+                        _mm256_store_ps(t, tv);
+                        _mm256_store_ps(b1, _mm256_mul_ps(v, inv));
+                        _mm256_store_ps(b2, _mm256_mul_ps(w, inv));
+                    }
+                }
+                if (exact) mask |= rays_exact(p, k, pr, g, exact, t, b1, b2);
+                while (mask) {
+                    int l = __builtin_ctz(mask), i = g + l;
+                    mask &= mask - 1;
+                    hit_any[i] = true;
+                    float before = best[i].t;
+                    offer_triangle(&best[i], p, k, t[l], b1[l], b2[l], HIT_NO_INSTANCE);
+                    // A nearer triangle of a mesh: fetch its record for shading, as leaf_simd does.
+                    if (m && best[i].t < before) _mm_prefetch((const char *)&m->triangles[best[i].prim], _MM_HINT_T0);
+                }
             }
         }
         if (p->h.last) return;
         slot += p->h.slots;
     }
+}
+
+// Leaf `ref` tested by the packet's rays in `lanes` one by one (rays of different ray-space axes), each with its
+// own leaf test, its constants broadcast from their lanes.
+static void leaf_each_ray(const bvh *b, uint32_t ref, const ray *rays, const packet_rays *pr, unsigned lanes, hit *best,
+                          bool *hit_any) {
+    do {
+        int i = __builtin_ctz(lanes);
+        lanes &= lanes - 1;
+        const tri_ray *tr = &pr->tr[i];
+        simd_tri st = {PK(set1_ps)(pr->ox[i]), PK(set1_ps)(pr->oy[i]), PK(set1_ps)(pr->oz[i]),
+                       PK(set1_ps)(pr->sx[i]), PK(set1_ps)(pr->sy[i]), PK(set1_ps)(pr->sz[i]),
+                       PK(set1_ps)(pr->tmin[i]), PK(set1_ps)(pr->tmax[i]), tr->kx, tr->ky, tr->kz,
+                       pr->tmin[i], pr->tmax[i], tr};
+        tri_cache unused = {.ready = false};
+        if (leaf_simd(b, ref, &rays[i], NULL, &st, &unused, &best[i], HIT_NO_INSTANCE, false, LEAVES_TRIANGLES))
+            hit_any[i] = true;
+    } while (lanes);
 }
 
 // Closest hits of n <= BVH_COHERENT rays through a tree of triangles, traversed together: one interval test of
@@ -821,28 +863,13 @@ static void coherent_run(const bvh *b, int n, const ray *rays, hit *hits, bool *
                 continue;
             }
         } else {
+            // A ray whose hit lies before any ray enters the leaf has nothing to find there.
+            unsigned lanes = 0;
+            for (int i = 0; i < n; i++) lanes |= (unsigned)!(best[i].t < ref_t) << i;
+            if (lanes && pr.uniform) leaf_rays(b, ref, &pr, lanes, best, hit_any);
+            else if (lanes) leaf_each_ray(b, ref, rays, &pr, lanes, best, hit_any);
             tlimit = 0.0f;
-            if (pr.uniform) {
-                // A ray whose hit lies before any ray enters the leaf has nothing to find there.
-                unsigned lanes = 0;
-                for (int i = 0; i < n; i++) lanes |= (unsigned)!(best[i].t < ref_t) << i;
-                if (lanes) leaf_rays(b, ref, &pr, lanes, best, hit_any);
-                for (int i = 0; i < n; i++) tlimit = best[i].t > tlimit ? best[i].t : tlimit;
-            } else for (int i = 0; i < n; i++) {
-                // As above, ray by ray.
-                if (!(best[i].t < ref_t)) {
-                    const tri_ray *tr = &pr.tr[i];
-                    simd_tri st = {PK(set1_ps)(pr.ox[i]), PK(set1_ps)(pr.oy[i]), PK(set1_ps)(pr.oz[i]),
-                                   PK(set1_ps)(pr.sx[i]), PK(set1_ps)(pr.sy[i]), PK(set1_ps)(pr.sz[i]),
-                                   PK(set1_ps)(rays[i].tmin), PK(set1_ps)(rays[i].tmax), tr->kx, tr->ky, tr->kz,
-                                   rays[i].tmin, rays[i].tmax, tr};
-                    tri_cache unused = {.ready = false};
-                    if (leaf_simd(b, ref, &rays[i], NULL, &st, &unused, &best[i], HIT_NO_INSTANCE, false,
-                                  LEAVES_TRIANGLES))
-                        hit_any[i] = true;
-                }
-                tlimit = best[i].t > tlimit ? best[i].t : tlimit;
-            }
+            for (int i = 0; i < n; i++) tlimit = best[i].t > tlimit ? best[i].t : tlimit;
         }
         // The nearest pending subtree that a ray can still gain from.
         while (sp > 0 && stack[sp - 1].t > tlimit) sp--;

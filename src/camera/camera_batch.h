@@ -1,4 +1,4 @@
-// camera_batch.h — camera rays eight samples at a time, for the path tracer's tile loop: every lane computes
+// camera_batch.h — camera rays sixteen samples at a time, for the path tracer's tile loop: every lane computes
 // exactly what rng_for_key and camera_sample_ray compute for one sample (the same operations in the same
 // order, so the same bits), in loops over the lanes that the compiler turns into vector instructions.
 #ifndef GLINT_CAMERA_BATCH_H
@@ -11,7 +11,7 @@
 #include <stdint.h>
 #include <string.h>
 
-enum { CAMERA_BATCH = 8 };
+enum { CAMERA_BATCH = 16 };
 
 /// One batch: per lane the pixel, its rng_pixel_key and the sample index (inputs), then the sample's generator
 /// after the camera's draws and its primary ray (outputs). Unused lanes must hold some valid sample.

@@ -526,7 +526,7 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
     return ps.radiance;
 }
 
-// One sample of pixel (x, y): its camera ray, then its path (what path_render_tile does eight at a time).
+// One sample of pixel (x, y): its camera ray, then its path (what path_render_tile does sixteen at a time).
 static vec3 path_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts,
                         film_aov_sample *aov) {
     (void)sample;
