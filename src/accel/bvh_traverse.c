@@ -282,6 +282,25 @@ typedef struct simd_ray simd_ray; // never defined: the SIMD path is not compile
 typedef struct simd_tri simd_tri;
 #endif
 
+#if BVH_SIMD
+// Starts fetching the children `mask` of node n in a tree of triangles: the nearest is read next, the others soon
+// after, and on a large mesh nodes and leaves come from beyond the L2 cache.
+static inline __attribute__((always_inline)) void prefetch_children(const bvh *b, const bvh_wnode *n, unsigned mask) {
+    for (; mask; mask &= mask - 1) {
+        uint32_t c = n->child[__builtin_ctz(mask)];
+        const char *at = c & BVH_LEAF ? (const char *)&b->slots[c & ~BVH_LEAF] : (const char *)&b->wnodes[c];
+        _mm_prefetch(at, _MM_HINT_T0);
+        _mm_prefetch(at + 64, _MM_HINT_T0);
+        _mm_prefetch(at + 128, _MM_HINT_T0);
+        _mm_prefetch(at + 192, _MM_HINT_T0);
+        if (c & BVH_LEAF) { // a triangle packet's corners run on to byte 319 (352 bytes, 32-aligned)
+            _mm_prefetch(at + 256, _MM_HINT_T0);
+            _mm_prefetch(at + 319, _MM_HINT_T0);
+        }
+    }
+}
+#endif
+
 /* ------------------------------------------------------------------------------------------------ */
 /* Wide traversal, shared by both paths (`simd` is a compile-time constant after inlining)           */
 
@@ -318,21 +337,8 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
             mask = wnode_test_scalar(n, tr, best->t, !any, tnear);
         if (mask != 0) {
 #if BVH_SIMD
-            // Start fetching every child the ray enters: the nearest is read next, the others soon after, and
-            // on a large mesh nodes and leaves come from beyond the L2 cache.
-            if (leaves == LEAVES_TRIANGLES)
-                for (unsigned m = mask; m; m &= m - 1) {
-                    uint32_t c = n->child[__builtin_ctz(m)];
-                    const char *at = c & BVH_LEAF ? (const char *)&b->slots[c & ~BVH_LEAF] : (const char *)&b->wnodes[c];
-                    _mm_prefetch(at, _MM_HINT_T0);
-                    _mm_prefetch(at + 64, _MM_HINT_T0);
-                    _mm_prefetch(at + 128, _MM_HINT_T0);
-                    _mm_prefetch(at + 192, _MM_HINT_T0);
-                    if (c & BVH_LEAF) { // a triangle packet's corners run on to byte 319 (352 bytes, 32-aligned)
-                        _mm_prefetch(at + 256, _MM_HINT_T0);
-                        _mm_prefetch(at + 319, _MM_HINT_T0);
-                    }
-                }
+            // Start fetching every child the ray enters (prefetch_children).
+            if (leaves == LEAVES_TRIANGLES) prefetch_children(b, n, mask);
 #endif
             unsigned rest = mask & (mask - 1);
             if (rest == 0) {
@@ -844,6 +850,7 @@ static void coherent_run(const bvh *b, int n, const ray *rays, hit *hits, bool *
             float tnear[BVH_WIDTH];
             unsigned mask = packet_node_test(node, &pb, tlimit, tnear);
             if (mask != 0) {
+                prefetch_children(b, node, mask); // every child some ray enters
                 // Push every child entered, the nearest on top, and descend into it.
                 int base = sp;
                 do {
