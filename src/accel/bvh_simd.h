@@ -141,6 +141,18 @@ static inline void offer_spheres(hit *best, const bvh_sphere_packet *p, unsigned
     } while (mask);
 }
 
+// tri_intersect itself for ray tr and triangle (v0, v1, v2), its hit written into lane l of t, b1, b2: for the
+// lanes of a SIMD test with an edge function rounded to zero, which tri_intersect redoes in double.
+static inline bool exact_lane(const tri_ray *tr, vec3 v0, vec3 v1, vec3 v2, float tmin, float tmax, int l, float *t,
+                              float *b1, float *b2) {
+    tri_hit th;
+    if (!tri_intersect(tr, v0, v1, v2, tmin, tmax, &th)) return false;
+    t[l] = th.t;
+    b1[l] = th.b1;
+    b2[l] = th.b2;
+    return true;
+}
+
 // The lanes of triangle packet p that tri_intersect tests in double (an edge function rounded to zero): each
 // through tri_intersect itself, its result written into lane k of t, b1, b2. Returns the lanes hit.
 static __attribute__((noinline)) unsigned triangles_exact(const bvh_triangle_packet *p, const tri_ray *tr, float tmin,
@@ -151,12 +163,7 @@ static __attribute__((noinline)) unsigned triangles_exact(const bvh_triangle_pac
         lanes &= lanes - 1;
         vec3 v[3];
         for (int j = 0; j < 3; j++) v[j] = v3(p->v[j][0][k], p->v[j][1][k], p->v[j][2][k]);
-        tri_hit th;
-        if (!tri_intersect(tr, v[0], v[1], v[2], tmin, tmax, &th)) continue;
-        t[k] = th.t;
-        b1[k] = th.b1;
-        b2[k] = th.b2;
-        found |= 1u << k;
+        if (exact_lane(tr, v[0], v[1], v[2], tmin, tmax, k, t, b1, b2)) found |= 1u << k;
     } while (lanes);
     return found;
 }
@@ -188,7 +195,8 @@ static inline void simd_tri_setup(const tri_ray *tr, float tmin, float tmax, sim
 }
 
 // A packet of triangles at once, each lane computing exactly what tri_intersect computes for it (the same
-// float operations in the same order, unfused), so t and the barycentrics are bit-identical to the scalar test;
+// float operations in the same order, unfused), so t and the barycentrics are bit-identical to the scalar test
+// (the camera packets' leaf_rays computes the same with the roles of the lanes turned round);
 // lanes with an edge function of zero go through tri_intersect's double path. Returns the mask of lanes hit with
 // tmin < t < tmax, with t, b1, b2 in the arrays (lanes outside the mask undefined).
 static inline unsigned triangles_simd(const bvh_triangle_packet *p, const simd_tri *st, float *t, float *b1,

@@ -709,12 +709,7 @@ static __attribute__((noinline)) unsigned rays_exact(const bvh_triangle_packet *
     do {
         int l = __builtin_ctz(lanes), i = g + l;
         lanes &= lanes - 1;
-        tri_hit th;
-        if (!tri_intersect(&pr->tr[i], v[0], v[1], v[2], pr->tmin[i], pr->tmax[i], &th)) continue;
-        t[l] = th.t;
-        b1[l] = th.b1;
-        b2[l] = th.b2;
-        found |= 1u << l;
+        if (exact_lane(&pr->tr[i], v[0], v[1], v[2], pr->tmin[i], pr->tmax[i], l, t, b1, b2)) found |= 1u << l;
     } while (lanes);
     return found;
 }
