@@ -561,7 +561,7 @@ enum { PACKET_GROUP = 8 };
 _Static_assert(BVH_COHERENT % PACKET_GROUP == 0 && BVH_COHERENT <= 16, "whole groups, ray masks in an unsigned");
 
 /// The triangle-test constants of a packet's rays, lane i for ray i: what tri_ray_make and simd_tri_setup make
-/// for each ray alone, before the broadcasts (each leaf test broadcasts its ray's lane).
+/// for each ray alone, before the broadcasts (leaf_rays loads them as they are; leaf_each_ray broadcasts a lane).
 typedef struct packet_rays {
     _Alignas(32) float ox[BVH_COHERENT], oy[BVH_COHERENT], oz[BVH_COHERENT]; ///< in ray-space order (x = kx, ...)
     _Alignas(32) float sx[BVH_COHERENT], sy[BVH_COHERENT], sz[BVH_COHERENT];
@@ -574,9 +574,9 @@ typedef struct packet_rays {
 static inline __m256 pick(__m256 mask, __m256 a, __m256 b) { return _mm256_blendv_ps(b, a, mask); }
 
 // Readies rays[0, n) (0 < n <= BVH_COHERENT) in pr and pb: in each lane the operations simd_setup and
-// tri_ray_make perform for that ray alone, so the same values, but the divisions of all the rays in six vector
-// instructions rather than forty-eight scalar ones, and no broadcast stored. Lanes past n repeat ray 0. False for
-// a NaN ray (which hits nothing) or directions whose signs differ on some axis: then the rays go one by one.
+// tri_ray_make perform for that ray alone, so the same values, but six vector divisions for eight rays rather than
+// forty-eight scalar ones, and no broadcast stored. Lanes past n repeat ray 0. False for a NaN ray (which hits
+// nothing) or directions whose signs differ on some axis: then the rays go one by one.
 static bool packet_setup(int n, const ray *rays, packet_rays *pr, packet_bounds *pb) {
     _Alignas(32) float o[3][BVH_COHERENT], d[3][BVH_COHERENT], inv[3][BVH_COHERENT];
     for (int i = 0; i < BVH_COHERENT; i++) {
