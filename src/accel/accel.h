@@ -79,9 +79,9 @@ bool accel_intersect(const accel *a, const ray *r, hit *h);
 #define ACCEL_STREAM 64
 /// Smallest world BVH, in bytes of nodes and leaves, whose rays are worth tracing in streams: a smaller one stays
 /// in the caches, where a stream costs more than one ray at a time with camera rays in packets (docs/benchmarks.md,
-/// "ray streams"). Measured between bunnies of 278k triangles (16.7 MB: streams 0.973 on one thread, 0.921 on
-/// two) and 380k (24 MB: 1.044 and 0.994), about 320k triangles.
-#define ACCEL_STREAM_MIN_BYTES ((size_t)20 << 20)
+/// "ray streams"). Streams whose camera rays come from packets, against one ray at a time: the bunny (4 MB) 0.955,
+/// a 150k-triangle bunny (9.8 MB) 1.019 on one thread and 1.011 on two, 278k (16.7 MB) 1.067 and 1.103.
+#define ACCEL_STREAM_MIN_BYTES ((size_t)8 << 20)
 /// Closest hits of n <= ACCEL_STREAM rays, the same as accel_intersect ray by ray: found[i] says whether rays[i]
 /// hit, and hits[i] is then its hit. Traced together, so that one ray's waits for memory overlap the others' work.
 void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, bool *found);

@@ -620,6 +620,36 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
     return true;
 }
 
+// Whether the stream loop traces its camera rays as packets (accel_intersect_coherent): in a BVH of triangles and
+// quads with fewer leaf packets than the image has pixels. With more, a pixel's sixteen rays spread over several
+// leaves, and the stream traces them faster one by one (bunny1m at 400x300, 1.3 leaves a pixel: packets 0.970;
+// the 500k bunny, 0.6: 1.050; docs/benchmarks.md).
+static bool stream_camera_packets(const integrator *it) {
+    if (!accel_coherent(it->accel)) return false;
+    accel_stats st;
+    accel_get_stats(it->accel, &st);
+    const render_settings *rs = &it->scene->settings;
+    return st.leaves < (uint64_t)rs->width * (uint64_t)rs->height;
+}
+
+// The hits of rays[0, n) whose lanes have none yet (has_hit false; then made true), traced together; the others
+// keep the hits they came with.
+static inline void stream_trace(const accel *a, int n, const ray *rays, bool *has_hit, hit *hits, bool *found) {
+    ray todo[ACCEL_STREAM];
+    hit th[ACCEL_STREAM];
+    bool tf[ACCEL_STREAM];
+    int lane[ACCEL_STREAM], m = 0;
+    for (int l = 0; l < n; l++)
+        if (!has_hit[l]) lane[m] = l, todo[m++] = rays[l];
+    if (m == n) {
+        accel_intersect_stream(a, n, rays, hits, found);
+    } else if (m > 0) {
+        accel_intersect_stream(a, m, todo, th, tf);
+        for (int k = 0; k < m; k++) hits[lane[k]] = th[k], found[lane[k]] = tf[k];
+    }
+    for (int l = 0; l < n; l++) has_hit[l] = false; // the next round's rays are new
+}
+
 // A tile pass where the structure traces rays together (accel_streams): ACCEL_STREAM paths in flight, the rays
 // of each round traced together (shadow rays, one at a time, stay in path_vertex), a path that ends giving its
 // place to the next sample. The samples (and their AOVs when `aovs`) are added to the film in their order, from a
@@ -651,6 +681,11 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
     camera_batch cb;
     int batch_start = 0, batch_end = 0; // cb holds items [batch_start, batch_end)
     film_tile t = *ft;
+    // Each batch of camera rays traced as a packet when it is made (stream_camera_packets); a path that starts
+    // from it comes with its first hit, and the stream traces the other paths' rays.
+    bool packets = stream_camera_packets(it);
+    hit first[CAMERA_BATCH];
+    bool first_found[CAMERA_BATCH], has_hit[ACCEL_STREAM];
     for (;;) {
         while (lanes < ACCEL_STREAM && started < items && started < added + WINDOW) {
             if (started == batch_end) {
@@ -658,16 +693,23 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
                 sample_cursor_batch(it, tp, &cursor, n, &cb);
                 batch_start = started;
                 batch_end = started + n;
+                if (packets) {
+                    ray cam[CAMERA_BATCH];
+                    for (int k = 0; k < n; k++) cam[k] = (ray){cb.o[k], cb.d[k], 0.0f, INFINITY, cb.time[k]};
+                    accel_intersect_coherent(it->accel, n, cam, first, first_found);
+                }
             }
             int i = started - batch_start;
             ps[lanes] = path_start(aovs ? &aov[lanes] : NULL);
             rays[lanes] = (ray){cb.o[i], cb.d[i], 0.0f, INFINITY, cb.time[i]};
             mpath[lanes] = medium_path_start();
             gen[lanes] = cb.r[i];
+            has_hit[lanes] = packets;
+            if (packets) hits[lanes] = first[i], found[lanes] = first_found[i];
             item[lanes++] = started++;
         }
         if (lanes == 0) break;
-        accel_intersect_stream(it->accel, lanes, rays, hits, found);
+        stream_trace(it->accel, lanes, rays, has_hit, hits, found);
         for (int l = 0; l < lanes;) {
             ts->rays++;
             // The corners of a hit a few paths ahead start coming from memory while this one is shaded.
