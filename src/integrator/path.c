@@ -570,6 +570,11 @@ static inline __attribute__((always_inline)) void sample_cursor_batch(const inte
     camera_batch_make(&it->camera, it->stream, cb);
 }
 
+// Camera ray i of batch cb, open-ended.
+static inline ray batch_ray(const camera_batch *cb, int i) {
+    return (ray){cb->o[i], cb->d[i], 0.0f, INFINITY, cb->time[i]};
+}
+
 // One tile pass: the samples' camera rays are made CAMERA_BATCH at a time before their paths are traced one by
 // one. Same samples, same order, same sums as path_sample one at a time: the same bytes.
 static inline __attribute__((always_inline)) bool path_render_tile_with(const integrator *it, const tile_pass *tp,
@@ -590,7 +595,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
         sample_cursor_batch(it, tp, &cursor, n, &cb);
         if (coherent) {
             ray rays[CAMERA_BATCH];
-            for (int i = 0; i < n; i++) rays[i] = (ray){cb.o[i], cb.d[i], 0.0f, INFINITY, cb.time[i]};
+            for (int i = 0; i < n; i++) rays[i] = batch_ray(&cb, i);
             accel_intersect_coherent(it->accel, n, rays, first, first_found);
         }
         for (int i = 0; i < n; i++) {
@@ -632,8 +637,8 @@ static bool stream_camera_packets(const integrator *it) {
     return st.leaves < (uint64_t)rs->width * (uint64_t)rs->height;
 }
 
-// The hits of rays[0, n) whose lanes have none yet (has_hit false; then made true), traced together; the others
-// keep the hits they came with.
+// The hits of the rays among rays[0, n) whose lanes have none yet (has_hit false), traced together; the other lanes
+// keep the hits they came with. Clears has_hit: the next round's rays are new.
 static inline void stream_trace(const accel *a, int n, const ray *rays, bool *has_hit, hit *hits, bool *found) {
     ray todo[ACCEL_STREAM];
     hit th[ACCEL_STREAM];
@@ -695,13 +700,13 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
                 batch_end = started + n;
                 if (packets) {
                     ray cam[CAMERA_BATCH];
-                    for (int k = 0; k < n; k++) cam[k] = (ray){cb.o[k], cb.d[k], 0.0f, INFINITY, cb.time[k]};
+                    for (int k = 0; k < n; k++) cam[k] = batch_ray(&cb, k);
                     accel_intersect_coherent(it->accel, n, cam, first, first_found);
                 }
             }
             int i = started - batch_start;
             ps[lanes] = path_start(aovs ? &aov[lanes] : NULL);
-            rays[lanes] = (ray){cb.o[i], cb.d[i], 0.0f, INFINITY, cb.time[i]};
+            rays[lanes] = batch_ray(&cb, i);
             mpath[lanes] = medium_path_start();
             gen[lanes] = cb.r[i];
             has_hit[lanes] = packets;
