@@ -978,7 +978,7 @@ static void test_streams_same_bytes(void) {
                 if (i == 1) { // the structure this scene renders with does trace in streams (with the SIMD traversal)
                     glint_error err;
                     accel *a = frame_accel_build(s, 1, NULL, &err);
-                    CHECK(a && accel_streams(a) == BVH_SIMD);
+                    CHECK(a && accel_streams(a, false) == BVH_SIMD);
                     accel_free(a);
                 }
                 with_aovs = aovs ? GLINT_AOV_ALL : 0;

@@ -175,8 +175,10 @@ void accel_intersect_coherent(const accel *a, int n, const ray *rays, hit *hits,
         for (int i = 0; i < n; i++) found[i] = accel_intersect(a, &rays[i], &hits[i]);
 }
 
-bool accel_streams(const accel *a) {
-    size_t min = a->input.stream_min_bytes ? a->input.stream_min_bytes : ACCEL_STREAM_MIN_BYTES;
+bool accel_streams(const accel *a, bool camera_packets) {
+    size_t min = a->input.stream_min_bytes ? a->input.stream_min_bytes
+                 : camera_packets          ? ACCEL_STREAM_PACKETS_MIN_BYTES
+                                           : ACCEL_STREAM_MIN_BYTES;
     return a->kind == ACCEL_BVH && bvh_streams(&a->world) &&
            a->world.wnode_count * sizeof(bvh_wnode) + a->world.slot_count * sizeof(bvh_slot) >= min;
 }

@@ -77,18 +77,23 @@ void accel_get_stats(const accel *a, accel_stats *out);
 bool accel_intersect(const accel *a, const ray *r, hit *h);
 /// Rays accel_intersect_stream traces together at most.
 #define ACCEL_STREAM 64
-/// Smallest world BVH, in bytes of nodes and leaves, whose rays are worth tracing in streams: a smaller one stays
-/// in the caches, where a stream costs more than one ray at a time with camera rays in packets (docs/benchmarks.md,
-/// "ray streams"). Streams whose camera rays come from packets, against one ray at a time: the bunny (4 MB) 0.955,
-/// a 150k-triangle bunny (9.8 MB) 1.019 on one thread and 1.011 on two, 278k (16.7 MB) 1.067 and 1.103.
-#define ACCEL_STREAM_MIN_BYTES ((size_t)8 << 20)
+/// Smallest world BVH, in bytes of nodes and leaves, whose rays (camera rays too) are worth tracing in streams: a
+/// smaller one stays in the caches, where a stream costs more than one ray at a time with camera rays in packets
+/// (docs/benchmarks.md, "ray streams"). Measured between bunnies of 278k triangles (16.7 MB: streams 0.973 on one
+/// thread, 0.921 on two) and 380k (24 MB: 1.044 and 0.994), about 320k triangles.
+#define ACCEL_STREAM_MIN_BYTES ((size_t)20 << 20)
+/// The same when the caller traces its camera rays as packets and streams the rest: streams so fed, against one ray
+/// at a time, on the bunny (4 MB) 0.955, a 150k-triangle bunny (9.8 MB) 1.019 on one thread and 1.011 on two,
+/// 278k (16.7 MB) 1.067 and 1.103.
+#define ACCEL_STREAM_PACKETS_MIN_BYTES ((size_t)8 << 20)
 /// Closest hits of n <= ACCEL_STREAM rays, the same as accel_intersect ray by ray: found[i] says whether rays[i]
 /// hit, and hits[i] is then its hit. Traced together, so that one ray's waits for memory overlap the others' work.
 void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, bool *found);
 /// Whether a caller gains by gathering rays for accel_intersect_stream: a wide BVH of triangles, quads and
-/// instances (not only spheres, none of them huge) of at least accel_input.stream_min_bytes. Else it traces
-/// them one by one.
-bool accel_streams(const accel *a);
+/// instances (not only spheres, none of them huge) of at least accel_input.stream_min_bytes (by default
+/// ACCEL_STREAM_MIN_BYTES, or ACCEL_STREAM_PACKETS_MIN_BYTES when the caller traces its camera rays as packets,
+/// `camera_packets`). Else it traces them one by one.
+bool accel_streams(const accel *a, bool camera_packets);
 /// Most rays accel_intersect_coherent takes at once.
 enum { ACCEL_COHERENT = 16 };
 /// Closest hits of n <= ACCEL_COHERENT rays that start close together and point alike (a pixel's camera rays):

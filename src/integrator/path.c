@@ -628,7 +628,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
 // Whether the stream loop traces its camera rays as packets (accel_intersect_coherent): in a BVH of triangles and
 // quads with fewer leaf packets than the image has pixels. With more, a pixel's sixteen rays spread over several
 // leaves, and the stream traces them faster one by one (bunny1m at 400x300, 1.3 leaves a pixel: packets 0.970;
-// the 500k bunny, 0.6: 1.050; docs/benchmarks.md).
+// the 500k bunny, 0.6: 1.050; docs/benchmarks.md). Streams so fed pay on smaller trees (accel_streams).
 static bool stream_camera_packets(const integrator *it) {
     if (!accel_coherent(it->accel)) return false;
     accel_stats st;
@@ -775,7 +775,7 @@ static __attribute__((noinline)) bool path_render_tile_stream_any(const integrat
 
 static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    if (accel_streams(it->accel) && it->scene->settings.max_depth > 0)
+    if (it->scene->settings.max_depth > 0 && accel_streams(it->accel, stream_camera_packets(it)))
         return path_lean(pi) && !ft->film->aovs ? path_render_tile_stream_lean(it, tp, ft, ts)
                                                 : path_render_tile_stream_any(it, tp, ft, ts);
     if (ft->film->aovs) return path_render_tile_aov(it, tp, ft, ts);
