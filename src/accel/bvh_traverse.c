@@ -766,14 +766,14 @@ static void leaf_rays(const bvh *b, uint32_t ref, const packet_rays *pr, unsigne
                 unsigned mask = 0;
                 if (inside) {
                     __m256 det = _mm256_add_ps(_mm256_add_ps(u, v), w);
-                    __m256 scaled = _mm256_mul_ps(_mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, z[0]), _mm256_mul_ps(v, z[1])),
-                                                                _mm256_mul_ps(w, z[2])),
-                                                  _mm256_load_ps(&pr->sz[g]));
+                    __m256 dot = _mm256_add_ps(_mm256_add_ps(_mm256_mul_ps(u, z[0]), _mm256_mul_ps(v, z[1])),
+                                               _mm256_mul_ps(w, z[2]));
+                    __m256 scaled = _mm256_mul_ps(dot, _mm256_load_ps(&pr->sz[g]));
                     __m256 inv = _mm256_div_ps(one, det);
                     __m256 tv = _mm256_mul_ps(scaled, inv);
-                    __m256 ok = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ),
-                                              _mm256_and_ps(_mm256_cmp_ps(tv, _mm256_load_ps(&pr->tmin[g]), _CMP_GT_OQ),
-                                                            _mm256_cmp_ps(tv, _mm256_load_ps(&pr->tmax[g]), _CMP_LT_OQ)));
+                    __m256 in_range = _mm256_and_ps(_mm256_cmp_ps(tv, _mm256_load_ps(&pr->tmin[g]), _CMP_GT_OQ),
+                                                    _mm256_cmp_ps(tv, _mm256_load_ps(&pr->tmax[g]), _CMP_LT_OQ));
+                    __m256 ok = _mm256_and_ps(_mm256_cmp_ps(det, zero, _CMP_NEQ_OQ), in_range);
                     mask = inside & (unsigned)_mm256_movemask_ps(ok);
                     if (mask) {
                         _mm256_store_ps(t, tv);

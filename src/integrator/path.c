@@ -640,15 +640,16 @@ static bool stream_camera_packets(const integrator *it) {
 // The hits of the rays among rays[0, n) whose lanes have none yet (has_hit false), traced together; the other lanes
 // keep the hits they came with. Clears has_hit: the next round's rays are new.
 static inline void stream_trace(const accel *a, int n, const ray *rays, bool *has_hit, hit *hits, bool *found) {
-    ray todo[ACCEL_STREAM];
-    hit th[ACCEL_STREAM];
-    bool tf[ACCEL_STREAM];
     int lane[ACCEL_STREAM], m = 0;
     for (int l = 0; l < n; l++)
-        if (!has_hit[l]) lane[m] = l, todo[m++] = rays[l];
-    if (m == n) {
+        if (!has_hit[l]) lane[m++] = l;
+    if (m == n) { // no camera packets: the rays as they are, no copy
         accel_intersect_stream(a, n, rays, hits, found);
     } else if (m > 0) {
+        ray todo[ACCEL_STREAM];
+        hit th[ACCEL_STREAM];
+        bool tf[ACCEL_STREAM];
+        for (int k = 0; k < m; k++) todo[k] = rays[lane[k]];
         accel_intersect_stream(a, m, todo, th, tf);
         for (int k = 0; k < m; k++) hits[lane[k]] = th[k], found[lane[k]] = tf[k];
     }
