@@ -963,22 +963,25 @@ static glint_scene *stream_scene(int kind, int depth) {
 }
 
 // The path tracer's streams (path_render_tile_stream_*, forced on small scenes by stream_min_bytes) give the same
-// bytes as its paths one by one, on 1 and 3 threads, at depth limits 1, 3 and 50, with and without lights and
-// media, and so do their AOVs. In the box of quads and triangles only (kind 1) the streams take their camera rays'
-// hits from packets (stream_camera_packets): a path given another lane's first hit fails here.
+// bytes as its paths one by one, with their rays traversed together (forced by interleave_min_bytes) on 1 and 3
+// threads and one by one, at depth limits 1, 3 and 50, with and without lights and media, and so do their AOVs. In
+// the box of quads and triangles only (kind 1) the streams take their camera rays' hits from packets
+// (stream_camera_packets): a path given another lane's first hit fails here.
 static void test_streams_same_bytes(void) {
+    enum { VARIANTS = 4 }; // paths one by one; streams together on 1 and 3 threads; streams one by one
     for (int kind = 0; kind < 4; kind++) {
         for (int d = 0; d < 4; d++) {
             bool aovs = d == 3; // depth 50 again, with every AOV
             const int depths[4] = {1, 3, 50, 50};
-            glint_image *img[3];
-            for (int i = 0; i < 3; i++) {
+            glint_image *img[VARIANTS];
+            for (int i = 0; i < VARIANTS; i++) {
                 glint_scene *s = stream_scene(kind, depths[d]);
                 s->settings.stream_min_bytes = i == 0 ? SIZE_MAX : 1;
-                if (i == 1) { // the structure this scene renders with does trace in streams (with the SIMD traversal)
+                s->settings.interleave_min_bytes = i == 3 ? SIZE_MAX : 1;
+                if (i == 1 || i == 3) { // the structure this scene renders with does stream (with the SIMD traversal)
                     glint_error err;
                     accel *a = frame_accel_build(s, 1, NULL, &err);
-                    CHECK(a && accel_streams(a, false) == BVH_SIMD);
+                    CHECK(a && accel_streams(a) == BVH_SIMD && accel_interleaves(a) == (i == 1 && BVH_SIMD));
                     accel_free(a);
                 }
                 with_aovs = aovs ? GLINT_AOV_ALL : 0;
@@ -989,7 +992,7 @@ static void test_streams_same_bytes(void) {
             const float *p0 = pixels(img[0], &w, &h);
             CHECK((d == 0 && kind == 1) || max_deviation(img[0], 0.0) > 0.0); // the lean box is dark at depth 1
             size_t bytes = sizeof(float) * 3 * (size_t)(w * h);
-            for (int i = 1; i < 3; i++) {
+            for (int i = 1; i < VARIANTS; i++) {
                 CHECK(memcmp(p0, pixels(img[i], &w, &h), bytes) == 0);
                 for (unsigned a = 1; aovs && a < GLINT_AOV_ALL; a <<= 1) {
                     int ch = 0;
@@ -998,7 +1001,7 @@ static void test_streams_same_bytes(void) {
                     CHECK(p && q && memcmp(p, q, sizeof(float) * (size_t)ch * (size_t)(w * h)) == 0);
                 }
             }
-            for (int i = 0; i < 3; i++) glint_image_free(img[i]);
+            for (int i = 0; i < VARIANTS; i++) glint_image_free(img[i]);
         }
     }
 }

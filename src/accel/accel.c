@@ -175,17 +175,28 @@ void accel_intersect_coherent(const accel *a, int n, const ray *rays, hit *hits,
         for (int i = 0; i < n; i++) found[i] = accel_intersect(a, &rays[i], &hits[i]);
 }
 
-bool accel_streams(const accel *a, bool camera_packets) {
-    size_t min = a->input.stream_min_bytes ? a->input.stream_min_bytes
-                 : camera_packets          ? ACCEL_STREAM_PACKETS_MIN_BYTES
-                                           : ACCEL_STREAM_MIN_BYTES;
-    return a->kind == ACCEL_BVH && bvh_streams(&a->world) &&
-           a->world.wnode_count * sizeof(bvh_wnode) + a->world.slot_count * sizeof(bvh_slot) >= min;
+// The world BVH's nodes and leaf packets, in bytes: what a traversal may read.
+static size_t world_bytes(const accel *a) {
+    return a->world.wnode_count * sizeof(bvh_wnode) + a->world.slot_count * sizeof(bvh_slot);
+}
+
+bool accel_streams(const accel *a) {
+    size_t min = a->input.stream_min_bytes ? a->input.stream_min_bytes : ACCEL_STREAM_MIN_BYTES;
+    return a->kind == ACCEL_BVH && bvh_streams(&a->world) && world_bytes(a) >= min;
+}
+
+bool accel_interleaves(const accel *a) {
+    size_t min = a->input.interleave_min_bytes ? a->input.interleave_min_bytes : ACCEL_INTERLEAVE_MIN_BYTES;
+    return accel_streams(a) && world_bytes(a) >= min;
 }
 
 void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, bool *found) {
     switch (a->kind) {
-    case ACCEL_BVH: bvh_intersect_stream(&a->world, n, rays, hits, found); return;
+    case ACCEL_BVH:
+        if (accel_interleaves(a)) bvh_intersect_stream(&a->world, n, rays, hits, found);
+        else
+            for (int i = 0; i < n; i++) found[i] = bvh_intersect(&a->world, &rays[i], &hits[i]);
+        return;
     case ACCEL_BVH2:
         for (int i = 0; i < n; i++) found[i] = bvh2_intersect(&a->world, &rays[i], &hits[i]);
         return;

@@ -37,6 +37,7 @@ typedef struct accel_input {
     const atomic_int *stop; ///< nonzero once a stop is requested: the build gives up (NULL: never)
     int threads;            ///< threads that build the BVHs (the same BVHs for any number); 0: all online CPUs
     size_t stream_min_bytes; ///< smallest world BVH (nodes and leaves) for accel_streams; 0: ACCEL_STREAM_MIN_BYTES
+    size_t interleave_min_bytes; ///< the same for accel_interleaves; 0: ACCEL_INTERLEAVE_MIN_BYTES
     bool no_presplit;        ///< the wide BVHs keep long, slanted triangles whole (bvh_input.no_presplit)
 } accel_input;
 
@@ -77,23 +78,25 @@ void accel_get_stats(const accel *a, accel_stats *out);
 bool accel_intersect(const accel *a, const ray *r, hit *h);
 /// Rays accel_intersect_stream traces together at most.
 #define ACCEL_STREAM 64
-/// Smallest world BVH, in bytes of nodes and leaves, whose rays (camera rays too) are worth tracing in streams: a
-/// smaller one stays in the caches, where a stream costs more than one ray at a time with camera rays in packets
-/// (docs/benchmarks.md, "ray streams"). Measured between bunnies of 278k triangles (16.7 MB: streams 0.973 on one
-/// thread, 0.921 on two) and 380k (24 MB: 1.044 and 0.994), about 320k triangles.
-#define ACCEL_STREAM_MIN_BYTES ((size_t)20 << 20)
-/// The same when the caller traces its camera rays as packets and streams the rest: streams so fed, against one ray
-/// at a time, on the bunny (4 MB) 0.955, a 150k-triangle bunny (9.8 MB) 1.019 on one thread and 1.011 on two,
-/// 278k (16.7 MB) 1.067 and 1.103.
-#define ACCEL_STREAM_PACKETS_MIN_BYTES ((size_t)8 << 20)
+/// Smallest world BVH, in bytes of nodes and leaves, for which a caller gains by keeping many paths in flight and
+/// gathering their rays for accel_intersect_stream: shading one path's hit while the corners of the next hits are
+/// fetched hides the wait for them. Measured with the rays traced one by one (docs/benchmarks.md, "2026-11-27,
+/// seventh session"): a 10k-triangle bunny (0.6 MB) 0.993, the bunny (4 MB) 1.034.
+#define ACCEL_STREAM_MIN_BYTES ((size_t)2 << 20)
+/// Smallest world BVH whose stream rays are traversed together, a step of each in turn so that one ray's waits for
+/// memory overlap the others' work; a smaller tree stays close enough in the caches that each ray alone is faster.
+/// Against one by one: 278k-triangle bunny (16.7 MB) 0.968, 500k (30 MB) 1.017, 1.1M (62 MB) 1.111.
+#define ACCEL_INTERLEAVE_MIN_BYTES ((size_t)24 << 20)
 /// Closest hits of n <= ACCEL_STREAM rays, the same as accel_intersect ray by ray: found[i] says whether rays[i]
-/// hit, and hits[i] is then its hit. Traced together, so that one ray's waits for memory overlap the others' work.
+/// hit, and hits[i] is then its hit. Traversed together where accel_interleaves, else one by one.
 void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, bool *found);
 /// Whether a caller gains by gathering rays for accel_intersect_stream: a wide BVH of triangles, quads and
 /// instances (not only spheres, none of them huge) of at least accel_input.stream_min_bytes (by default
-/// ACCEL_STREAM_MIN_BYTES, or ACCEL_STREAM_PACKETS_MIN_BYTES when the caller traces its camera rays as packets,
-/// `camera_packets`). Else it traces them one by one.
-bool accel_streams(const accel *a, bool camera_packets);
+/// ACCEL_STREAM_MIN_BYTES). Else it traces them one by one.
+bool accel_streams(const accel *a);
+/// Whether accel_intersect_stream traverses its rays together: accel_streams' BVH of at least
+/// accel_input.interleave_min_bytes (by default ACCEL_INTERLEAVE_MIN_BYTES).
+bool accel_interleaves(const accel *a);
 /// Most rays accel_intersect_coherent takes at once.
 enum { ACCEL_COHERENT = 16 };
 /// Closest hits of n <= ACCEL_COHERENT rays that start close together and point alike (a pixel's camera rays):

@@ -626,38 +626,47 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
 }
 
 // Whether the stream loop traces its camera rays as packets (accel_intersect_coherent): in a BVH of triangles and
-// quads with fewer leaf packets than the image has pixels. With more, a pixel's sixteen rays spread over several
-// leaves, and the stream traces them faster one by one (bunny1m at 400x300, 1.3 leaves a pixel: packets 0.970;
-// the 500k bunny, 0.6: 1.050; docs/benchmarks.md). Streams so fed pay on smaller trees (accel_streams).
+// quads, unless its streams are traversed together (accel_interleaves) and it has more leaf packets than the image
+// has pixels. Then a pixel's sixteen rays spread over several leaves, and the stream traces them faster (bunny1m at
+// 400x300, 1.3 leaves a pixel: packets 0.970; the 500k bunny, 0.6: 1.050; docs/benchmarks.md).
 static bool stream_camera_packets(const integrator *it) {
     if (!accel_coherent(it->accel)) return false;
+    if (!accel_interleaves(it->accel)) return true;
     accel_stats st;
     accel_get_stats(it->accel, &st);
     const render_settings *rs = &it->scene->settings;
     return st.leaves < (uint64_t)rs->width * (uint64_t)rs->height;
 }
 
-// The hits of the rays among rays[0, n) whose lanes have none yet (has_hit false), traced together; the other lanes
-// keep the hits they came with. Clears has_hit: the next round's rays are new.
-static inline void stream_trace(const accel *a, int n, const ray *rays, bool *has_hit, hit *hits, bool *found) {
-    int lane[ACCEL_STREAM], m = 0;
-    for (int l = 0; l < n; l++)
-        if (!has_hit[l]) lane[m++] = l;
-    if (m == n) { // no camera packets: the rays as they are, no copy
-        accel_intersect_stream(a, n, rays, hits, found);
-    } else if (m > 0) {
-        ray todo[ACCEL_STREAM];
-        hit th[ACCEL_STREAM];
-        bool tf[ACCEL_STREAM];
-        for (int k = 0; k < m; k++) todo[k] = rays[lane[k]];
-        accel_intersect_stream(a, m, todo, th, tf);
-        for (int k = 0; k < m; k++) hits[lane[k]] = th[k], found[lane[k]] = tf[k];
+// The hits of the rays among rays[0, n) whose lanes have none yet (has_hit false), traversed together when
+// `together` (accel_interleaves), else one by one in place; the other lanes keep the hits they came with. Clears
+// has_hit: the next round's rays are new.
+static inline void stream_trace(const accel *a, bool together, int n, const ray *rays, bool *has_hit, hit *hits,
+                                bool *found) {
+    if (!together) {
+        for (int l = 0; l < n; l++)
+            if (!has_hit[l]) found[l] = accel_intersect(a, &rays[l], &hits[l]);
+    } else {
+        int lane[ACCEL_STREAM], m = 0;
+        for (int l = 0; l < n; l++)
+            if (!has_hit[l]) lane[m++] = l;
+        if (m == n) { // no camera packets: the rays as they are, no copy
+            accel_intersect_stream(a, n, rays, hits, found);
+        } else if (m > 0) {
+            ray todo[ACCEL_STREAM];
+            hit th[ACCEL_STREAM];
+            bool tf[ACCEL_STREAM];
+            for (int k = 0; k < m; k++) todo[k] = rays[lane[k]];
+            accel_intersect_stream(a, m, todo, th, tf);
+            for (int k = 0; k < m; k++) hits[lane[k]] = th[k], found[lane[k]] = tf[k];
+        }
     }
     for (int l = 0; l < n; l++) has_hit[l] = false; // the next round's rays are new
 }
 
-// A tile pass where the structure traces rays together (accel_streams): ACCEL_STREAM paths in flight, the rays
-// of each round traced together (shadow rays, one at a time, stay in path_vertex), a path that ends giving its
+// A tile pass with many paths in flight (accel_streams): ACCEL_STREAM of them, the rays of each round traced before
+// any is shaded (stream_trace; shadow rays, one at a time, stay in path_vertex), so that the corners of the hits a
+// few paths ahead come from memory while one is shaded (SHADE_AHEAD), and a path that ends giving its
 // place to the next sample. The samples (and their AOVs when `aovs`) are added to the film in their order, from a
 // window of finished ones: the same sums as path_render_tile_with, so the same bytes. `lean` (a constant):
 // path_lean holds. A depth limit of at least 1.
@@ -689,7 +698,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
     film_tile t = *ft;
     // Each batch of camera rays traced as a packet when it is made (stream_camera_packets); a path that starts
     // from it comes with its first hit, and the stream traces the other paths' rays.
-    bool packets = stream_camera_packets(it);
+    bool packets = stream_camera_packets(it), together = accel_interleaves(it->accel);
     hit first[CAMERA_BATCH];
     bool first_found[CAMERA_BATCH], has_hit[ACCEL_STREAM];
     for (;;) {
@@ -715,7 +724,7 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
             item[lanes++] = started++;
         }
         if (lanes == 0) break;
-        stream_trace(it->accel, lanes, rays, has_hit, hits, found);
+        stream_trace(it->accel, together, lanes, rays, has_hit, hits, found);
         for (int l = 0; l < lanes;) {
             ts->rays++;
             // The corners of a hit a few paths ahead start coming from memory while this one is shaded.
@@ -776,7 +785,7 @@ static __attribute__((noinline)) bool path_render_tile_stream_any(const integrat
 
 static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    if (it->scene->settings.max_depth > 0 && accel_streams(it->accel, stream_camera_packets(it)))
+    if (it->scene->settings.max_depth > 0 && accel_streams(it->accel))
         return path_lean(pi) && !ft->film->aovs ? path_render_tile_stream_lean(it, tp, ft, ts)
                                                 : path_render_tile_stream_any(it, tp, ft, ts);
     if (ft->film->aovs) return path_render_tile_aov(it, tp, ft, ts);

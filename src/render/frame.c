@@ -46,6 +46,7 @@ accel *frame_accel_build(const glint_scene *s, int threads, const atomic_int *st
                       .stop = stop,
                       .threads = threads,
                       .stream_min_bytes = s->settings.stream_min_bytes,
+                      .interleave_min_bytes = s->settings.interleave_min_bytes,
                       .no_presplit = s->settings.no_presplit};
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;

@@ -41,6 +41,7 @@ typedef struct render_settings {
     accel_kind accel;
     bool no_presplit;        ///< "presplit": false: long, slanted triangles keep whole boxes in the BVH (accel_input)
     size_t stream_min_bytes; ///< (tests) smallest BVH whose rays are traced in streams (accel_input); 0: the default
+    size_t interleave_min_bytes; ///< (tests) smallest BVH whose streams are traversed together (accel_input); 0: the default
 } render_settings;
 
 /// Hard limits on sizes, so that a scene file cannot ask for absurd amounts of memory or time.
