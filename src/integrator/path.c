@@ -625,6 +625,27 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
     return true;
 }
 
+/// Paths in flight in the stream loop, and samples started and not yet added to the film (a power of two). More
+/// paths than one traversal takes at once (ACCEL_STREAM): on bunny1m 64 paths and a window of 256 ran 0.93 times
+/// as fast as 256 and 1024, whose window a long path rarely fills (docs/benchmarks.md).
+enum { PATH_STREAM = 256, STREAM_WINDOW = 1024 };
+
+/// The stream loop's paths in flight and its window of finished samples: about 85 kB, on the heap rather than on the
+/// stack of a library caller's thread.
+typedef struct path_stream {
+    path_state ps[PATH_STREAM];
+    rng gen[PATH_STREAM];
+    int item[PATH_STREAM];
+    ray rays[PATH_STREAM];
+    medium_path mpath[PATH_STREAM];
+    hit hits[PATH_STREAM];
+    bool found[PATH_STREAM], has_hit[PATH_STREAM];
+    film_aov_sample aov[PATH_STREAM];
+    vec3 finished[STREAM_WINDOW];
+    film_aov_sample finished_aov[STREAM_WINDOW];
+    bool is_finished[STREAM_WINDOW];
+} path_stream;
+
 // Whether the stream loop traces its camera rays as packets (accel_intersect_coherent): in a BVH of triangles and
 // quads, unless its streams are traversed together (accel_interleaves) and it has more leaf packets than the image
 // has pixels. Then a pixel's sixteen rays spread over several leaves, and the stream traces them faster (bunny1m at
@@ -638,59 +659,63 @@ static bool stream_camera_packets(const integrator *it) {
     return st.leaves < (uint64_t)rs->width * (uint64_t)rs->height;
 }
 
-// The hits of the rays among rays[0, n) whose lanes have none yet (has_hit false), traversed together when
-// `together` (accel_interleaves), else one by one in place; the other lanes keep the hits they came with. Clears
-// has_hit: the next round's rays are new.
+// The hits of the rays among rays[0, n) whose lanes have none yet (has_hit false), traversed together, ACCEL_STREAM
+// at a time, when `together` (accel_interleaves), else one by one in place; the other lanes keep the hits they came
+// with. Clears has_hit: the next round's rays are new.
 static inline void stream_trace(const accel *a, bool together, int n, const ray *rays, bool *has_hit, hit *hits,
                                 bool *found) {
     if (!together) {
         for (int l = 0; l < n; l++)
             if (!has_hit[l]) found[l] = accel_intersect(a, &rays[l], &hits[l]);
     } else {
-        int lane[ACCEL_STREAM], m = 0;
+        int lane[PATH_STREAM], m = 0;
         for (int l = 0; l < n; l++)
             if (!has_hit[l]) lane[m++] = l;
-        if (m == n) { // no camera packets: the rays as they are, no copy
-            accel_intersect_stream(a, n, rays, hits, found);
-        } else if (m > 0) {
+        for (int c = 0; c < m; c += ACCEL_STREAM) {
+            int k = m - c < ACCEL_STREAM ? m - c : ACCEL_STREAM;
+            if (m == n) { // no camera packets: the rays as they are, no copy
+                accel_intersect_stream(a, k, rays + c, hits + c, found + c);
+                continue;
+            }
             ray todo[ACCEL_STREAM];
             hit th[ACCEL_STREAM];
             bool tf[ACCEL_STREAM];
-            for (int k = 0; k < m; k++) todo[k] = rays[lane[k]];
-            accel_intersect_stream(a, m, todo, th, tf);
-            for (int k = 0; k < m; k++) hits[lane[k]] = th[k], found[lane[k]] = tf[k];
+            for (int j = 0; j < k; j++) todo[j] = rays[lane[c + j]];
+            accel_intersect_stream(a, k, todo, th, tf);
+            for (int j = 0; j < k; j++) hits[lane[c + j]] = th[j], found[lane[c + j]] = tf[j];
         }
     }
     for (int l = 0; l < n; l++) has_hit[l] = false; // the next round's rays are new
 }
 
-// A tile pass with many paths in flight (accel_streams): ACCEL_STREAM of them, the rays of each round traced before
+// A tile pass with many paths in flight (accel_streams): PATH_STREAM of them, the rays of each round traced before
 // any is shaded (stream_trace; shadow rays, one at a time, stay in path_vertex), so that the corners of the hits a
-// few paths ahead come from memory while one is shaded (SHADE_AHEAD), and a path that ends giving its
-// place to the next sample. The samples (and their AOVs when `aovs`) are added to the film in their order, from a
-// window of finished ones: the same sums as path_render_tile_with, so the same bytes. `lean` (a constant):
-// path_lean holds. A depth limit of at least 1.
+// few paths ahead come from memory while one is shaded (SHADE_AHEAD), and a path that ends giving its place to the
+// next sample. The samples (and their AOVs when `aovs`) are added to the film in their order, from a window of
+// finished ones (sp): the same sums as path_render_tile_with, so the same bytes. `lean` (a constant): path_lean
+// holds. A depth limit of at least 1.
 static inline __attribute__((always_inline)) bool path_render_tile_stream_with(const integrator *it,
                                                                               const tile_pass *tp, film_tile *ft,
-                                                                              thread_stats *ts, bool lean,
-                                                                              bool aovs) {
+                                                                              thread_stats *ts, path_stream *sp,
+                                                                              bool lean, bool aovs) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
     int max_depth = it->scene->settings.max_depth;
     path_setup setup = path_setup_of(pi, lean);
     int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
     int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
-    enum { WINDOW = 256 };                    // samples started and not yet added (a power of two)
-    enum { SHADE_AHEAD = 4 };                 // paths between a hit whose corners are fetched and its shading
-    vec3 finished[WINDOW];
-    film_aov_sample finished_aov[WINDOW], aov[ACCEL_STREAM];
-    bool is_finished[WINDOW] = {false};
-    path_state ps[ACCEL_STREAM];
-    rng gen[ACCEL_STREAM];
-    int item[ACCEL_STREAM];
-    ray rays[ACCEL_STREAM]; // each path's next ray
-    medium_path mpath[ACCEL_STREAM];
-    hit hits[ACCEL_STREAM];
-    bool found[ACCEL_STREAM];
+    enum { WINDOW = STREAM_WINDOW };
+    enum { SHADE_AHEAD = 4 }; // paths between a hit whose corners are fetched and its shading
+    vec3 *finished = sp->finished;
+    film_aov_sample *finished_aov = sp->finished_aov, *aov = sp->aov;
+    bool *is_finished = sp->is_finished;
+    memset(is_finished, 0, sizeof sp->is_finished);
+    path_state *ps = sp->ps;
+    rng *gen = sp->gen;
+    int *item = sp->item;
+    ray *rays = sp->rays; // each path's next ray
+    medium_path *mpath = sp->mpath;
+    hit *hits = sp->hits;
+    bool *found = sp->found, *has_hit = sp->has_hit;
     int lanes = 0, started = 0, added = 0; // paths in flight are lanes [0, lanes)
     sample_cursor cursor = sample_cursor_start(it, tp);
     camera_batch cb;
@@ -700,9 +725,9 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
     // from it comes with its first hit, and the stream traces the other paths' rays.
     bool packets = stream_camera_packets(it), together = accel_interleaves(it->accel);
     hit first[CAMERA_BATCH];
-    bool first_found[CAMERA_BATCH], has_hit[ACCEL_STREAM];
+    bool first_found[CAMERA_BATCH];
     for (;;) {
-        while (lanes < ACCEL_STREAM && started < items && started < added + WINDOW) {
+        while (lanes < PATH_STREAM && started < items && started < added + WINDOW) {
             if (started == batch_end) {
                 int n = items - started < CAMERA_BATCH ? items - started : CAMERA_BATCH;
                 sample_cursor_batch(it, tp, &cursor, n, &cb);
@@ -774,20 +799,26 @@ static __attribute__((noinline)) bool path_render_tile_aov(const integrator *it,
 }
 
 // The stream loop for lean paths without AOVs: no code for lights, media or AOVs.
-static bool path_render_tile_stream_lean(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
-    return path_render_tile_stream_with(it, tp, ft, ts, true, false);
+static bool path_render_tile_stream_lean(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts,
+                                         path_stream *sp) {
+    return path_render_tile_stream_with(it, tp, ft, ts, sp, true, false);
 }
 
 static __attribute__((noinline)) bool path_render_tile_stream_any(const integrator *it, const tile_pass *tp,
-                                                                 film_tile *ft, thread_stats *ts) {
-    return path_render_tile_stream_with(it, tp, ft, ts, false, ft->film->aovs);
+                                                                 film_tile *ft, thread_stats *ts, path_stream *sp) {
+    return path_render_tile_stream_with(it, tp, ft, ts, sp, false, ft->film->aovs);
 }
 
 static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    if (it->scene->settings.max_depth > 0 && accel_streams(it->accel))
-        return path_lean(pi) && !ft->film->aovs ? path_render_tile_stream_lean(it, tp, ft, ts)
-                                                : path_render_tile_stream_any(it, tp, ft, ts);
+    // Without the memory for the stream loop, the one-by-one loop makes the same bytes.
+    path_stream *sp = it->scene->settings.max_depth > 0 && accel_streams(it->accel) ? malloc(sizeof *sp) : NULL;
+    if (sp) {
+        bool more = path_lean(pi) && !ft->film->aovs ? path_render_tile_stream_lean(it, tp, ft, ts, sp)
+                                                     : path_render_tile_stream_any(it, tp, ft, ts, sp);
+        free(sp);
+        return more;
+    }
     if (ft->film->aovs) return path_render_tile_aov(it, tp, ft, ts);
     return path_render_tile_plain(it, tp, ft, ts);
 }
