@@ -625,13 +625,14 @@ static inline __attribute__((always_inline)) bool path_render_tile_with(const in
     return true;
 }
 
-/// Paths in flight in the stream loop, and samples started and not yet added to the film (a power of two). More
-/// paths than one traversal takes at once (ACCEL_STREAM): on bunny1m 64 paths and a window of 256 ran 0.93 times
-/// as fast as 256 and 1024, whose window a long path rarely fills (docs/benchmarks.md).
-enum { PATH_STREAM = 256, STREAM_WINDOW = 1024 };
+/// Paths in flight in the stream loop, and samples started and not yet added to the film (a power of two). Many
+/// more paths than one traversal takes at once (ACCEL_STREAM), and a window that a long path rarely fills: on
+/// bunny1m 64 paths and a window of 256 ran 0.93 times as fast as 256 and 1,024, and those 0.98 times as fast as
+/// 1,024 and 4,096; the bunny and the 278k bunny, traced one by one, run as fast with any (docs/benchmarks.md).
+enum { PATH_STREAM = 1024, STREAM_WINDOW = 4096 };
 
-/// The stream loop's paths in flight and its window of finished samples: about 85 kB, on the heap rather than on the
-/// stack of a library caller's thread.
+/// The stream loop's paths in flight and its window of finished samples: about 330 kB, on the heap rather than on
+/// the stack of a library caller's thread.
 typedef struct path_stream {
     path_state ps[PATH_STREAM];
     rng gen[PATH_STREAM];
