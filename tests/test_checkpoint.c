@@ -5,7 +5,9 @@
 #include "check.h"
 #include "test_util.h"
 #include "film/film.h"
+#include "accel/bvh.h"
 #include "render/checkpoint.h"
+#include "render/frame.h"
 #include "render/render.h"
 #include "scene/scene.h"
 
@@ -14,9 +16,16 @@
 #include <sys/stat.h>
 #include <time.h>
 
-// A path-traced scene of diffuse, metal and glass spheres under a sky; `tail` ends the text (blanks: the same
-// scene in another text).
-static glint_scene *scene_text(const char *name, int width, int height, int spp, long long seed, const char *tail) {
+// The ground of the scenes below: a huge sphere, or a quad (which lets the path tracer use its stream loop).
+static const char *const GROUND_SPHERE =
+    "{\"type\": \"sphere\", \"center\": [0, -100.5, -1], \"radius\": 100, \"material\": \"ground\"}";
+static const char *const GROUND_QUAD =
+    "{\"type\": \"quad\", \"q\": [-50, -0.5, 50], \"u\": [100, 0, 0], \"v\": [0, 0, -100], \"material\": \"ground\"}";
+
+// A path-traced scene of diffuse, metal and glass spheres on `ground` under a sky; `tail` ends the text (blanks:
+// the same scene in another text).
+static glint_scene *scene_ground(const char *name, int width, int height, int spp, long long seed, const char *ground,
+                                 const char *tail) {
     char text[2048];
     snprintf(text, sizeof text,
              "{\"render\": {\"width\": %d, \"height\": %d, \"spp\": %d, \"seed\": %lld, \"max_depth\": 6,"
@@ -27,12 +36,16 @@ static glint_scene *scene_text(const char *name, int width, int height, int spp,
              "   \"glass\": {\"type\": \"dielectric\", \"ior\": 1.5}},"
              " \"objects\": [{\"type\": \"sphere\", \"center\": [-1.1, 0, -1], \"radius\": 0.5, \"material\": \"glass\"},"
              "   {\"type\": \"sphere\", \"center\": [1.1, 0, -1], \"radius\": 0.5, \"material\": \"steel\"},"
-             "   {\"type\": \"sphere\", \"center\": [0, -100.5, -1], \"radius\": 100, \"material\": \"ground\"}]}%s",
-             width, height, spp, seed, tail);
+             "   %s]}%s",
+             width, height, spp, seed, ground, tail);
     glint_scene *s = NULL;
     glint_error err;
     if (glint_scene_parse(name, text, strlen(text), &s, &err) != GLINT_OK) fprintf(stderr, "%s\n", err.message);
     return s;
+}
+
+static glint_scene *scene_text(const char *name, int width, int height, int spp, long long seed, const char *tail) {
+    return scene_ground(name, width, height, spp, seed, GROUND_SPHERE, tail);
 }
 
 static glint_scene *scene_with(const char *name, int width, int height, int spp, long long seed) {
@@ -211,9 +224,18 @@ static run render_stopped(const glint_scene *s, int threads, const char *ckp, co
     return r;
 }
 
-static void test_stopped_and_resumed(void) {
+// `streams`: the ground is a quad and the path tracer's stream loop is forced (stream_min_bytes), its rays traversed
+// together (interleave_min_bytes), so that stops fall inside its window of paths in flight.
+static void test_stopped_and_resumed(bool streams) {
     enum { W = 64, H = 48, SPP = 128 };
-    glint_scene *s = scene_with("stop.json", W, H, SPP, 4);
+    glint_scene *s = scene_ground("stop.json", W, H, SPP, 4, streams ? GROUND_QUAD : GROUND_SPHERE, "");
+    if (streams) {
+        s->settings.stream_min_bytes = s->settings.interleave_min_bytes = 1;
+        glint_error err;
+        accel *a = frame_accel_build(s, 1, NULL, &err);
+        CHECK(a && accel_streams(a) == BVH_SIMD && accel_interleaves(a) == BVH_SIMD); // (the SIMD traversal)
+        accel_free(a);
+    }
     double t0 = now();
     run ref = render(s, 1, NULL, NULL, NULL);
     double full = now() - t0;
@@ -427,7 +449,8 @@ int main(void) {
     if (!tmpdir_make("glint-checkpoint")) return 1;
     test_complete_and_extended();
     test_mixed_counts();
-    test_stopped_and_resumed();
+    test_stopped_and_resumed(false);
+    test_stopped_and_resumed(true);
     test_time_limit();
     test_region();
     test_refused();
