@@ -2,6 +2,7 @@
 // bytes), on any thread count; bad regions are refused; region PNGs merge back into the full image.
 #include "check.h"
 #include "glint.h"
+#include "scene/scene.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -49,10 +50,12 @@ static bool same_pixels(const glint_image *full, const glint_image *part, int x0
 }
 
 // A 4 x 3 split at uneven places (crossing the 16-pixel tiles), and single pixels and rows, on 1 and 3 threads.
-static void test_regions_match(const char *scene, int width, int height) {
+// `streams`: the path tracer's stream loop forced (stream_min_bytes), its rays traversed together.
+static void test_regions_match(const char *scene, int width, int height, bool streams) {
     glint_scene *s = load(scene, width, height);
     CHECK(s != NULL);
     if (!s) return;
+    if (streams) s->settings.stream_min_bytes = s->settings.interleave_min_bytes = 1;
     glint_status st;
     glint_error err;
     glint_image *full = render(s, 2, 0, 0, 0, 0, &st, &err);
@@ -153,8 +156,9 @@ static void test_merge(void) {
 }
 
 int main(void) {
-    test_regions_match("tiny-path.json", 40, 30); // the path tracer: camera rays eight at a time, 3 passes
-    test_regions_match("tiny.json", 40, 30);      // a Whitted integrator: sample by sample
+    test_regions_match("tiny-path.json", 40, 30, false);     // the path tracer: camera rays sixteen at a time, 3 passes
+    test_regions_match("tiny-path-quad.json", 40, 30, true); // its stream loop (a quad ground: not spheres only)
+    test_regions_match("tiny.json", 40, 30, false);          // a Whitted integrator: sample by sample
     test_bad_regions();
     test_merge();
     return check_summary();
