@@ -1012,11 +1012,12 @@ static void emit_leaves(void *ctx, size_t item) {
 
 /// The cheapest cover the SAH finds for a binary subtree by at most i children of a wide node (i = 1 .. BVH_WIDTH):
 /// cost[i - 1], and how: split[i - 1] = 0 keeps the subtree whole (a leaf, or an inner node that becomes a wide node
-/// of its own), k > 0 gives k of the i places to its left subtree and i - k to its right. split[0] of an inner node
-/// says how the wide node made from it shares its BVH_WIDTH places between its two subtrees.
+/// of its own; always so for i = 1), k > 0 gives k of the i places to its left subtree and i - k to its right.
+/// node_split: how the wide node made from an inner node shares its BVH_WIDTH places between its two subtrees.
 typedef struct cover {
     float cost[BVH_WIDTH];
     uint8_t split[BVH_WIDTH];
+    uint8_t node_split;
 } cover;
 
 // Fills covers[id] and those of the subtree below, bottom-up (Ylitie, Karras and Laine's SAH-optimal conversion to
@@ -1051,7 +1052,8 @@ static void plan_cover(const bvh *b, cover *covers, uint32_t id) {
         }
     }
     c->cost[0] = area * SAH_TRAVERSAL_COST + best;
-    c->split[0] = (uint8_t)best_k;
+    c->split[0] = 0;
+    c->node_split = (uint8_t)best_k;
     // In i places of its parent: whole, or its subtrees in k and i - k of them.
     for (int i = 2; i <= BVH_WIDTH; i++) {
         c->cost[i - 1] = c->cost[0];
@@ -1069,7 +1071,7 @@ static void plan_cover(const bvh *b, cover *covers, uint32_t id) {
 // Appends to kids the binary nodes that cover subtree `id` in `places` children of a wide node (plan_cover).
 static void cover_children(const bvh *b, const cover *covers, uint32_t id, int places, uint32_t *kids, int *nk) {
     const bvh2_node *n = &b->nodes2[id];
-    int k = n->count > 0 || places == 1 ? 0 : covers[id].split[places - 1]; // (split[0] is the wide node's own)
+    int k = n->count > 0 ? 0 : covers[id].split[places - 1];
     if (k == 0) {
         kids[(*nk)++] = id;
         return;
@@ -1086,7 +1088,7 @@ static uint32_t collapse(collapser *cl, const cover *covers, uint32_t id, uint64
     if (n2->count > 0) return note_leaf(cl, n2);
     if (depth + 1 > cl->depth) cl->depth = depth + 1;
     uint32_t kids[BVH_WIDTH];
-    int nk = 0, left = covers[id].split[0];
+    int nk = 0, left = covers[id].node_split;
     cover_children(b, covers, id + 1, left, kids, &nk);
     cover_children(b, covers, n2->offset, BVH_WIDTH - left, kids, &nk);
     uint32_t wid = (uint32_t)b->wnode_count++;
