@@ -6,7 +6,7 @@
 
 #include "glint.h"
 #include "film/film.h"
-#include "io/hdr_read.h"
+#include "io/map_read.h"
 
 #include <math.h>
 #include <openexr.h>
@@ -88,7 +88,7 @@ static void test_hdr(void) {
     const char *path = tmp_path("out.hdr");
     CHECK(glint_image_write(img, path, GLINT_FORMAT_AUTO, &err) == GLINT_OK);
     image_rgb back;
-    CHECK(hdr_read(path, &back, &err) == GLINT_OK);
+    CHECK(map_read(path, MAP_HDR, &back, &err) == GLINT_OK);
     CHECK(back.width == 7 && back.height == 5);
     int bad = 0;
     for (int p = 0; back.pixels && p < 7 * 5; p++) {

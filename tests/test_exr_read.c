@@ -7,7 +7,7 @@
 
 #include "glint.h"
 #include "film/film.h"
-#include "io/exr_read.h"
+#include "io/map_read.h"
 #include "scene/scene.h"
 
 #include <math.h>
@@ -27,7 +27,7 @@ static void test_round_trip(glint_format format, double tolerance) {
     const char *path = tmp_path("rgb.exr");
     CHECK(glint_image_write(img, path, format, &err) == GLINT_OK);
     image_rgb back;
-    CHECK(exr_read(path, &back, &err) == GLINT_OK);
+    CHECK(map_read(path, MAP_EXR, &back, &err) == GLINT_OK);
     CHECK(back.width == 7 && back.height == 5);
     int bad = 0;
     for (int i = 0; back.pixels && i < 7 * 5 * 3; i++)
@@ -88,7 +88,7 @@ static void test_tiled_grey(void) {
     CHECK(write_tiled_y(path, -3, 2, W, H, values));
     image_rgb back;
     glint_error err;
-    glint_status st = exr_read(path, &back, &err);
+    glint_status st = map_read(path, MAP_EXR, &back, &err);
     if (st != GLINT_OK) fprintf(stderr, "%s\n", err.message);
     CHECK(st == GLINT_OK);
     CHECK(back.width == W && back.height == H);
@@ -102,10 +102,10 @@ static void test_tiled_grey(void) {
 static void test_errors(void) {
     image_rgb img;
     glint_error err;
-    CHECK(exr_read(tmp_path("missing.exr"), &img, &err) == GLINT_ERR_INPUT);
+    CHECK(map_read(tmp_path("missing.exr"), MAP_EXR, &img, &err) == GLINT_ERR_INPUT);
     CHECK(strstr(err.message, "cannot open") != NULL && img.pixels == NULL);
     CHECK(tmp_write(tmp_path("fake.exr"), "P3\n1 1\n255\n0 0 0\n", 17));
-    CHECK(exr_read(tmp_path("fake.exr"), &img, &err) == GLINT_ERR_INPUT);
+    CHECK(map_read(tmp_path("fake.exr"), MAP_EXR, &img, &err) == GLINT_ERR_INPUT);
     CHECK(strstr(err.message, "not an OpenEXR image") != NULL);
     // A valid file cut short: the header or the chunks are missing.
     glint_image *src = test_image();
@@ -119,7 +119,7 @@ static void test_errors(void) {
     size_t cuts[] = {4, 40, 300, n - 20};
     for (size_t i = 0; i < sizeof cuts / sizeof cuts[0]; i++) {
         CHECK(tmp_write(tmp_path("cut.exr"), (const char *)buf, cuts[i]));
-        glint_status st = exr_read(tmp_path("cut.exr"), &img, &err);
+        glint_status st = map_read(tmp_path("cut.exr"), MAP_EXR, &img, &err);
         CHECK(st == GLINT_ERR_INPUT && img.pixels == NULL);
         CHECK(strncmp(err.message, tmp_path("cut.exr"), strlen(tmp_path("cut.exr"))) == 0);
     }

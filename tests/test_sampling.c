@@ -204,7 +204,7 @@ static void test_metal(void) {
     // Fuzz 0 is a perfect mirror.
     vec3 nrm = v3(0, 1, 0), d_in = v3_unit(v3(1, -1, 0.5f));
     rng r = rng_for_sample(5, 0, 0);
-    scatter_event ev;
+    scatter_event ev = {0};
     CHECK(mat_scatter(&m, m.albedo, d_in, nrm, true, &r, &ev));
     vec3 mirror = v3_reflect(d_in, nrm);
     CHECK(v3_len(v3_sub(ev.dir, mirror)) < 1e-6f && ev.weight.x == 0.7f && ev.weight.z == 0.5f && !ev.diffuse);

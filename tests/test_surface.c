@@ -134,7 +134,7 @@ static void test_records(void) {
         ray r = {o, v3_sub(target, o), 0.0f, INFINITY, 0.0f};
         hit h;
         if (!accel_intersect(a, &r, &h)) continue;
-        surface flat;
+        surface flat = {0};
         bool inline_taken = surface_at_flat(s, &r, &h, &flat);
         surface sf = surface_at(s, &r, &h);
         if (h.kind == HIT_SPHERE) {

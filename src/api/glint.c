@@ -1,6 +1,7 @@
 // glint.c — every function of the public API (include/glint.h), and nothing else: each one checks or adapts
 // its arguments and hands over to the module that does the work (as Lua keeps its whole API in lapi.c).
 #include "glint.h"
+#include "core/filepath.h"
 #include "core/trace.h"
 #include "film/film.h"
 #include "io/image_merge.h"
@@ -165,6 +166,8 @@ glint_status glint_trace_attach(glint_trace *t, const char *thread_name, glint_e
     trace_set_current(lane);
     return GLINT_OK;
 }
+
+bool glint_path_same_target(const char *a, const char *b) { return a && b && filepath_same_target(a, b); }
 
 glint_status glint_trace_check_path(const char *path, glint_error *err) {
     glint_error scratch;

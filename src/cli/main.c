@@ -131,18 +131,11 @@ static cli_preview *open_preview(const cli_options *opt, const glint_scene *scen
     return cli_preview_open(name, w, h, opt->quiet);
 }
 
-// Whether two paths name one file: the same name, or the same file by device and inode.
-static bool same_file(const char *a, const char *b) {
-    struct stat sa, sb;
-    if (strcmp(a, b) == 0) return true;
-    return stat(a, &sa) == 0 && stat(b, &sb) == 0 && sa.st_dev == sb.st_dev && sa.st_ino == sb.st_ino;
-}
-
 // Why `path` (--checkpoint, --trace) cannot be written: one of the files the render reads or writes, which
 // would be lost; NULL when it is none of them.
 static const char *clobbers(const char *path, const cli_options *opt, const char *const *outputs, int output_count) {
     for (int i = 0; i < output_count; i++)
-        if (same_file(path, outputs[i])) return i == 0 ? "the output image" : "an AOV file";
+        if (glint_path_same_target(path, outputs[i])) return i == 0 ? "the output image" : "an AOV file";
     if (cli_output_is_scene(path, opt->scene_path)) return "the scene file";
     return NULL;
 }
@@ -170,10 +163,10 @@ static int run(const cli_options *opt, glint_trace *trace) {
             return exit_code(GLINT_ERR_INPUT);
         }
     }
-    if (opt->checkpoint &&
-        (same_file(opt->checkpoint, opt->output) || cli_output_is_scene(opt->checkpoint, opt->scene_path))) {
-        fprintf(stderr, "glint: --checkpoint: %s: cannot write: it is the %s, which would be lost\n", opt->checkpoint,
-                same_file(opt->checkpoint, opt->output) ? "output image" : "scene file");
+    const char *clobbered = opt->checkpoint ? clobbers(opt->checkpoint, opt, outputs, output_count) : NULL;
+    if (clobbered) {
+        fprintf(stderr, "glint: --checkpoint: %s: cannot write: it is %s, which would be lost\n", opt->checkpoint,
+                clobbered);
         return exit_code(GLINT_ERR_INPUT);
     }
     if (opt->trace) {
@@ -182,9 +175,9 @@ static int run(const cli_options *opt, glint_trace *trace) {
             fprintf(stderr, "glint: --trace: %s\n", err.message);
             return exit_code(st);
         }
-        const char *clobbered = clobbers(opt->trace, opt, outputs, output_count);
-        if (!clobbered && opt->checkpoint && same_file(opt->trace, opt->checkpoint)) clobbered = "the checkpoint";
-        if (!clobbered && opt->resume && same_file(opt->trace, opt->resume)) clobbered = "the checkpoint";
+        clobbered = clobbers(opt->trace, opt, outputs, output_count);
+        if (!clobbered && opt->checkpoint && glint_path_same_target(opt->trace, opt->checkpoint)) clobbered = "the checkpoint";
+        if (!clobbered && opt->resume && glint_path_same_target(opt->trace, opt->resume)) clobbered = "the checkpoint";
         if (clobbered) {
             fprintf(stderr, "glint: --trace: %s: cannot write: it is %s, which would be lost\n", opt->trace, clobbered);
             return exit_code(GLINT_ERR_INPUT);

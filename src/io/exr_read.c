@@ -1,5 +1,5 @@
-// exr_read.c — OpenEXR files through the core C API: the header is checked (storage, size, channels) before
-// anything is allocated, then each chunk (a block of scanlines or a tile) is decoded straight into the
+// exr_read.c — OpenEXR files through the core C API, read through the descriptor map_read opened and checked:
+// the header is checked (storage, size, channels) before anything is allocated, then each chunk (a block of scanlines or a tile) is decoded straight into the
 // interleaved RGB floats, the library converting half and uint to float.
 #include "io/exr_read.h"
 
@@ -9,18 +9,51 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 bool exr_read_is_exr(const unsigned char *head, size_t size) {
     return size >= 4 && head[0] == 0x76 && head[1] == 0x2f && head[2] == 0x31 && head[3] == 0x01;
 }
+
+// The file the library reads through glint's descriptor (opened and checked by map_read), and the first
+// message the library reported.
+typedef struct exr_source {
+    int fd;
+    int64_t size;
+    char kept[256];
+} exr_source;
 
 // The library reports errors through this; the first message is kept for the caller, nothing is printed.
 static void keep_error(exr_const_context_t ctx, exr_result_t code, const char *msg) {
     (void)code;
     void *user = NULL;
     if (exr_get_user_data(ctx, &user) != EXR_ERR_SUCCESS || !user) return;
-    char *kept = user;
-    if (!kept[0]) snprintf(kept, 256, "%s", msg ? msg : "");
+    exr_source *src = user;
+    if (!src->kept[0]) snprintf(src->kept, sizeof src->kept, "%s", msg ? msg : "");
+}
+
+// pread semantics, as the library asks: up to sz bytes at offset, fewer only at the end of the file.
+static int64_t read_source(exr_const_context_t ctx, void *user, void *buffer, uint64_t sz, uint64_t offset,
+                           exr_stream_error_func_ptr_t error_cb) {
+    const exr_source *src = user;
+    uint64_t done = 0;
+    while (done < sz) {
+        ssize_t n = pread(src->fd, (char *)buffer + done, (size_t)(sz - done), (off_t)(offset + done));
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) {
+            error_cb(ctx, EXR_ERR_READ_IO, "cannot read: %s", strerror(errno));
+            return -1;
+        }
+        if (n == 0) break;
+        done += (uint64_t)n;
+    }
+    return (int64_t)done;
+}
+
+static int64_t source_size(exr_const_context_t ctx, void *user) {
+    (void)ctx;
+    return ((const exr_source *)user)->size;
 }
 
 // "path: what: the library's words" for a failed call, GLINT_ERR_RENDER when memory ran out.
@@ -41,6 +74,7 @@ static int channel_slot(const char *name) {
 typedef struct exr_target {
     float *rgb;
     int x0, y0, width, height; ///< the data window
+    bool grey;                 ///< Y alone fills R (and is copied to G and B); beside R, G and B it is skipped
 } exr_target;
 
 // Decodes one chunk whose first pixel is (cx, cy) of the data window into the target; a chunk that claims to
@@ -54,8 +88,8 @@ static exr_result_t decode_chunk(exr_context_t ctx, const exr_chunk_info_t *ci, 
     for (int16_t c = 0; rv == EXR_ERR_SUCCESS && c < dec.channel_count; c++) {
         exr_coding_channel_info_t *ch = &dec.channels[c];
         int slot = channel_slot(ch->channel_name);
-        ch->decode_to_ptr = NULL; // channels other than R, G, B, Y are skipped
-        if (slot < 0) continue;
+        ch->decode_to_ptr = NULL; // channels other than R, G, B (or Y alone) are skipped
+        if (slot < 0 || (slot == 3 && !t->grey)) continue;
         size_t at = ((size_t)cy * (size_t)t->width + (size_t)cx) * 3u + (size_t)(slot == 3 ? 0 : slot);
         ch->decode_to_ptr = (uint8_t *)(t->rgb + at);
         ch->user_pixel_stride = (int32_t)(3 * sizeof(float));
@@ -101,8 +135,8 @@ static exr_result_t decode_all(exr_context_t ctx, exr_storage_t storage, const e
 
 // Checks part 0's header: flat storage, a data window within the size limit, R, G, B (or Y) at full
 // resolution. Fills the target's window and whether the image is grey; otherwise the message is written.
-static glint_status check_header(exr_context_t ctx, const char *path, exr_storage_t *storage, exr_target *t, bool *grey,
-                         const char *kept, glint_error *err) {
+static glint_status check_header(exr_context_t ctx, const char *path, exr_storage_t *storage, exr_target *t,
+                                 const char *kept, glint_error *err) {
     exr_result_t rv = exr_get_storage(ctx, 0, storage);
     if (rv != EXR_ERR_SUCCESS) return fail(path, "unreadable header", rv, kept, err);
     if (*storage != EXR_STORAGE_SCANLINE && *storage != EXR_STORAGE_TILED) {
@@ -114,9 +148,9 @@ static glint_status check_header(exr_context_t ctx, const char *path, exr_storag
     if ((rv = exr_get_data_window(ctx, 0, &dw)) != EXR_ERR_SUCCESS || (rv = exr_get_channels(ctx, 0, &channels)))
         return fail(path, "unreadable header", rv, kept, err);
     long long w = (long long)dw.max.x - dw.min.x + 1, h = (long long)dw.max.y - dw.min.y + 1;
-    if (w <= 0 || h <= 0 || (unsigned long long)w * (unsigned long long)h > EXR_READ_MAX_PIXELS) {
+    if (w <= 0 || h <= 0 || (unsigned long long)w * (unsigned long long)h > MAP_READ_MAX_PIXELS) {
         snprintf(err->message, sizeof err->message, "%s: the image is %lldx%lld pixels; 1 to %zu pixels are allowed",
-                 path, w, h, (size_t)EXR_READ_MAX_PIXELS);
+                 path, w, h, (size_t)MAP_READ_MAX_PIXELS);
         return GLINT_ERR_INPUT;
     }
     bool seen[4] = {false, false, false, false};
@@ -132,7 +166,7 @@ static glint_status check_header(exr_context_t ctx, const char *path, exr_storag
         }
         seen[slot] = true;
     }
-    *grey = !(seen[0] && seen[1] && seen[2]) && seen[3];
+    t->grey = !(seen[0] && seen[1] && seen[2]) && seen[3];
     if (!(seen[0] && seen[1] && seen[2]) && !seen[3]) {
         snprintf(err->message, sizeof err->message,
                  "%s: no R, G and B channels (nor a Y channel) in the first part; expected an RGB image", path);
@@ -145,40 +179,33 @@ static glint_status check_header(exr_context_t ctx, const char *path, exr_storag
     return GLINT_OK;
 }
 
-glint_status exr_read(const char *path, image_rgb *out, glint_error *err) {
+glint_status exr_read_open(FILE *f, const char *path, image_rgb *out, glint_error *err) {
     out->width = out->height = 0;
     out->pixels = NULL;
-    // The signature first: a file of another kind gets a plain message rather than the library's.
-    FILE *f = fopen(path, "rb");
-    if (!f) {
-        snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, strerror(errno));
-        return errno == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
-    }
-    unsigned char head[4] = {0};
-    size_t got = fread(head, 1, sizeof head, f);
-    fclose(f);
-    if (!exr_read_is_exr(head, got)) {
-        snprintf(err->message, sizeof err->message,
-                 "%s: not an OpenEXR image (expected a file starting with the bytes 76 2f 31 01)", path);
+    struct stat st;
+    exr_source src = {.fd = fileno(f)};
+    if (fstat(src.fd, &st) != 0) {
+        snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, strerror(errno));
         return GLINT_ERR_INPUT;
     }
-    char kept[256] = {0};
+    src.size = (int64_t)st.st_size;
     exr_context_initializer_t init = EXR_DEFAULT_CONTEXT_INITIALIZER;
-    init.user_data = kept;
+    init.user_data = &src;
     init.error_handler_fn = keep_error;
+    init.read_fn = read_source;
+    init.size_fn = source_size;
     exr_context_t ctx = NULL;
     exr_result_t rv = exr_start_read(&ctx, path, &init);
     if (rv != EXR_ERR_SUCCESS) {
         exr_finish(&ctx);
-        return fail(path, "unreadable OpenEXR header", rv, kept, err);
+        return fail(path, "unreadable OpenEXR header", rv, src.kept, err);
     }
     exr_storage_t storage;
     exr_target t = {0};
-    bool grey = false;
-    glint_status st = check_header(ctx, path, &storage, &t, &grey, kept, err);
-    if (st != GLINT_OK) {
+    glint_status status = check_header(ctx, path, &storage, &t, src.kept, err);
+    if (status != GLINT_OK) {
         exr_finish(&ctx);
-        return st;
+        return status;
     }
     size_t n = (size_t)t.width * (size_t)t.height * 3u;
     t.rgb = calloc(n, sizeof *t.rgb); // channels a file lacks stay black
@@ -191,10 +218,10 @@ glint_status exr_read(const char *path, image_rgb *out, glint_error *err) {
     exr_finish(&ctx);
     if (rv != EXR_ERR_SUCCESS) {
         free(t.rgb);
-        return fail(path, "corrupt OpenEXR data", rv, kept, err);
+        return fail(path, "corrupt OpenEXR data", rv, src.kept, err);
     }
     for (size_t i = 0; i < n; i += 3) {
-        if (grey) t.rgb[i + 1] = t.rgb[i + 2] = t.rgb[i];
+        if (t.grey) t.rgb[i + 1] = t.rgb[i + 2] = t.rgb[i];
         // Linear radiance: a non-finite or negative value would poison every sample that sees it.
         for (int c = 0; c < 3; c++)
             if (!(t.rgb[i + (size_t)c] >= 0.0f) || t.rgb[i + (size_t)c] > 3.4e38f) t.rgb[i + (size_t)c] = 0.0f;

@@ -1,16 +1,18 @@
 // image_merge.c — glint merge: region PNGs (placed by their "glint:region" chunk) assembled into the full image.
 #include "io/image_merge.h"
+#include "core/filepath.h"
 #include "film/film.h"
 #include "io/image_png.h"
 #include "io/image_write.h"
 
 #include <errno.h>
+#include <limits.h>
+#include <math.h>
 #include <setjmp.h>
 #include <stdio.h>
-#include <math.h>
 #include <stdlib.h>
 #include <string.h>
-#include <strings.h>
+#include <sys/stat.h>
 
 static const char EXPECTED_PART[] = "expected a PNG written by glint with --region";
 
@@ -28,31 +30,90 @@ typedef struct part {
 typedef struct png_reader {
     FILE *f;
     png_structp png;
-    png_infop info;
-    png_bytep *rows;
+    png_infop info, end;
+    const char *stage;  ///< what is being read, for the message of a file that ends early
+    png_uint_32 row, height;
+    bool cut_short;     ///< the file ended before libpng had what it asked for
+    bool libpng_failed; ///< the message is libpng's (a damaged file)
     char message[IMAGE_PNG_MESSAGE]; ///< libpng's message (the error pointer), or why the file is no part
 } png_reader;
 
-// Parses "X0,Y0,X1,Y1,W,H" strictly (six decimal integers, nothing else) into p; false when it is not that.
-static bool parse_region(const char *text, part *p) {
-    int n = -1;
-    int *r = p->region;
-    if (sscanf(text, "%d,%d,%d,%d,%d,%d%n", &r[0], &r[1], &r[2], &r[3], &p->full_width, &p->full_height, &n) != 6 ||
-        n < 0 || text[n] != '\0')
-        return false;
-    return r[0] >= 0 && r[1] >= 0 && r[0] < r[2] && r[1] < r[3] && r[2] <= p->full_width &&
-           r[3] <= p->full_height && p->full_width <= MAX_SIDE && p->full_height <= MAX_SIDE;
+// libpng's reads, so that a file that ends early says where rather than libpng's "Read Error".
+static void png_on_read(png_structp png, png_bytep data, size_t length) {
+    png_reader *r = png_get_io_ptr(png);
+    if (fread(data, 1, length, r->f) == length) return;
+    if (ferror(r->f)) png_error(png, "read error");
+    r->cut_short = true;
+    png_error(png, "truncated");
 }
 
-// The part's chunk and pixels; false with r->message set (or a libpng message) when it is no region PNG.
+// A decimal integer in [0, INT_MAX] at *p, advanced past it; false when there is none or it is larger.
+static bool parse_int(const char **p, int *out) {
+    if (**p < '0' || **p > '9') return false;
+    long long v = 0;
+    for (; **p >= '0' && **p <= '9'; (*p)++)
+        if ((v = v * 10 + (**p - '0')) > INT_MAX) return false;
+    *out = (int)v;
+    return true;
+}
+
+// Parses "X0,Y0,X1,Y1,W,H" strictly (six decimal integers, nothing else) into p; false when it is not that.
+static bool parse_region(const char *text, part *p) {
+    int v[6];
+    for (int i = 0; i < 6; i++)
+        if (!parse_int(&text, &v[i]) || *text++ != (i < 5 ? ',' : '\0')) return false;
+    memcpy(p->region, v, sizeof p->region);
+    p->full_width = v[4];
+    p->full_height = v[5];
+    const int *r = p->region;
+    return r[0] < r[2] && r[1] < r[3] && r[2] <= p->full_width && r[3] <= p->full_height &&
+           p->full_width <= MAX_SIDE && p->full_height <= MAX_SIDE;
+}
+
+// The text of the part's region chunk, before or after the image data; NULL with r->message set when there is
+// none, or two that disagree.
+static const char *region_text(png_reader *r) {
+    const char *where = NULL;
+    png_infop infos[2] = {r->info, r->end};
+    for (int k = 0; k < 2; k++) {
+        png_textp text = NULL;
+        int count = 0;
+        png_get_text(r->png, infos[k], &text, &count);
+        for (int i = 0; i < count; i++) {
+            if (strcmp(text[i].key, IMAGE_REGION_KEY) != 0) continue;
+            if (where && strcmp(where, text[i].text) != 0) {
+                snprintf(r->message, sizeof r->message, "two %s chunks that disagree ('%.40s' and '%.40s'), %s",
+                         IMAGE_REGION_KEY, where, text[i].text, EXPECTED_PART);
+                return NULL;
+            }
+            where = text[i].text;
+        }
+    }
+    if (!where) snprintf(r->message, sizeof r->message, "no %s chunk, %s", IMAGE_REGION_KEY, EXPECTED_PART);
+    return where;
+}
+
+// The part's pixels and region chunk (before or after the image data); false with r->message set (or a libpng
+// message) when it is no region PNG.
 static bool png_decode_part(png_reader *r, part *p) {
-    if (setjmp(png_jmpbuf(r->png))) return false;
-    png_init_io(r->png, r->f);
+    if (setjmp(png_jmpbuf(r->png))) {
+        r->libpng_failed = true;
+        return false;
+    }
+    png_set_read_fn(r->png, r, png_on_read);
+    // A damaged chunk is an error, not a chunk quietly dropped (the region chunk is ancillary).
+    png_set_crc_action(r->png, PNG_CRC_ERROR_QUIT, PNG_CRC_ERROR_QUIT);
+    r->stage = "its header";
     png_read_info(r->png, r->info);
     png_uint_32 w = png_get_image_width(r->png, r->info), h = png_get_image_height(r->png, r->info);
     if (png_get_bit_depth(r->png, r->info) != 8 || png_get_color_type(r->png, r->info) != PNG_COLOR_TYPE_RGB ||
         png_get_interlace_type(r->png, r->info) != PNG_INTERLACE_NONE) {
         snprintf(r->message, sizeof r->message, "not an 8-bit RGB PNG, %s", EXPECTED_PART);
+        return false;
+    }
+    if (w > MAX_SIDE || h > MAX_SIDE) {
+        snprintf(r->message, sizeof r->message, "the image is %ux%u, larger than any region (%d pixels a side)",
+                 (unsigned)w, (unsigned)h, MAX_SIDE);
         return false;
     }
     // The colour chunks glint writes: sRGB, or the gAMA of gamma 2 (0.5) or of linear values (1).
@@ -61,19 +122,18 @@ static bool png_decode_part(png_reader *r, part *p) {
     if (png_get_sRGB(r->png, r->info, &intent)) p->encoding = TRANSFORM_SRGB;
     else if (png_get_gAMA(r->png, r->info, &gamma) && fabs(gamma - 0.5) < 1e-4) p->encoding = TRANSFORM_GAMMA2;
     else p->encoding = TRANSFORM_LINEAR;
-    png_textp text = NULL;
-    int count = 0;
-    png_get_text(r->png, r->info, &text, &count);
-    const char *where = NULL;
-    for (int i = 0; i < count; i++)
-        if (strcmp(text[i].key, IMAGE_REGION_KEY) == 0) where = text[i].text;
-    if (!where) {
-        snprintf(r->message, sizeof r->message, "no %s chunk, %s", IMAGE_REGION_KEY, EXPECTED_PART);
-        return false;
-    }
+    p->rgb = malloc((size_t)w * h * 3u);
+    if (!p->rgb) png_error(r->png, "out of memory");
+    r->stage = "its image data";
+    r->height = h;
+    for (r->row = 0; r->row < h; r->row++) png_read_row(r->png, p->rgb + (size_t)r->row * w * 3u, NULL);
+    r->stage = "the chunks after its image data";
+    png_read_end(r->png, r->end);
+    const char *where = region_text(r);
+    if (!where) return false;
     if (!parse_region(where, p)) {
-        snprintf(r->message, sizeof r->message, "%s '%.64s' is not X0,Y0,X1,Y1,W,H of a region inside a W x H image",
-                 IMAGE_REGION_KEY, where);
+        snprintf(r->message, sizeof r->message, "%s '%.64s' is not X0,Y0,X1,Y1,W,H of a region inside a W x H image "
+                 "of at most %d pixels a side", IMAGE_REGION_KEY, where, MAX_SIDE);
         return false;
     }
     if (w != (png_uint_32)(p->region[2] - p->region[0]) || h != (png_uint_32)(p->region[3] - p->region[1])) {
@@ -81,21 +141,18 @@ static bool png_decode_part(png_reader *r, part *p) {
                  (unsigned)h, IMAGE_REGION_KEY, where, p->region[2] - p->region[0], p->region[3] - p->region[1]);
         return false;
     }
-    p->rgb = malloc((size_t)w * h * 3u);
-    r->rows = malloc(h * sizeof *r->rows);
-    if (!p->rgb || !r->rows) png_error(r->png, "out of memory");
-    for (png_uint_32 y = 0; y < h; y++) r->rows[y] = p->rgb + (size_t)y * w * 3u;
-    png_read_image(r->png, r->rows);
     return true;
 }
 
 // Reads one part; GLINT_ERR_INPUT ("PATH: what is wrong") when it cannot be read or is no region PNG.
 static glint_status read_part(const char *path, part *p, glint_error *err) {
     memset(p, 0, sizeof *p);
-    png_reader r = {.f = fopen(path, "rb")};
+    struct stat st;
+    int problem = 0;
+    png_reader r = {.f = filepath_open_regular(path, &st, &problem)};
     if (!r.f) {
-        snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, strerror(errno));
-        return GLINT_ERR_INPUT;
+        snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, filepath_problem_text(problem));
+        return problem == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
     }
     uint8_t signature[8];
     bool ok = fread(signature, 1, sizeof signature, r.f) == sizeof signature && png_sig_cmp(signature, 0, 8) == 0;
@@ -104,11 +161,23 @@ static glint_status read_part(const char *path, part *p, glint_error *err) {
         rewind(r.f);
         r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r.message, image_png_error, image_png_warning);
         r.info = r.png ? png_create_info_struct(r.png) : NULL;
-        if (!r.info) snprintf(r.message, sizeof r.message, "out of memory");
-        ok = r.info && png_decode_part(&r, p);
+        r.end = r.info ? png_create_info_struct(r.png) : NULL;
+        if (!r.end) snprintf(r.message, sizeof r.message, "out of memory");
+        ok = r.end && png_decode_part(&r, p);
     }
-    if (r.png) png_destroy_read_struct(&r.png, r.info ? &r.info : NULL, NULL);
-    free(r.rows);
+    if (!ok && r.libpng_failed && !r.cut_short && strcmp(r.message, "out of memory") != 0) {
+        char said[IMAGE_PNG_MESSAGE];
+        snprintf(said, sizeof said, "%s", r.message);
+        snprintf(r.message, sizeof r.message, "corrupt PNG (%.200s), %s", said, EXPECTED_PART);
+    }
+    if (!ok && r.cut_short) {
+        if (r.height > 0 && strcmp(r.stage, "its image data") == 0)
+            snprintf(r.message, sizeof r.message, "truncated PNG: the file ends in its image data, at row %u of %u",
+                     (unsigned)r.row + 1, (unsigned)r.height);
+        else
+            snprintf(r.message, sizeof r.message, "truncated PNG: the file ends in %s", r.stage);
+    }
+    if (r.png) png_destroy_read_struct(&r.png, r.info ? &r.info : NULL, r.end ? &r.end : NULL);
     fclose(r.f);
     if (ok) return GLINT_OK;
     free(p->rgb);
@@ -120,34 +189,30 @@ static glint_status read_part(const char *path, part *p, glint_error *err) {
 
 static bool region_contains(const int r[4], int x, int y) { return x >= r[0] && x < r[2] && y >= r[1] && y < r[3]; }
 
-// Copies part i into the image, marking its pixels in `covered`; GLINT_ERR_INPUT naming the earlier part it
-// overlaps.
-static glint_status place_part(const char *const *paths, const part *parts, size_t i, glint_image *img,
-                               uint8_t *covered, glint_error *err, const float decoded[256]) {
+// Copies part i into the full image's bytes (width w), marking its pixels in `covered`; GLINT_ERR_INPUT naming
+// the earlier part it overlaps.
+static glint_status place_part(const char *const *paths, const part *parts, size_t i, uint8_t *rgb, int width,
+                               uint8_t *covered, glint_error *err) {
     const part *p = &parts[i];
-    int w = p->region[2] - p->region[0];
-    for (int y = p->region[1]; y < p->region[3]; y++)
+    size_t w = (size_t)(p->region[2] - p->region[0]);
+    for (int y = p->region[1]; y < p->region[3]; y++) {
+        size_t row = (size_t)y * (size_t)width;
         for (int x = p->region[0]; x < p->region[2]; x++) {
-            size_t at = (size_t)y * (size_t)img->width + (size_t)x;
-            if (covered[at]) {
-                size_t j = 0;
-                while (j < i && !region_contains(parts[j].region, x, y)) j++;
-                snprintf(err->message, sizeof err->message, "%s: overlaps %s at pixel (%d, %d)", paths[i], paths[j],
-                         x, y);
-                return GLINT_ERR_INPUT;
-            }
-            covered[at] = 1;
-            const uint8_t *src = &p->rgb[((size_t)(y - p->region[1]) * (size_t)w + (size_t)(x - p->region[0])) * 3u];
-            // A value that encodes back to exactly these bytes, under the parts' encoding: the bytes pass unchanged,
-            // and the merged PNG says what they encode, as the parts did.
-            for (int c = 0; c < 3; c++) img->rgb[at * 3u + (size_t)c] = decoded[src[c]];
+            if (!covered[row + (size_t)x]) continue;
+            size_t j = 0;
+            while (j < i && !region_contains(parts[j].region, x, y)) j++;
+            snprintf(err->message, sizeof err->message, "%s: overlaps %s at pixel (%d, %d)", paths[i], paths[j], x, y);
+            return GLINT_ERR_INPUT;
         }
+        memset(covered + row + (size_t)p->region[0], 1, w);
+        memcpy(rgb + (row + (size_t)p->region[0]) * 3u, p->rgb + (size_t)(y - p->region[1]) * w * 3u, w * 3u);
+    }
     return GLINT_OK;
 }
 
 // GLINT_ERR_INPUT naming the first pixel (in row order) that no part covers, if any.
-static glint_status check_gaps(const glint_image *img, const uint8_t *covered, glint_error *err) {
-    size_t n = (size_t)img->width * (size_t)img->height, missing = 0, first = 0;
+static glint_status check_gaps(int width, int height, const uint8_t *covered, glint_error *err) {
+    size_t n = (size_t)width * (size_t)height, missing = 0, first = 0;
     for (size_t i = n; i-- > 0;)
         if (!covered[i]) {
             missing++;
@@ -155,14 +220,8 @@ static glint_status check_gaps(const glint_image *img, const uint8_t *covered, g
         }
     if (missing == 0) return GLINT_OK;
     snprintf(err->message, sizeof err->message, "no part covers pixel (%zu, %zu) of the %dx%d image (%zu pixels "
-             "missing)", first % (size_t)img->width, first / (size_t)img->width, img->width, img->height, missing);
+             "missing)", first % (size_t)width, first / (size_t)width, width, height, missing);
     return GLINT_ERR_INPUT;
-}
-
-// Whether path names a PFM file, which would hold the parts' 8-bit values as if they were linear radiance.
-static bool is_pfm_path(const char *path) {
-    size_t n = strlen(path);
-    return n > 4 && strcasecmp(path + n - 4, ".pfm") == 0;
 }
 
 glint_status image_merge(const char *output, const char *const *parts_paths, size_t count, glint_error *err) {
@@ -170,55 +229,65 @@ glint_status image_merge(const char *output, const char *const *parts_paths, siz
         snprintf(err->message, sizeof err->message, "merge: no parts given, expected one PNG per region");
         return GLINT_ERR_INPUT;
     }
-    if (is_pfm_path(output)) {
+    glint_status st = image_check_path(output, GLINT_FORMAT_AUTO, err);
+    glint_format format = image_format_of(output);
+    if (st == GLINT_OK && format != GLINT_FORMAT_PNG && format != GLINT_FORMAT_PPM) {
         snprintf(err->message, sizeof err->message, "%s: merge writes the parts' 8-bit values, expected .png or .ppm",
                  output);
-        return GLINT_ERR_INPUT;
+        st = GLINT_ERR_INPUT;
     }
+    for (size_t i = 0; i < count && st == GLINT_OK; i++)
+        if (filepath_same_target(output, parts_paths[i])) {
+            snprintf(err->message, sizeof err->message, "%s: cannot write: it is the part %s, which would be lost",
+                     output, parts_paths[i]);
+            st = GLINT_ERR_INPUT;
+        }
+    if (st != GLINT_OK) return st;
     part *parts = calloc(count, sizeof *parts);
     if (!parts) {
         snprintf(err->message, sizeof err->message, "merge: out of memory");
         return GLINT_ERR_RENDER;
     }
-    glint_image *img = NULL;
-    uint8_t *covered = NULL;
-    float decoded[256]; // byte -> a value encoding back to it, under the parts' encoding
-    glint_status st = GLINT_OK;
+    // The merged image stays in the parts' 8 bits: 4 bytes a pixel with the map of covered pixels.
+    uint8_t *rgb = NULL, *covered = NULL;
+    int width = 0, height = 0;
+    output_transform encoding = TRANSFORM_LINEAR;
     for (size_t i = 0; i < count && st == GLINT_OK; i++) {
         st = read_part(parts_paths[i], &parts[i], err);
         if (st != GLINT_OK) break;
         const part *p = &parts[i];
         if (i == 0) {
-            img = film_image_new(p->full_width, p->full_height, p->encoding);
-            for (int v = 0; v < 256; v++) decoded[v] = film_decode((uint8_t)v, p->encoding);
-            covered = calloc((size_t)p->full_width * (size_t)p->full_height, 1);
-            if (!img || !covered) {
-                snprintf(err->message, sizeof err->message, "merge: out of memory for a %dx%d image", p->full_width,
-                         p->full_height);
+            width = p->full_width;
+            height = p->full_height;
+            encoding = p->encoding;
+            rgb = malloc((size_t)width * (size_t)height * 3u);
+            covered = calloc((size_t)width * (size_t)height, 1);
+            if (!rgb || !covered) {
+                snprintf(err->message, sizeof err->message, "merge: out of memory for a %dx%d image", width, height);
                 st = GLINT_ERR_RENDER;
                 break;
             }
-        } else if (p->encoding != img->transform) {
+        } else if (p->encoding != encoding) {
             snprintf(err->message, sizeof err->message, "%s: its bytes encode light otherwise than %s's (the parts were "
                      "written with different --output-encoding)", parts_paths[i], parts_paths[0]);
             st = GLINT_ERR_INPUT;
             break;
-        } else if (p->full_width != img->width || p->full_height != img->height) {
+        } else if (p->full_width != width || p->full_height != height) {
             snprintf(err->message, sizeof err->message, "%s: a region of a %dx%d image, but %s is of a %dx%d image",
-                     parts_paths[i], p->full_width, p->full_height, parts_paths[0], img->width, img->height);
+                     parts_paths[i], p->full_width, p->full_height, parts_paths[0], width, height);
             st = GLINT_ERR_INPUT;
             break;
         }
-        st = place_part(parts_paths, parts, i, img, covered, err, decoded);
+        st = place_part(parts_paths, parts, i, rgb, width, covered, err);
         // The pixels are in the image now; the region stays for the overlap message of a later part.
         free(parts[i].rgb);
         parts[i].rgb = NULL;
     }
-    if (st == GLINT_OK) st = check_gaps(img, covered, err);
-    if (st == GLINT_OK) st = image_write(img, output, GLINT_FORMAT_AUTO, err);
+    if (st == GLINT_OK) st = check_gaps(width, height, covered, err);
+    if (st == GLINT_OK) st = image_write_rgb8(rgb, width, height, encoding, output, err);
     for (size_t i = 0; i < count; i++) free(parts[i].rgb);
     free(parts);
     free(covered);
-    film_image_free(img);
+    free(rgb);
     return st;
 }

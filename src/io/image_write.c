@@ -3,6 +3,7 @@
 // O_TMPFILE is Linux's: <fcntl.h> declares it only for _GNU_SOURCE (without it, the named fallback is used).
 #define _GNU_SOURCE
 #include "io/image_write.h"
+#include "core/filepath.h"
 #include "core/trace.h"
 #include "film/film.h"
 #include "io/exr_write.h"
@@ -50,39 +51,57 @@ static glint_status resolve_format(const char *path, glint_format requested, gli
     return GLINT_OK;
 }
 
+glint_format image_format_of(const char *path) {
+    glint_format format = GLINT_FORMAT_AUTO;
+    glint_error scratch;
+    return resolve_format(path, GLINT_FORMAT_AUTO, &format, &scratch) == GLINT_OK ? format : GLINT_FORMAT_AUTO;
+}
+
 // ---- encoders: each writes the whole image to f and returns 0, or an errno value (or -1: see why) ----
 
 static int fail_errno(void) { return errno ? errno : EIO; }
 
+// What the 8-bit encoders write: a float image encoded row by row, or rows already 8-bit (the merge of 8-bit
+// region parts, which never holds the image as floats).
+typedef struct rows8 {
+    int width, height;
+    output_transform transform; ///< what the bytes encode (PNG colour chunks)
+    const glint_image *img;     ///< the float image to encode, or NULL
+    const uint8_t *bytes;       ///< or the bytes themselves, 3 a pixel, row 0 at the top
+} rows8;
+
+static rows8 rows8_of(const glint_image *img) { return (rows8){img->width, img->height, img->transform, img, NULL}; }
+
 // One row of display-encoded 8-bit RGB.
-static void encode_row(const glint_image *img, int y, uint8_t *row) {
-    const float *src = &img->rgb[(size_t)y * (size_t)img->width * 3u];
-    for (size_t i = 0; i < (size_t)img->width * 3u; i++) row[i] = film_encode(src[i], img->transform);
+static const uint8_t *rows8_row(const rows8 *src, int y, uint8_t *row) {
+    size_t n = (size_t)src->width * 3u;
+    if (src->bytes) return src->bytes + (size_t)y * n;
+    const float *from = &src->img->rgb[(size_t)y * n];
+    for (size_t i = 0; i < n; i++) row[i] = film_encode(from[i], src->transform);
+    return row;
 }
 
-static int write_ppm_binary(FILE *f, const glint_image *img) {
-    uint8_t *row = malloc((size_t)img->width * 3u);
+static int write_ppm_binary(FILE *f, const rows8 *src) {
+    uint8_t *row = malloc((size_t)src->width * 3u);
     if (!row) return ENOMEM;
     errno = 0;
-    int rc = fprintf(f, "P6\n%d %d\n255\n", img->width, img->height) < 0 ? fail_errno() : 0;
-    for (int y = 0; y < img->height && rc == 0; y++) {
-        encode_row(img, y, row);
-        if (fwrite(row, 3, (size_t)img->width, f) != (size_t)img->width) rc = fail_errno();
-    }
+    int rc = fprintf(f, "P6\n%d %d\n255\n", src->width, src->height) < 0 ? fail_errno() : 0;
+    for (int y = 0; y < src->height && rc == 0; y++)
+        if (fwrite(rows8_row(src, y, row), 3, (size_t)src->width, f) != (size_t)src->width) rc = fail_errno();
     free(row);
     return rc;
 }
 
 // ASCII P3 as the seeds print it: a header, then one "r g b" line per pixel.
-static int write_ppm_ascii(FILE *f, const glint_image *img) {
-    uint8_t *row = malloc((size_t)img->width * 3u);
+static int write_ppm_ascii(FILE *f, const rows8 *src) {
+    uint8_t *row = malloc((size_t)src->width * 3u);
     if (!row) return ENOMEM;
     errno = 0;
-    int rc = fprintf(f, "P3\n%d %d\n255\n", img->width, img->height) < 0 ? fail_errno() : 0;
-    for (int y = 0; y < img->height && rc == 0; y++) {
-        encode_row(img, y, row);
-        for (int x = 0; x < img->width && rc == 0; x++)
-            if (fprintf(f, "%d %d %d\n", row[3 * x], row[3 * x + 1], row[3 * x + 2]) < 0) rc = fail_errno();
+    int rc = fprintf(f, "P3\n%d %d\n255\n", src->width, src->height) < 0 ? fail_errno() : 0;
+    for (int y = 0; y < src->height && rc == 0; y++) {
+        const uint8_t *px = rows8_row(src, y, row);
+        for (int x = 0; x < src->width && rc == 0; x++)
+            if (fprintf(f, "%d %d %d\n", px[3 * x], px[3 * x + 1], px[3 * x + 2]) < 0) rc = fail_errno();
     }
     free(row);
     return rc;
@@ -142,45 +161,43 @@ static void png_on_write(png_structp png, png_bytep data, size_t length) {
 
 static void png_on_flush(png_structp png) { (void)png; } // the caller flushes once at the end
 
-static bool png_encode(png_writer *w, const glint_image *img) {
+static bool png_encode(png_writer *w, const rows8 *src) {
     if (setjmp(png_jmpbuf(w->png))) return false;
     png_set_write_fn(w->png, w, png_on_write, png_on_flush);
-    png_set_IHDR(w->png, w->info, (png_uint_32)img->width, (png_uint_32)img->height, 8, PNG_COLOR_TYPE_RGB,
+    png_set_IHDR(w->png, w->info, (png_uint_32)src->width, (png_uint_32)src->height, 8, PNG_COLOR_TYPE_RGB,
                  PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    const glint_image *img = src->img;
     // The colour chunks say how the bytes were encoded, so that viewers decode them right: sRGB (with the
     // gAMA and cHRM that stand for it), or the plain power law of gamma 2 or linear, on sRGB primaries.
-    if (img->transform == TRANSFORM_SRGB) {
+    if (src->transform == TRANSFORM_SRGB) {
         png_set_sRGB_gAMA_and_cHRM(w->png, w->info, PNG_sRGB_INTENT_PERCEPTUAL);
     } else {
-        png_set_gAMA(w->png, w->info, img->transform == TRANSFORM_GAMMA2 ? 0.5 : 1.0);
+        png_set_gAMA(w->png, w->info, src->transform == TRANSFORM_GAMMA2 ? 0.5 : 1.0);
         png_set_cHRM(w->png, w->info, 0.3127, 0.3290, 0.64, 0.33, 0.30, 0.60, 0.15, 0.06);
     }
     // A region records where it lies, so that glint_merge can place it; a whole image's bytes stay as they were.
     char key[] = IMAGE_REGION_KEY, where[6 * 12];
     png_text text = {.compression = PNG_TEXT_COMPRESSION_NONE, .key = key, .text = where};
-    if (film_image_is_region(img)) {
+    if (img && film_image_is_region(img)) {
         snprintf(where, sizeof where, "%d,%d,%d,%d,%d,%d", img->x0, img->y0, img->x0 + img->width,
                  img->y0 + img->height, img->full_width, img->full_height);
         png_set_text(w->png, w->info, &text, 1);
     }
     png_write_info(w->png, w->info);
-    for (int y = 0; y < img->height; y++) {
-        encode_row(img, y, w->row);
-        png_write_row(w->png, w->row);
-    }
+    for (int y = 0; y < src->height; y++) png_write_row(w->png, rows8_row(src, y, w->row));
     png_write_end(w->png, NULL);
     return true;
 }
 
 // 8-bit RGB PNG without colour-space chunks: viewers show the bytes as sRGB, exactly as they show the PPM.
-static int write_png(FILE *f, const glint_image *img, char *why, size_t why_size) {
+static int write_png(FILE *f, const rows8 *src, char *why, size_t why_size) {
     png_writer w = {.f = f};
-    w.row = malloc((size_t)img->width * 3u);
+    w.row = malloc((size_t)src->width * 3u);
     w.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, w.message, image_png_error, image_png_warning);
     w.info = w.png ? png_create_info_struct(w.png) : NULL;
     int rc = 0;
     if (!w.row || !w.info) rc = ENOMEM;
-    else if (!png_encode(&w, img)) {
+    else if (!png_encode(&w, src)) {
         rc = w.write_errno;
         if (rc == 0) { snprintf(why, why_size, "PNG encoder: %s", w.message); rc = -1; }
     }
@@ -205,9 +222,10 @@ static int write_hdr(FILE *f, const glint_image *img) {
 // Writes the image in `format`, or, for aov >= 0 (FILM_AOV_*), that AOV plane as a PFM.
 static int write_format(FILE *f, const glint_image *img, glint_format format, int aov, char *why, size_t why_size) {
     if (aov >= 0) return write_pfm_plane(f, img, img->aov[aov], film_aov_channels(aov));
+    rows8 src = rows8_of(img);
     switch (format) {
-    case GLINT_FORMAT_PNG: return write_png(f, img, why, why_size);
-    case GLINT_FORMAT_PPM_ASCII: return write_ppm_ascii(f, img);
+    case GLINT_FORMAT_PNG: return write_png(f, &src, why, why_size);
+    case GLINT_FORMAT_PPM_ASCII: return write_ppm_ascii(f, &src);
     case GLINT_FORMAT_PFM: return write_pfm(f, img);
     case GLINT_FORMAT_EXR: return exr_write(f, img, false, why, why_size);
     case GLINT_FORMAT_EXR_HALF: return exr_write(f, img, true, why, why_size);
@@ -215,7 +233,7 @@ static int write_format(FILE *f, const glint_image *img, glint_format format, in
     case GLINT_FORMAT_PPM:
     case GLINT_FORMAT_AUTO: break;
     }
-    return write_ppm_binary(f, img);
+    return write_ppm_binary(f, &src);
 }
 
 // ---- files ----
@@ -225,16 +243,10 @@ static glint_status cannot_write(const char *path, int rc, const char *why, glin
     return GLINT_ERR_RENDER;
 }
 
-// Length of the directory part of path, its last slash included (0: the current directory).
-static size_t dir_length(const char *path) {
-    const char *slash = strrchr(path, '/');
-    return slash ? (size_t)(slash - path) + 1 : 0;
-}
-
 // "dir/.name.tmp-XXXXXX" next to path, so that rename() stays within one file system; NULL when out of memory.
 // The name part is cut so that the whole fits in NAME_MAX bytes, as the output's own name does.
 static char *temp_name_for(const char *path) {
-    size_t dir_len = dir_length(path);
+    size_t dir_len = filepath_dir_length(path);
     const char *base = path + dir_len;
     size_t base_len = strlen(base), most = NAME_MAX - (sizeof ".tmp-XXXXXX" - 1) - 1;
     if (base_len > most) base_len = most;
@@ -251,48 +263,21 @@ static mode_t new_file_mode(void) {
     return 0666 & ~mask;
 }
 
-enum { MAX_SYMLINK_HOPS = 40 }; // as the kernel's own limit on a path's links (ELOOP beyond)
-
-// The file an image written at `path` must replace: path itself, or, when path is a symbolic link (a chain of
-// them), the file it finally names, so that the image is written through the link as cp and shells write, and
-// the link stays. A dangling link names the file to create. NULL with *error set (ELOOP, ENOMEM, ...).
-static char *final_path(const char *path, int *error) {
-    char *cur = strdup(path);
-    for (int hops = 0; cur; hops++) {
-        struct stat lsb;
-        if (lstat(cur, &lsb) != 0 || !S_ISLNK(lsb.st_mode)) return cur; // not a link: the end of the chain
-        if (hops == MAX_SYMLINK_HOPS) {
-            free(cur);
-            *error = ELOOP;
-            return NULL;
-        }
-        char target[4096];
-        ssize_t n = readlink(cur, target, sizeof target - 1);
-        if (n < 0) {
-            *error = errno;
-            free(cur);
-            return NULL;
-        }
-        target[n] = '\0';
-        // A relative target is relative to the link's own directory.
-        size_t keep = target[0] == '/' ? 0 : dir_length(cur);
-        char *next = malloc(keep + (size_t)n + 1);
-        if (next) snprintf(next, keep + (size_t)n + 1, "%.*s%s", (int)keep, cur, target);
-        free(cur);
-        cur = next;
-    }
-    *error = ENOMEM;
-    return NULL;
-}
-
 // Why the image cannot replace what is at `target` (0: nothing there, or a file it may replace; -1: see why).
-// A read-only file is refused, as cp refuses it, even for root, who could replace it: its mode says the owner
-// wants it kept.
+// Only a regular file is replaced: a device, FIFO or socket would itself be replaced by a regular file (root can
+// rename over /dev/null). A read-only file is refused, as cp refuses it, even for root, who could replace it:
+// its mode says the owner wants it kept.
 static int check_existing(const char *target, char *why, size_t why_size) {
     struct stat sb;
-    if (stat(target, &sb) != 0) return 0;
+    if (lstat(target, &sb) != 0) return 0;
     if (S_ISDIR(sb.st_mode)) return EISDIR;
-    if (S_ISREG(sb.st_mode) && ((sb.st_mode & 0222) == 0 || (access(target, W_OK) != 0 && errno == EACCES))) {
+    if (!S_ISREG(sb.st_mode)) {
+        snprintf(why, why_size, "it is %s, not a regular file; glint writes only regular files (- for standard "
+                 "output)", S_ISFIFO(sb.st_mode) ? "a FIFO" : S_ISSOCK(sb.st_mode) ? "a socket"
+                 : S_ISCHR(sb.st_mode) || S_ISBLK(sb.st_mode) ? "a device" : "a special file");
+        return -1;
+    }
+    if ((sb.st_mode & 0222) == 0 || (access(target, W_OK) != 0 && errno == EACCES)) {
         snprintf(why, why_size, "the file is read-only");
         return -1;
     }
@@ -303,9 +288,9 @@ static int check_existing(const char *target, char *why, size_t why_size) {
 // a directory or a read-only file. GLINT_ERR_RENDER ("PATH: cannot write: reason") otherwise.
 static glint_status prepare_target(const char *path, char **target, glint_error *err) {
     int e = 0;
-    *target = final_path(path, &e);
+    *target = filepath_final(path, &e);
     if (!*target) return cannot_write(path, e, "", err);
-    char why[64] = "";
+    char why[160] = "";
     int rc = check_existing(*target, why, sizeof why);
     if (rc == 0) return GLINT_OK;
     free(*target);
@@ -323,7 +308,7 @@ static int open_unnamed(const char *target) {
         errno = EOPNOTSUPP;
         return -1;
     }
-    size_t n = dir_length(target);
+    size_t n = filepath_dir_length(target);
     char *dir = malloc(n + 2);
     if (!dir) return -1;
     if (n) snprintf(dir, n + 2, "%.*s", (int)n, target);
@@ -498,6 +483,38 @@ glint_status image_write_aov(const glint_image *img, int aov, const char *path, 
         return GLINT_ERR_INPUT;
     }
     return write_traced(img, path, format, aov, err);
+}
+
+// The 8-bit writer of rows8 in PNG or PPM, for image_write_file.
+typedef struct rows8_job {
+    const rows8 *src;
+    glint_format format;
+} rows8_job;
+
+static int write_rows8_job(FILE *f, const void *user, char *why, size_t why_size) {
+    const rows8_job *job = user;
+    if (job->format == GLINT_FORMAT_PNG) return write_png(f, job->src, why, why_size);
+    return job->format == GLINT_FORMAT_PPM_ASCII ? write_ppm_ascii(f, job->src) : write_ppm_binary(f, job->src);
+}
+
+glint_status image_write_rgb8(const uint8_t *rgb, int width, int height, output_transform transform,
+                              const char *path, glint_error *err) {
+    glint_format format;
+    glint_status st = resolve_format(path, GLINT_FORMAT_AUTO, &format, err);
+    if (st != GLINT_OK) return st;
+    if (format != GLINT_FORMAT_PNG && format != GLINT_FORMAT_PPM) {
+        snprintf(err->message, sizeof err->message, "%s: 8-bit values are written as .png or .ppm alone; a float "
+                 "format would hold them as if they were linear light", path);
+        return GLINT_ERR_INPUT;
+    }
+    rows8 src = {width, height, transform, NULL, rgb};
+    rows8_job job = {&src, format};
+    if (strcmp(path, "-") != 0) return image_write_file(path, write_rows8_job, &job, err);
+    char why[300] = "";
+    int rc = write_rows8_job(stdout, &job, why, sizeof why);
+    errno = 0;
+    if (rc == 0 && fflush(stdout) != 0) rc = fail_errno();
+    return rc == 0 ? GLINT_OK : cannot_write("standard output", rc, why, err);
 }
 
 glint_status image_check_path(const char *path, glint_format format, glint_error *err) {

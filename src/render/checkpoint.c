@@ -2,10 +2,12 @@
 // scene's name, a table of planes, a checksum of all that, the planes' data and a checksum of the data. Numbers
 // are in the writing machine's byte order (the header says which), so planes go to and from disk in one piece.
 #include "render/checkpoint.h"
+#include "core/filepath.h"
 #include "core/hash.h"
 #include "io/image_write.h"
 
 #include <errno.h>
+#include <float.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -251,6 +253,22 @@ static bool skip(reader *r, uint64_t n) {
     return true;
 }
 
+// What is wrong with a plane's values, NULL when nothing: counts of samples are at most the spp the file was made
+// for, sums of samples are finite and not negative (radiance is never negative).
+static const char *plane_values_bad(const checkpoint_plane *p, size_t pixels, int32_t spp) {
+    size_t n = pixels * p->components;
+    if (p->type == CHECKPOINT_U32) {
+        const uint32_t *v = p->data;
+        for (size_t i = 0; i < n; i++)
+            if (v[i] > (uint32_t)spp) return "a count above the samples per pixel it was made for";
+    } else {
+        const double *v = p->data;
+        for (size_t i = 0; i < n; i++)
+            if (!(v[i] >= 0.0 && v[i] <= DBL_MAX)) return "a sum that is negative, infinite or not a number";
+    }
+    return NULL;
+}
+
 static glint_status read_checkpoint(reader *r, const checkpoint_identity *id, checkpoint_plane *planes,
                                     size_t plane_count, int *spp, uint64_t file_size) {
     header hd;
@@ -283,14 +301,19 @@ static glint_status read_checkpoint(reader *r, const checkpoint_identity *id, ch
     if (fread(&header_hash, 1, sizeof header_hash, r->f) != sizeof header_hash) goto io_error;
     if (header_hash != expected_header_hash) return corrupt(r, "header checksum mismatch");
 
-    // The header is what was written: its sizes say how long the file is.
-    if (hd.width < 1 || hd.height < 1 || hd.region[0] < 0 || hd.region[1] < 0 || hd.region[0] >= hd.region[2] ||
-        hd.region[1] >= hd.region[3] || hd.region[2] > hd.width || hd.region[3] > hd.height)
+    // The header is what was written: its sizes say how long the file is. Sizes are bounded first (no render is
+    // larger than SCENE_MAX_DIMENSION a side), so that the length below cannot wrap around.
+    if (hd.width < 1 || hd.height < 1 || hd.width > SCENE_MAX_DIMENSION || hd.height > SCENE_MAX_DIMENSION ||
+        hd.region[0] < 0 || hd.region[1] < 0 || hd.region[0] >= hd.region[2] || hd.region[1] >= hd.region[3] ||
+        hd.region[2] > hd.width || hd.region[3] > hd.height || hd.spp < 1 || hd.complete < 0 || hd.complete > hd.spp)
         return corrupt(r, "header out of range");
     uint64_t pixels = region_pixels(hd.region), expected = table + 8u;
     for (uint32_t i = 0; i < hd.plane_count; i++) {
         size_t t = type_size(entries[i].type);
         if (t == 0 || entries[i].components == 0 || entries[i].components > 64) return corrupt(r, "unknown plane type");
+        if (!memchr(entries[i].name, '\0', PLANE_NAME_BYTES)) return corrupt(r, "plane name not terminated");
+        for (uint32_t j = 0; j < i; j++)
+            if (strcmp(entries[i].name, entries[j].name) == 0) return corrupt(r, "a plane listed twice");
         expected += pixels * entries[i].components * t;
     }
     if (file_size != expected) {
@@ -313,30 +336,39 @@ static glint_status read_checkpoint(reader *r, const checkpoint_identity *id, ch
                  "is not the same", r->path, name, id->scene_name);
         return GLINT_ERR_INPUT;
     }
+    // Each plane the caller names is one entry of the table (names are unique), of the same type and size.
+    checkpoint_plane *dest_of[MAX_PLANES] = {NULL};
     for (size_t i = 0; i < plane_count; i++) {
-        bool found = false;
-        for (uint32_t j = 0; j < hd.plane_count && !found; j++)
-            found = strncmp(entries[j].name, planes[i].name, PLANE_NAME_BYTES) == 0 &&
-                    entries[j].type == (uint32_t)planes[i].type && entries[j].components == planes[i].components;
-        if (!found) {
-            snprintf(r->err->message, sizeof r->err->message, "%s: the checkpoint has no plane \"%s\", which this "
-                     "render needs", r->path, planes[i].name);
+        uint32_t j = 0;
+        while (j < hd.plane_count && strcmp(entries[j].name, planes[i].name) != 0) j++;
+        if (j == hd.plane_count || entries[j].type != (uint32_t)planes[i].type ||
+            entries[j].components != planes[i].components) {
+            snprintf(r->err->message, sizeof r->err->message, "%s: the checkpoint has no plane \"%s\" of %u %s "
+                     "values a pixel, which this render needs", r->path, planes[i].name, planes[i].components,
+                     planes[i].type == CHECKPOINT_U32 ? "integer" : "floating-point");
             return GLINT_ERR_INPUT;
         }
+        dest_of[j] = &planes[i];
     }
 
     // The data, each plane into the caller's buffer or skipped, and its checksum.
     r->hash = HASH_START;
     for (uint32_t j = 0; j < hd.plane_count; j++) {
         size_t bytes = (size_t)(pixels * entries[j].components * type_size(entries[j].type));
-        checkpoint_plane *dest = NULL;
-        for (size_t i = 0; i < plane_count && !dest; i++)
-            if (strncmp(entries[j].name, planes[i].name, PLANE_NAME_BYTES) == 0) dest = &planes[i];
-        if (!(dest ? take(r, dest->data, bytes) : skip(r, bytes))) goto io_error;
+        if (!(dest_of[j] ? take(r, dest_of[j]->data, bytes) : skip(r, bytes))) goto io_error;
     }
     uint64_t data_hash, expected_data_hash = r->hash;
     if (fread(&data_hash, 1, sizeof data_hash, r->f) != sizeof data_hash) goto io_error;
     if (data_hash != expected_data_hash) return corrupt(r, "data checksum mismatch");
+    // The checksums are no seal (anyone can recompute them): the values must be what a render can have made.
+    for (size_t i = 0; i < plane_count; i++) {
+        const char *bad = plane_values_bad(&planes[i], (size_t)pixels, hd.spp);
+        if (bad) {
+            snprintf(r->err->message, sizeof r->err->message, "%s: corrupt checkpoint (plane \"%s\": %s), expected a "
+                     "file written by glint's --checkpoint", r->path, planes[i].name, bad);
+            return GLINT_ERR_INPUT;
+        }
+    }
     *spp = hd.spp;
     return GLINT_OK;
 
@@ -346,19 +378,34 @@ io_error:
     return GLINT_ERR_INPUT;
 }
 
+// The checkpoint at path opened for reading; NULL with the message written when it cannot be.
+static FILE *open_checkpoint(const char *path, struct stat *st, glint_status *status, glint_error *err) {
+    int e = 0;
+    FILE *f = filepath_open_regular(path, st, &e);
+    if (!f) {
+        snprintf(err->message, sizeof err->message, "%s: cannot open the checkpoint: %s, expected a file written by "
+                 "glint's --checkpoint", path, filepath_problem_text(e));
+        *status = e == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
+    }
+    return f;
+}
+
+glint_status checkpoint_check_readable(const char *path, glint_error *err) {
+    struct stat st;
+    glint_status status = GLINT_OK;
+    FILE *f = open_checkpoint(path, &st, &status, err);
+    if (f) fclose(f);
+    return status;
+}
+
 glint_status checkpoint_read(const char *path, const checkpoint_identity *id, checkpoint_plane *planes,
                              size_t plane_count, int *spp, glint_error *err) {
-    FILE *f = fopen(path, "rb");
     struct stat st;
-    int e = !f ? errno : fstat(fileno(f), &st) != 0 ? errno : S_ISDIR(st.st_mode) ? EISDIR : 0;
-    if (e != 0 || !S_ISREG(st.st_mode)) {
-        snprintf(err->message, sizeof err->message, "%s: cannot open the checkpoint: %s, expected a file written by "
-                 "glint's --checkpoint", path, e ? strerror(e) : "not a regular file");
-        if (f) fclose(f);
-        return e == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
-    }
+    glint_status status = GLINT_OK;
+    FILE *f = open_checkpoint(path, &st, &status, err);
+    if (!f) return status;
     reader r = {f, path, err, HASH_START};
-    glint_status status = read_checkpoint(&r, id, planes, plane_count, spp, (uint64_t)st.st_size);
+    status = read_checkpoint(&r, id, planes, plane_count, spp, (uint64_t)st.st_size);
     fclose(f);
     return status;
 }

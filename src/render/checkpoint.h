@@ -50,6 +50,10 @@ glint_status checkpoint_identity_of(const glint_scene *s, const int region[4], b
 glint_status checkpoint_write(const char *path, const checkpoint_identity *id, int spp, int complete,
                               const checkpoint_plane *planes, size_t plane_count, glint_error *err);
 
+/// Opens the checkpoint at path as checkpoint_read does, without reading it: GLINT_ERR_INPUT ("PATH: cannot open
+/// the checkpoint: reason") for a missing, unreadable or non-regular file (directory, FIFO, device).
+glint_status checkpoint_check_readable(const char *path, glint_error *err);
+
 /// Reads the checkpoint at path into the planes the caller names (each must be in the file with that type and
 /// components; the file's other planes are skipped). GLINT_ERR_INPUT ("PATH: what is wrong") for a file that is
 /// no checkpoint, of another version or byte order, truncated or corrupt (checksums), or of a render other than

@@ -432,8 +432,10 @@ static void job_free(render_job *job) {
 // pixel's count, the film's sums kept after every pass, and the resumed checkpoint's samples in the film.
 static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *s, const render_options *opt,
                                             glint_error *err) {
-    // Before the render, not after it: a checkpoint that cannot be written must not cost a render.
-    glint_status st = opt->checkpoint ? image_check_file(opt->checkpoint, err) : GLINT_OK;
+    // Before the render, not after it: a checkpoint that cannot be read or written must not cost a render. The
+    // file to resume from first, as input: a directory, FIFO or device there is bad usage, and never replaced.
+    glint_status st = opt->resume ? checkpoint_check_readable(opt->resume, err) : GLINT_OK;
+    if (st == GLINT_OK && opt->checkpoint) st = image_check_file(opt->checkpoint, err);
     if (st != GLINT_OK) return st;
     bool light_sampling = !opt->integrator.no_light_sampling;
     st = checkpoint_identity_of(s, job->region, light_sampling, &job->identity, err);
@@ -461,6 +463,12 @@ static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *
     for (size_t i = 0; i < pixels; i++) {
         most = job->counts[i] > most ? job->counts[i] : most;
         total += job->counts[i];
+        const double *sum = &job->film.sums[i * 3u];
+        if (job->counts[i] == 0 && (sum[0] != 0.0 || sum[1] != 0.0 || sum[2] != 0.0)) {
+            snprintf(err->message, sizeof err->message, "%s: corrupt checkpoint (pixel %zu has sums but no samples), "
+                     "expected a file written by glint's --checkpoint", opt->resume, i);
+            return GLINT_ERR_INPUT;
+        }
     }
     // Samples cannot be taken back: the mean of fewer is another sum.
     if (most > (uint32_t)s->settings.spp) {

@@ -8,8 +8,7 @@
 #include "core/hash.h"
 #include "core/trace.h"
 #include "core/filepath.h"
-#include "io/exr_read.h"
-#include "io/hdr_read.h"
+#include "io/map_read.h"
 #include "io/json_scan.h"
 
 #include <cjson/cJSON.h>
@@ -352,27 +351,6 @@ static const char *const envmap_keys[] = {"type", "file", "scale", "rotate", NUL
 static const jr_numspec NUM_ENVMAP_SCALE = {0.0, 1e30, JR_FLOAT, "a number in [0, 1e30]"};
 static const jr_numspec NUM_DEGREES = {-1e6, 1e6, JR_FLOAT, "a number of degrees in [-1e6, 1e6]"};
 
-// An HDR image, OpenEXR or Radiance, told apart by the first bytes (not the name): failures name the path.
-static glint_status read_hdr_image(const char *path, image_rgb *img, glint_error *err) {
-    unsigned char head[10] = {0};
-    size_t got = 0;
-    FILE *f = fopen(path, "rb");
-    if (f) {
-        got = fread(head, 1, sizeof head, f);
-        fclose(f);
-    }
-    if (exr_read_is_exr(head, got)) return exr_read(path, img, err);
-    if (f && !hdr_read_is_radiance(head, got)) {
-        img->width = img->height = 0;
-        img->pixels = NULL;
-        snprintf(err->message, sizeof err->message,
-                 "%s: not an OpenEXR or Radiance .hdr image (expected a file starting with the bytes 76 2f 31 01, "
-                 "\"#?RADIANCE\" or \"#?RGBE\")", path);
-        return GLINT_ERR_INPUT;
-    }
-    return hdr_read(path, img, err); // also says why a file cannot be opened
-}
-
 // An environment map: an equirectangular OpenEXR or Radiance .hdr image (light/envmap.h: its orientation).
 static bool read_envmap(sf_loader *ld, const jr_obj *o) {
     char *path;
@@ -389,7 +367,7 @@ static bool read_envmap(sf_loader *ld, const jr_obj *o) {
     glint_error err;
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
-    glint_status st = read_hdr_image(path, &img, &err);
+    glint_status st = map_read(path, MAP_ANY, &img, &err);
     if (lane)
         trace_add(lane, &(trace_event){"environment map read", "load", began, trace_clock(), 1, {{"file", 0, path}}});
     // The reader's message names the resolved path; the scene's message names the file as written instead.
