@@ -15,6 +15,7 @@
 #include <stdatomic.h>
 #include <sys/stat.h>
 #include <time.h>
+#include <unistd.h>
 
 // The ground of the scenes below: a huge sphere, or a quad (which lets the path tracer use its stream loop).
 static const char *const GROUND_SPHERE =
@@ -420,6 +421,84 @@ static void test_refused(void) {
     glint_scene_free(s);
 }
 
+// ---- forged files: valid checksums (anyone can recompute them), contents no render makes ----
+
+// Writes a checkpoint of s's render with the given planes and spp, as a forger would: checkpoint_write computes
+// the checksums.
+static bool forge(const glint_scene *s, const char *path, int spp, const checkpoint_plane *planes, size_t count,
+                  void (*edit)(checkpoint_identity *)) {
+    checkpoint_identity id;
+    glint_error err;
+    int region[4] = {0, 0, s->settings.width, s->settings.height};
+    if (checkpoint_identity_of(s, region, true, &id, &err) != GLINT_OK) return false;
+    if (edit) edit(&id);
+    return checkpoint_write(path, &id, spp, 0, planes, count, &err) == GLINT_OK;
+}
+
+static void huge_size(checkpoint_identity *id) {
+    id->width = id->height = 2000000000;
+    id->region[2] = id->region[3] = 2000000000;
+}
+
+static void test_forged(void) {
+    enum { W = 6, H = 4, N = W * H };
+    glint_scene *s = scene_with("f.json", W, H, 4, 1);
+    static uint32_t counts[N], big[N * 64];
+    static double sums[N * 3];
+    for (int i = 0; i < N; i++) counts[i] = 4;
+    for (int i = 0; i < N * 3; i++) sums[i] = 1.0;
+    char msg[1024];
+    // The same name twice, the second of 64 values a pixel: once a write of 256 bytes a pixel into 4 a pixel.
+    checkpoint_plane twice[] = {{"count", CHECKPOINT_U32, 1, counts}, {"count", CHECKPOINT_U32, 64, big},
+                                {"rgb", CHECKPOINT_F64, 3, sums}};
+    CHECK(forge(s, tmp_path("twice.ckp"), 4, twice, 3, NULL));
+    CHECK(resume_with(s, tmp_path("twice.ckp"), msg, sizeof msg) == GLINT_ERR_INPUT &&
+          strstr(msg, "corrupt checkpoint (a plane listed twice)"));
+    // A plane of the right name and another size is no plane this render can use.
+    checkpoint_plane wide[] = {{"count", CHECKPOINT_U32, 64, big}, {"rgb", CHECKPOINT_F64, 3, sums}};
+    CHECK(forge(s, tmp_path("wide.ckp"), 4, wide, 2, NULL));
+    CHECK(resume_with(s, tmp_path("wide.ckp"), msg, sizeof msg) == GLINT_ERR_INPUT &&
+          strstr(msg, "has no plane \"count\" of 1 integer values a pixel"));
+    checkpoint_plane good[] = {{"count", CHECKPOINT_U32, 1, counts}, {"rgb", CHECKPOINT_F64, 3, sums}};
+    struct { double value; int at; uint32_t count; int spp; const char *expect; } values[] = {
+        {NAN, 5, 4, 4, "plane \"rgb\": a sum that is negative, infinite or not a number"},
+        {INFINITY, 0, 4, 4, "plane \"rgb\": a sum that is negative, infinite or not a number"},
+        {-1.0, 7, 4, 4, "plane \"rgb\": a sum that is negative, infinite or not a number"},
+        {1.0, 3, 5, 4, "plane \"count\": a count above the samples per pixel it was made for"},
+        {1.0, 3, 0, 4, "pixel 1 has sums but no samples"},
+    };
+    for (size_t i = 0; i < sizeof values / sizeof values[0]; i++) {
+        double keep = sums[values[i].at];
+        sums[values[i].at] = values[i].value;
+        counts[values[i].at / 3] = values[i].count;
+        CHECK(forge(s, tmp_path("values.ckp"), values[i].spp, good, 2, NULL));
+        CHECK(resume_with(s, tmp_path("values.ckp"), msg, sizeof msg) == GLINT_ERR_INPUT);
+        CHECK(strstr(msg, values[i].expect) != NULL);
+        if (!strstr(msg, values[i].expect)) fprintf(stderr, "  got: %s\n", msg);
+        sums[values[i].at] = keep;
+        counts[values[i].at / 3] = 4;
+    }
+    // A size no render has: refused before any length is computed from it (it once wrapped around).
+    CHECK(forge(s, tmp_path("huge.ckp"), 4, good, 0, huge_size)); // no planes: none could be written
+    CHECK(resume_with(s, tmp_path("huge.ckp"), msg, sizeof msg) == GLINT_ERR_INPUT &&
+          strstr(msg, "corrupt checkpoint (header out of range)"));
+    // The untouched forgery resumes: the refusals above are the values', not the forging's.
+    CHECK(forge(s, tmp_path("fine.ckp"), 4, good, 2, NULL));
+    run fine = render(s, 1, NULL, tmp_path("fine.ckp"), NULL);
+    CHECK(fine.status == GLINT_OK);
+    glint_image_free(fine.image);
+    // A FIFO (no writer: opening it would wait for ever) is refused as input and never replaced as output.
+    CHECK(mkfifo(tmp_path("c.fifo"), 0600) == 0);
+    CHECK(resume_with(s, tmp_path("c.fifo"), msg, sizeof msg) == GLINT_ERR_INPUT &&
+          strstr(msg, "c.fifo: cannot open the checkpoint: not a regular file"));
+    run out = render(s, 1, tmp_path("c.fifo"), NULL, NULL);
+    struct stat st;
+    CHECK(out.status == GLINT_ERR_RENDER && strstr(out.err.message, "it is a FIFO, not a regular file"));
+    CHECK(stat(tmp_path("c.fifo"), &st) == 0 && S_ISFIFO(st.st_mode));
+    unlink(tmp_path("c.fifo"));
+    glint_scene_free(s);
+}
+
 // A mesh's material library changed after the checkpoint: another scene, though the scene text is the same.
 static void test_input_files(void) {
     const char *obj = "mtllib m.mtl\nv 0 0 -1\nv 1 0 -1\nv 0 1 -1\nusemtl red\nf 1 2 3\n";
@@ -454,6 +533,7 @@ int main(void) {
     test_time_limit();
     test_region();
     test_refused();
+    test_forged();
     test_input_files();
     // Every file a checkpoint write made is in place: no temporary one is left in the directory.
     DIR *d = opendir(tmpdir);

@@ -89,8 +89,9 @@ static glint_status read_header(hdr_scan *s, int *width, int *height) {
         return refuse(s, what);
     }
     if (h == 0 || w == 0 || (unsigned long long)w * (unsigned long long)h > MAP_READ_MAX_PIXELS) {
-        snprintf(s->err->message, sizeof s->err->message, "%s: the image is %lldx%lld pixels; 1 to %zu pixels are "
-                 "allowed", s->path, w, h, (size_t)MAP_READ_MAX_PIXELS);
+        snprintf(s->err->message, sizeof s->err->message, "%s: the size line \"%.64s\" declares %s; 1 to %zu pixels "
+                 "are allowed", s->path, line, h == 0 || w == 0 ? "no pixels" : "more pixels than that",
+                 (size_t)MAP_READ_MAX_PIXELS);
         return GLINT_ERR_INPUT;
     }
     *width = (int)w;

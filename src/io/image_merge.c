@@ -168,7 +168,7 @@ static glint_status read_part(const char *path, part *p, glint_error *err) {
     if (!ok && r.libpng_failed && !r.cut_short && strcmp(r.message, "out of memory") != 0) {
         char said[IMAGE_PNG_MESSAGE];
         snprintf(said, sizeof said, "%s", r.message);
-        snprintf(r.message, sizeof r.message, "corrupt PNG (%.200s), %s", said, EXPECTED_PART);
+        snprintf(r.message, sizeof r.message, "corrupt PNG (%.160s), %s", said, EXPECTED_PART);
     }
     if (!ok && r.cut_short) {
         if (r.height > 0 && strcmp(r.stage, "its image data") == 0)

@@ -281,13 +281,24 @@ const jr_numspec JR_NONZERO_FINITE = {-INFINITY, INFINITY, JR_FLOAT | JR_NONZERO
 const jr_numspec JR_FINITE_DOUBLE = {-INFINITY, INFINITY, JR_FLOAT_RANGE, "a finite number"};
 const jr_numspec JR_POSITIVE_DOUBLE = {0.0, INFINITY, JR_FLOAT_RANGE | JR_LO_OPEN, "a finite number > 0"};
 
+static bool in_range(const jr_numspec *sp, double x) {
+    if ((sp->flags & JR_LO_OPEN) ? !(x > sp->lo) : !(x >= sp->lo)) return false;
+    return (sp->flags & JR_HI_OPEN) ? x < sp->hi : x <= sp->hi;
+}
+
 static bool number_fits(const jr_numspec *sp, double *v) {
     double x = *v;
     if (!isfinite(x)) return false;
     if ((sp->flags & (JR_FLOAT | JR_FLOAT_RANGE)) && fabs(x) > FLT_MAX) return false;
-    if (sp->flags & JR_FLOAT) x = (double)(float)x;
-    if ((sp->flags & JR_LO_OPEN) ? !(x > sp->lo) : !(x >= sp->lo)) return false;
-    if ((sp->flags & JR_HI_OPEN) ? !(x < sp->hi) : !(x <= sp->hi)) return false;
+    if (!in_range(sp, x)) return false; // the number as written
+    if (sp->flags & JR_FLOAT) {
+        // The nearest float may lie just outside a range the number is inside (1e30 rounds up, 0.99999999 to 1):
+        // then the float next to it, on the number's side, which is inside.
+        float f = (float)x;
+        if (!in_range(sp, f)) f = nextafterf(f, x < (double)f ? -INFINITY : INFINITY);
+        if (!in_range(sp, f)) return false;
+        x = f;
+    }
     if ((sp->flags & JR_NONZERO) && x == 0.0) return false;
     *v = x;
     return true;
