@@ -261,6 +261,9 @@ GLINT_API glint_trace *glint_trace_new(void);
 /// for its other threads (its calling thread is its worker 0) and "sample passes". Attaching a thread again to
 /// the same trace keeps its row; trace NULL detaches it. GLINT_ERR_RENDER when memory runs out.
 GLINT_API glint_status glint_trace_attach(glint_trace *trace, const char *thread_name, glint_error *err);
+/// The CPUs this process may run on (its affinity mask: taskset, cgroups, an MPI launcher's binding; else the
+/// online CPUs), at least 1: the number of threads a thread count of 0 means.
+GLINT_API int glint_cpu_count(void);
 /// Whether writing at path a and at path b would write one file: the same existing file (by device and inode,
 /// whatever the names and symbolic links), or, for names that do not exist yet, the same name in the same
 /// directory ("x.pfm" and "./x.pfm"). Tools that write several files check with it that none replaces another.

@@ -2,6 +2,7 @@
 // its arguments and hands over to the module that does the work (as Lua keeps its whole API in lapi.c).
 #include "glint.h"
 #include "core/filepath.h"
+#include "core/thread_pool.h"
 #include "core/trace.h"
 #include "film/film.h"
 #include "io/image_merge.h"
@@ -166,6 +167,8 @@ glint_status glint_trace_attach(glint_trace *t, const char *thread_name, glint_e
     trace_set_current(lane);
     return GLINT_OK;
 }
+
+int glint_cpu_count(void) { return thread_pool_online_cpus(); }
 
 bool glint_path_same_target(const char *a, const char *b) { return a && b && filepath_same_target(a, b); }
 

@@ -79,7 +79,7 @@ __attribute__((format(printf, 2, 3))) static void say(const cli_program *prog, c
 
 static void print_usage(const cli_program *prog, FILE *f) {
     if (prog->silent) return;
-    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    int cpus = glint_cpu_count();
     fputs(prog->usage, f);
     fprintf(f,
             "\n"
@@ -99,7 +99,7 @@ static void print_usage(const cli_program *prog, FILE *f) {
             "      --depth N      maximum recursion (Whitted) or bounce (path) depth, 0..10000\n"
             "      --seed N       random seed, 0..9007199254740992 (2^53)\n"
             "      --threads N    worker threads of the render, the BVH build and mesh reading, 0..256; 0 and\n"
-            "                     the default: all online CPUs (%ld here); 1 renders sequentially. The\n"
+            "                     the default: every CPU glint may run on (%d here); 1 renders sequentially. The\n"
             "                     image (and the BVH, and the meshes read) is the same for every N\n"
             "      --time-limit S no sample pass starts after S seconds, 1..100000000: the image is that of\n"
             "                     the samples per pixel reached (1, 2, 4, ...; said on stderr), exit 0\n"
@@ -111,7 +111,7 @@ static void print_usage(const cli_program *prog, FILE *f) {
             "                     render only the pixels X0 <= x < X1, Y0 <= y < Y1, each exactly as in the\n"
             "                     full image; the image written is (X1-X0)x(Y1-Y0), and a PNG records where\n"
             "                     it lies (a glint:region text chunk) for glint merge\n",
-            cpus > 0 ? cpus : 1);
+            cpus);
     // In parts: ISO C promises string literals of 4095 bytes, no more.
     fprintf(f,
             "      --aov LIST     also render AOVs, a comma-separated list of albedo, normal and depth: the\n"

@@ -1,8 +1,11 @@
 // thread_pool.c — the pool's threads: they sleep until a job is posted, take its items one by one under the
 // lock, and the last item to finish wakes the caller.
+// sched_getaffinity and CPU_COUNT are Linux's: <sched.h> declares them only for _GNU_SOURCE.
+#define _GNU_SOURCE
 #include "core/thread_pool.h"
 
 #include <pthread.h>
+#include <sched.h>
 #include <stdbool.h>
 #include <stdlib.h>
 #include <unistd.h>
@@ -22,7 +25,11 @@ struct thread_pool {
 };
 
 int thread_pool_online_cpus(void) {
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
+    // The CPUs this process may run on (taskset, cgroups, an MPI launcher's binding): threads beyond them would
+    // only take turns. All online CPUs where the mask is unknown.
+    cpu_set_t set;
+    long n = sched_getaffinity(0, sizeof set, &set) == 0 ? CPU_COUNT(&set) : 0;
+    if (n <= 0) n = sysconf(_SC_NPROCESSORS_ONLN);
     return n > 0 ? (n > 1024 ? 1024 : (int)n) : 1;
 }
 

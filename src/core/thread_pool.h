@@ -18,7 +18,8 @@ typedef struct thread_pool thread_pool;
 /// One item of a job: ctx is the job's, item in [0, count).
 typedef void (*thread_pool_fn)(void *ctx, size_t item);
 
-/// The online CPUs (at least 1): what a thread count of 0 means.
+/// The CPUs this process may run on (its affinity mask: taskset, cgroups, an MPI binding; else the online
+/// CPUs), at least 1, at most 1024: what a thread count of 0 means, everywhere in glint.
 int thread_pool_online_cpus(void);
 /// Starts a pool of `threads` threads counting the caller (threads - 1 are created; fewer when the system
 /// refuses more, which only costs speed). NULL when out of memory.

@@ -1,8 +1,6 @@
 // main.c — glint-mpi: glint's render on every process of an MPI job. Every rank reads the scene and builds
 // its own render frame; rank 0 hands out tile passes (farm.c), renders its share, writes the image and prints
 // what glint prints; the image is glint's, byte for byte, for any number of ranks and threads.
-// sched_getaffinity and CPU_COUNT are Linux's: <sched.h> declares them only for _GNU_SOURCE.
-#define _GNU_SOURCE
 #include "accel/accel.h"
 #include "cli/cli.h"
 #include "core/clock.h"
@@ -14,7 +12,6 @@
 
 #include <inttypes.h>
 #include <mpi.h>
-#include <sched.h>
 #include <signal.h>
 #include <stdatomic.h>
 #include <stdio.h>
@@ -191,15 +188,6 @@ static glint_status check_output(const cli_options *opt, glint_format format, gl
     return GLINT_OK;
 }
 
-// The CPUs this rank may run on: the launcher may bind a rank to a core or a socket (Open MPI does by
-// default), and threads beyond its CPUs would only take turns. All online CPUs where that is unknown.
-static int usable_cpus(void) {
-    cpu_set_t set;
-    if (sched_getaffinity(0, sizeof set, &set) == 0 && CPU_COUNT(&set) > 0) return CPU_COUNT(&set);
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n > 0 ? (int)n : 1;
-}
-
 // The per-rank shares and the traffic between ranks, after glint's statistics line.
 static void print_shares(const farm_report *r, int size, double seconds) {
     fprintf(stderr, "glint-mpi: %d rank%s; units (tile passes) and samples per rank:", size, size == 1 ? "" : "s");
@@ -263,7 +251,7 @@ int main(int argc, char **argv) {
     glint_scene *scene = NULL;
     // A scene from standard input is broadcast: every rank takes part even when rank 0's output is refused.
     if (st == GLINT_OK || strcmp(opt.scene_path, "-") == 0) {
-        glint_status loaded = load_scene(opt.scene_path, rank, opt.threads > 0 ? opt.threads : usable_cpus(), &scene, &err);
+        glint_status loaded = load_scene(opt.scene_path, rank, opt.threads > 0 ? opt.threads : glint_cpu_count(), &scene, &err);
         if (st == GLINT_OK) st = loaded;
     }
     atomic_store(&loading, 0);
@@ -276,7 +264,7 @@ int main(int argc, char **argv) {
     }
     int region[4];
     if (st == GLINT_OK) st = tiles_resolve_region(&scene->settings, opt.region, region, &err);
-    int threads = opt.threads > 0 ? opt.threads : usable_cpus();
+    int threads = opt.threads > 0 ? opt.threads : glint_cpu_count();
     if (threads > 256) threads = 256;
     render_frame frame = {0};
     double t0 = clock_seconds(); // glint's wall time starts here too: the frame build and the render

@@ -3,6 +3,7 @@
 // count gives the same bytes, and a stop request leaves every pixel at the mean of its completed samples.
 #include "render/render.h"
 #include "core/clock.h"
+#include "core/thread_pool.h"
 #include "core/trace.h"
 #include "film/film.h"
 #include "io/image_write.h"
@@ -382,11 +383,6 @@ static void progress_stop(progress_state *p, pthread_t thread) {
     pthread_mutex_destroy(&p->lock);
 }
 
-static int online_cpus(void) {
-    long n = sysconf(_SC_NPROCESSORS_ONLN);
-    return n > 0 ? (int)n : 1;
-}
-
 // Sets up the job's passes, tiles and film over the (checked) region; false when out of memory.
 static bool job_init(render_job *job, const glint_scene *s, const integrator *it, const int region[4], unsigned aovs) {
     const render_settings *rs = &s->settings;
@@ -562,7 +558,7 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
             return st;
         }
     }
-    int threads = opt && opt->threads > 0 ? opt->threads : online_cpus();
+    int threads = opt && opt->threads > 0 ? opt->threads : thread_pool_online_cpus();
     if (threads > MAX_THREADS) threads = MAX_THREADS;
     render_frame frame;
     st = frame_build(&frame, s, opt ? &opt->integrator : NULL, threads, &stop_requested, err);
