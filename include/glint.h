@@ -29,7 +29,10 @@
 extern "C" {
 #endif
 
-#define GLINT_VERSION "0.1.0"
+#define GLINT_VERSION "0.2.0"
+#define GLINT_VERSION_MAJOR 0
+#define GLINT_VERSION_MINOR 2
+#define GLINT_VERSION_PATCH 0
 
 /// Marks the public API: the library is built with hidden visibility, so libglint.so exports these alone.
 #if defined(__GNUC__)
@@ -45,7 +48,7 @@ typedef enum glint_status {
     GLINT_OK = 0,
     GLINT_ERR_RENDER = 1,     ///< rendering, memory or I/O failure (the program exits 1)
     GLINT_ERR_INPUT = 2,      ///< bad usage, scene file, mesh or image file (the program exits 2)
-    GLINT_ERR_INTERRUPTED = 3 ///< the render was stopped by glint_request_stop; the partial image is kept
+    GLINT_ERR_INTERRUPTED = 3 ///< the render was stopped by its cancel token; the partial image is kept
 } glint_status;
 
 /// A value struct: a human-readable error, already formatted as "file:line:col: what is wrong, what was
@@ -94,6 +97,9 @@ typedef void (*glint_live_image_fn)(const glint_image *image, int spp_done, doub
 
 /// A value struct: options of one render that are not part of the scene (zero-initialised: the defaults). Every
 /// field is a value field; initialise the whole struct ({0} or memset) so that fields added later stay default.
+/// A cancel token: stops the renders given it (glint_render_options.cancel), and only those. Opaque.
+typedef struct glint_cancel glint_cancel;
+
 typedef struct glint_render_options {
     int threads; ///< worker threads (the render's and the BVH build's); 0 = all online CPUs. The image is the same for every count
     /// > 0: after this many seconds of rendering no new sample pass starts (passes are 1, 1, 2, 4, ...
@@ -126,6 +132,12 @@ typedef struct glint_render_options {
     /// message naming the file and what differs, and for a file that is no checkpoint, truncated or corrupt.
     /// It may be the same file as checkpoint.
     const char *resume;
+    /// Not NULL: a cancel token (glint_cancel_new). glint_cancel_request on it, from any thread or a signal
+    /// handler, stops this render before its next sample: it returns GLINT_ERR_INTERRUPTED with the partial
+    /// image (each pixel the mean of its completed samples; black when stopped during the BVH build). Each render
+    /// may have a token of its own, so that renders in one process are stopped one by one; a token already
+    /// requested stops the render at once. NULL: the render runs to its end.
+    glint_cancel *cancel;
 } glint_render_options;
 
 /// A value struct: counters of one render, filled by glint_render.
@@ -188,9 +200,17 @@ GLINT_API glint_status glint_render(const glint_scene *scene, const glint_render
                                     glint_progress_fn progress, void *user, glint_image **out,
                                     glint_render_stats *stats, glint_error *err);
 
-/// Asks running renders to stop soon; async-signal-safe (it stores one atomic flag). A request made while
-/// no render runs stops the next one at once.
-GLINT_API void glint_request_stop(void);
+/// A new cancel token, not requested (glint_render_options.cancel); NULL when out of memory.
+GLINT_API glint_cancel *glint_cancel_new(void);
+/// Asks the renders that use the token to stop before their next sample; async-signal-safe (it stores one
+/// atomic flag), callable from any thread.
+GLINT_API void glint_cancel_request(glint_cancel *cancel);
+/// Whether glint_cancel_request was called on the token (since glint_cancel_reset).
+GLINT_API bool glint_cancel_requested(const glint_cancel *cancel);
+/// Makes the token unrequested again, for another render.
+GLINT_API void glint_cancel_reset(glint_cancel *cancel);
+/// Frees a token no render uses any more (NULL is allowed).
+GLINT_API void glint_cancel_free(glint_cancel *cancel);
 
 /// Image output format, chosen from the file name's extension unless given.
 typedef enum glint_format {

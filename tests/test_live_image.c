@@ -80,7 +80,7 @@ typedef struct heard {
     int calls, last_spp, spp_went_down, wrong_size, spp_not_a_pass, width, height;
     double last_fraction;
     uint8_t *last_bytes; ///< the image of the latest call, encoded
-    bool stop_at_first;
+    glint_cancel *stop_at_first; ///< requested from the first call (NULL: none)
 } heard;
 
 static void on_image(const glint_image *img, int spp_done, double fraction, void *user) {
@@ -95,7 +95,7 @@ static void on_image(const glint_image *img, int spp_done, double fraction, void
     h->last_spp = spp_done;
     h->last_fraction = fraction;
     h->calls++;
-    if (h->stop_at_first) glint_request_stop();
+    if (h->stop_at_first) glint_cancel_request(h->stop_at_first);
 }
 
 static glint_scene *tiny(long width, long height, long spp) {
@@ -152,9 +152,11 @@ static void test_live_stop(void) {
     glint_scene *scene = tiny(64, 48, 1000000);
     CHECK(scene != NULL);
     if (!scene) return;
-    heard h = {.width = 64, .height = 48, .last_bytes = calloc(64 * 48 * 3, 1), .stop_at_first = true};
+    glint_cancel *cancel = glint_cancel_new();
+    heard h = {.width = 64, .height = 48, .last_bytes = calloc(64 * 48 * 3, 1), .stop_at_first = cancel};
     glint_render_options opt;
     memset(&opt, 0, sizeof opt);
+    opt.cancel = cancel;
     opt.live_image = on_image;
     opt.live_user = &h;
     glint_image *img = NULL;
@@ -167,6 +169,7 @@ static void test_live_stop(void) {
     glint_image_free(img);
     glint_scene_free(scene);
     free(h.last_bytes);
+    glint_cancel_free(cancel);
 }
 
 int main(void) {

@@ -1,6 +1,9 @@
 // test_render.c — the render loop: each pixel is the mean of its samples in index order (bit for bit the
 // sequential sum), the same for any thread count; progress reports; a stop keeps completed samples only.
 #include "check.h"
+
+#include <pthread.h>
+#include <time.h>
 #include "integrator/integrator.h"
 #include "film/film.h"
 #include "render/frame.h"
@@ -74,12 +77,17 @@ static void reference_pixel(const integrator *it, int x, int y, int n, float out
     for (int c = 0; c < 3; c++) out[c] = (float)(sum[c] / n);
 }
 
-static glint_image *render(glint_scene *s, int threads, glint_status *st, glint_render_stats *stats) {
-    glint_render_options opt = {.threads = threads};
+static glint_image *render_with(glint_scene *s, int threads, glint_cancel *cancel, glint_status *st,
+                                glint_render_stats *stats) {
+    glint_render_options opt = {.threads = threads, .cancel = cancel};
     glint_image *img = NULL;
     glint_error err;
     *st = glint_render(s, &opt, NULL, NULL, &img, stats, &err);
     return img;
+}
+
+static glint_image *render(glint_scene *s, int threads, glint_status *st, glint_render_stats *stats) {
+    return render_with(s, threads, NULL, st, stats);
 }
 
 // Bit-identical images for 1..5 threads, each pixel exactly the sequential mean; sizes that are not
@@ -123,7 +131,7 @@ typedef struct progress_log {
     int calls;
     double last;
     bool monotonic, in_range;
-    bool stop_at_first; ///< call glint_request_stop from the first report
+    glint_cancel *stop_at_first; ///< requested from the first report (NULL: none)
 } progress_log;
 
 static void on_progress(double fraction, void *user) {
@@ -132,7 +140,7 @@ static void on_progress(double fraction, void *user) {
     if (!(fraction >= 0.0 && fraction <= 1.0)) log->in_range = false;
     log->last = fraction;
     log->calls++;
-    if (log->stop_at_first) glint_request_stop();
+    if (log->stop_at_first) glint_cancel_request(log->stop_at_first);
 }
 
 static void test_progress(void) {
@@ -149,23 +157,27 @@ static void test_progress(void) {
     glint_scene_free(s);
 }
 
-// A stop requested before the render: nothing is rendered, the image is black, and the request is
-// answered (the next render runs to the end).
+// A token requested before the render: nothing is rendered, the image is black; reset, it lets the next render
+// run to the end.
 static void test_stop_before(void) {
     glint_scene *s = make_scene(INTEGRATOR_WHITTED, 20, 10, 2);
-    glint_request_stop();
+    glint_cancel *cancel = glint_cancel_new();
+    glint_cancel_request(cancel);
+    CHECK(glint_cancel_requested(cancel));
     glint_status st;
     glint_render_stats stats;
-    glint_image *img = render(s, 2, &st, &stats);
+    glint_image *img = render_with(s, 2, cancel, &st, &stats);
     CHECK(st == GLINT_ERR_INTERRUPTED);
     CHECK(stats.samples == 0);
     int nonzero = 0;
     for (size_t i = 0; img && i < 20 * 10 * 3; i++) nonzero += img->rgb[i] != 0.0f;
     CHECK(img != NULL && nonzero == 0);
     glint_image_free(img);
-    img = render(s, 2, &st, &stats);
+    glint_cancel_reset(cancel);
+    img = render_with(s, 2, cancel, &st, &stats);
     CHECK(st == GLINT_OK && stats.samples == 20 * 10 * 2);
     glint_image_free(img);
+    glint_cancel_free(cancel);
     glint_scene_free(s);
 }
 
@@ -174,8 +186,9 @@ static void test_stop_before(void) {
 static void test_stop_during(void) {
     enum { SW = 6, SH = 5, SPP = 400000 };
     glint_scene *s = make_scene(INTEGRATOR_PATH, SW, SH, SPP);
-    progress_log log = {.monotonic = true, .in_range = true, .stop_at_first = true};
-    glint_render_options opt = {.threads = 2};
+    glint_cancel *cancel = glint_cancel_new();
+    progress_log log = {.monotonic = true, .in_range = true, .stop_at_first = cancel};
+    glint_render_options opt = {.threads = 2, .cancel = cancel};
     glint_image *img = NULL;
     glint_render_stats stats;
     glint_error err;
@@ -222,6 +235,51 @@ static void test_stop_during(void) {
     CHECK(matched_samples <= stats.samples); // no pixel claims samples that were not rendered
     frame_release(&frame);
     glint_image_free(img);
+    glint_cancel_free(cancel);
+    glint_scene_free(s);
+}
+
+// Two renders in one process, on two threads, each with its own token: cancelling one leaves the other's image
+// byte for byte that of a render nobody cancelled.
+typedef struct side_render {
+    const glint_scene *scene;
+    glint_cancel *cancel;
+    glint_image *image;
+    glint_status status;
+    pthread_t thread;
+} side_render;
+
+static void *side_main(void *arg) {
+    side_render *r = arg;
+    glint_render_options opt = {.threads = 1, .cancel = r->cancel};
+    glint_render_stats stats;
+    glint_error err;
+    r->status = glint_render(r->scene, &opt, NULL, NULL, &r->image, &stats, &err);
+    return NULL;
+}
+
+static void test_two_tokens(void) {
+    enum { TW = 24, TH = 16, TSPP = 600 };
+    glint_scene *s = make_scene(INTEGRATOR_PATH, TW, TH, TSPP);
+    glint_status st;
+    glint_render_stats stats;
+    glint_image *reference = render(s, 1, &st, &stats);
+    CHECK(st == GLINT_OK && reference);
+    side_render a = {s, glint_cancel_new(), NULL, GLINT_OK, 0}, b = {s, glint_cancel_new(), NULL, GLINT_OK, 0};
+    CHECK(pthread_create(&a.thread, NULL, side_main, &a) == 0 && pthread_create(&b.thread, NULL, side_main, &b) == 0);
+    struct timespec pause = {0, 20 * 1000 * 1000};
+    nanosleep(&pause, NULL);
+    glint_cancel_request(a.cancel);
+    pthread_join(a.thread, NULL);
+    pthread_join(b.thread, NULL);
+    CHECK(a.status == GLINT_ERR_INTERRUPTED && a.image); // 20 ms are far from 230,000 path samples
+    CHECK(b.status == GLINT_OK && b.image && !glint_cancel_requested(b.cancel));
+    CHECK(reference && b.image && memcmp(reference->rgb, b.image->rgb, (size_t)TW * TH * 3 * sizeof(float)) == 0);
+    glint_image_free(a.image);
+    glint_image_free(b.image);
+    glint_image_free(reference);
+    glint_cancel_free(a.cancel);
+    glint_cancel_free(b.cancel);
     glint_scene_free(s);
 }
 
@@ -312,5 +370,6 @@ int main(void) {
     test_progress();
     test_stop_before();
     test_stop_during();
+    test_two_tokens();
     return check_summary();
 }

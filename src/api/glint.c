@@ -10,8 +10,10 @@
 #include "render/render.h"
 #include "scene/scene.h"
 
+#include <stdatomic.h>
 #include <stddef.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 const char *glint_version(void) { return GLINT_VERSION; }
@@ -85,6 +87,11 @@ bool glint_scene_reads_file(const glint_scene *scene, const char *path) {
 
 void glint_scene_free(glint_scene *scene) { scene_free(scene); }
 
+// A token is one atomic flag: requesting it is a store, which a signal handler may do.
+struct glint_cancel {
+    atomic_int requested;
+};
+
 glint_status glint_render(const glint_scene *scene, const glint_render_options *opt, glint_progress_fn progress,
                           void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
     glint_error scratch;
@@ -95,12 +102,29 @@ glint_status glint_render(const glint_scene *scene, const glint_render_options *
         ro.live_user = opt->live_user;
         ro.checkpoint = opt->checkpoint;
         ro.resume = opt->resume;
+        ro.cancel = opt->cancel ? &opt->cancel->requested : NULL;
     }
     ro.aovs = opt ? opt->aovs : 0u;
     return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);
 }
 
-void glint_request_stop(void) { render_request_stop(); }
+glint_cancel *glint_cancel_new(void) {
+    glint_cancel *c = malloc(sizeof *c);
+    if (c) atomic_init(&c->requested, 0);
+    return c;
+}
+
+void glint_cancel_request(glint_cancel *c) {
+    if (c) atomic_store(&c->requested, 1);
+}
+
+bool glint_cancel_requested(const glint_cancel *c) { return c && atomic_load(&c->requested) != 0; }
+
+void glint_cancel_reset(glint_cancel *c) {
+    if (c) atomic_store(&c->requested, 0);
+}
+
+void glint_cancel_free(glint_cancel *c) { free(c); }
 
 glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
     glint_error scratch;

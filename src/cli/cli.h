@@ -48,9 +48,6 @@ extern const cli_program CLI_GLINT;
 /// What main does after parsing: render, or exit at once with this code.
 typedef enum cli_action { CLI_RUN = -1, CLI_EXIT_OK = 0, CLI_EXIT_USAGE = 2 } cli_action;
 
-/// Fills *set with the signals that stop a render (SIGINT, SIGTERM, SIGHUP).
-void cli_stop_signals(sigset_t *set);
-
 /// Runs `glint merge OUT PART...` (argv[1] is "merge"): returns the exit status, messages on stderr.
 int cli_merge(int argc, char **argv);
 

@@ -3,6 +3,7 @@
 #include "cli.h"
 #include "glint.h"
 #include "preview.h"
+#include "signals.h"
 
 #include <signal.h>
 #include <stdatomic.h>
@@ -11,82 +12,6 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
-
-_Static_assert(ATOMIC_INT_LOCK_FREE == 2, "the signal handler needs a lock-free atomic int");
-
-static atomic_int first_signal; // the signal that asked the render to stop, 0 while none has
-static atomic_int loading;      // 1 while the scene is read: a signal then ends the program at once
-static bool quiet_signals;      // --quiet, set before the handlers are installed
-
-// The signals that stop a render: Ctrl-C, kill, and the terminal going away (the session ending).
-static const int STOP_SIGNALS[] = {SIGINT, SIGTERM, SIGHUP};
-enum { STOP_SIGNAL_COUNT = sizeof STOP_SIGNALS / sizeof STOP_SIGNALS[0] };
-
-// While loading: nothing exists yet to write or to clean up, and the read may be blocked on a FIFO or a pipe
-// that never ends, so say what happened and leave at once. During the render, the first signal asks it to
-// stop (it then writes what it has); the second dies at once, by the signal's default action, so the shell
-// sees the usual status. No temporary file can be left behind then: none exists while rendering, and signals
-// are blocked while the image is written.
-static void on_signal(int sig) {
-    if (atomic_load(&loading)) {
-        static const char msg[] = "glint: interrupted while loading the scene\n";
-        if (!quiet_signals) {
-            ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
-            (void)ignored;
-        }
-        _exit(128 + sig);
-    }
-    int expected = 0;
-    if (atomic_compare_exchange_strong(&first_signal, &expected, sig)) {
-        glint_request_stop();
-        return;
-    }
-    static const char msg[] = "\nglint: interrupted again, aborting\n";
-    ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
-    (void)ignored;
-    struct sigaction dfl;
-    memset(&dfl, 0, sizeof dfl);
-    dfl.sa_handler = SIG_DFL;
-    sigemptyset(&dfl.sa_mask);
-    sigaction(sig, &dfl, NULL);
-    raise(sig); // delivered as soon as this handler returns
-}
-
-// Installed even when the signal was inherited as ignored (as `glint ... &` in a script does to SIGINT),
-// so that a harness can always interrupt a render and get its partial image.
-static void install_signal_handlers(void) {
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART;
-    for (int i = 0; i < STOP_SIGNAL_COUNT; i++) sigaction(STOP_SIGNALS[i], &sa, NULL);
-}
-
-void cli_stop_signals(sigset_t *set) {
-    sigemptyset(set);
-    for (int i = 0; i < STOP_SIGNAL_COUNT; i++) sigaddset(set, STOP_SIGNALS[i]);
-}
-
-// Holds the stop signals back while a file is being written, so that a rename never races an abort.
-static void block_stop_signals(void) {
-    sigset_t set;
-    cli_stop_signals(&set);
-    pthread_sigmask(SIG_BLOCK, &set, NULL);
-}
-
-// Lets them in again: a preview window waiting after the image was written still ends on Ctrl-C.
-static void unblock_stop_signals(void) {
-    sigset_t set;
-    cli_stop_signals(&set);
-    pthread_sigmask(SIG_UNBLOCK, &set, NULL);
-}
-
-// The conventional status of a program stopped by a signal: 128 + its number (130 for SIGINT).
-static int interrupted_status(void) {
-    int sig = atomic_load(&first_signal);
-    return 128 + (sig ? sig : SIGINT);
-}
 
 static const char NOTHING_RENDERED[] = "glint: interrupted before any sample was rendered, no image written\n";
 
@@ -141,7 +66,7 @@ static const char *clobbers(const char *path, const cli_options *opt, const char
 }
 
 // Everything after the command line: load, render, write the image and the trace (NULL: none); the exit status.
-static int run(const cli_options *opt, glint_trace *trace) {
+static int run(const cli_options *opt, glint_trace *trace, glint_cancel *cancel) {
     glint_error err;
     glint_format format = opt->ascii_ppm ? GLINT_FORMAT_PPM_ASCII
                           : opt->half    ? GLINT_FORMAT_EXR_HALF
@@ -185,12 +110,10 @@ static int run(const cli_options *opt, glint_trace *trace) {
     }
     glint_status st;
 
-    quiet_signals = opt->quiet;
-    atomic_store(&loading, 1);
-    install_signal_handlers();
+    cli_signals_install("glint", opt->quiet, cancel, NULL);
     glint_scene *scene = NULL;
     st = cli_load_scene(opt->scene_path, opt->threads, &scene, &err);
-    atomic_store(&loading, 0);
+    cli_signals_loaded();
     if (st == GLINT_OK) st = glint_scene_override(scene, &opt->overrides, &err);
     if (st != GLINT_OK) {
         fprintf(stderr, "glint: %s\n", err.message);
@@ -217,10 +140,10 @@ static int run(const cli_options *opt, glint_trace *trace) {
     // The library never prints: what it worked around in mesh files is reported here, unless --quiet.
     for (size_t i = 0; !opt->quiet && i < glint_scene_warning_count(scene); i++)
         fprintf(stderr, "glint: %s\n", glint_scene_warning(scene, i));
-    if (atomic_load(&first_signal)) { // stopped before the render began: there is nothing to write
+    if (atomic_load(cli_signals_first())) { // stopped before the render began: there is nothing to write
         glint_scene_free(scene);
         if (!opt->quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
-        return interrupted_status();
+        return cli_signals_status();
     }
 
     cli_progress bar = {.start = cli_now(), .drawn = false};
@@ -230,6 +153,7 @@ static int run(const cli_options *opt, glint_trace *trace) {
     ropt.aovs = opt->aovs;
     ropt.checkpoint = opt->checkpoint;
     ropt.resume = opt->resume;
+    ropt.cancel = cancel; // the signal handler's, and the preview window's
     cli_preview *preview = opt->preview ? open_preview(opt, scene) : NULL;
     if (preview) {
         ropt.live_image = cli_preview_live_image;
@@ -237,7 +161,7 @@ static int run(const cli_options *opt, glint_trace *trace) {
     }
     render_call call = {.scene = scene, .options = &ropt, .progress = show_progress ? cli_progress_draw : NULL,
                         .user = &bar, .trace = trace};
-    if (preview) cli_preview_run(preview, render_call_run, &call);
+    if (preview) cli_preview_run(preview, render_call_run, &call, cancel);
     else render_call_run(&call);
     glint_image *img = call.image;
     glint_render_stats stats = call.stats;
@@ -267,11 +191,11 @@ static int run(const cli_options *opt, glint_trace *trace) {
     if (interrupted && samples_kept == 0) {
         if (!opt->quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
         glint_image_free(img);
-        return interrupted_status();
+        return cli_signals_status();
     }
     if (interrupted && !opt->quiet) cli_print_interrupted(&CLI_GLINT, img, samples_kept, opt->output);
 
-    if (strcmp(opt->output, "-") != 0) block_stop_signals();
+    if (strcmp(opt->output, "-") != 0) cli_signals_block();
     st = glint_image_write(img, opt->output, format, &err);
     for (int i = 0; st == GLINT_OK && i < CLI_AOV_COUNT; i++)
         if (opt->aov_output[i][0]) st = glint_image_write_aov(img, (glint_aov)(1u << i), opt->aov_output[i], &err);
@@ -283,26 +207,26 @@ static int run(const cli_options *opt, glint_trace *trace) {
     }
     // The trace last, so that it shows the image being written.
     if (trace) {
-        block_stop_signals(); // a rename never races an abort (standard output left them unblocked)
+        cli_signals_block(); // a rename never races an abort (standard output left them unblocked)
         st = glint_trace_write(trace, opt->trace, &err);
         if (st != GLINT_OK) {
             fprintf(stderr, "glint: --trace: %s\n", err.message);
             glint_image_free(img);
             cli_preview_close(preview);
-            return interrupted ? interrupted_status() : exit_code(st);
+            return interrupted ? cli_signals_status() : exit_code(st);
         }
     }
     if (cli_preview_is_open(preview)) { // the image is written; the window stays until the user closes it
         if (!opt->quiet) fprintf(stderr, "glint: the preview window stays open until it is closed (or Esc)\n");
         char status[128];
         snprintf(status, sizeof status, "done, %d spp - Esc closes", stats.spp_done);
-        unblock_stop_signals();
-        cli_preview_hold(preview, img, status, &first_signal);
+        cli_signals_unblock();
+        cli_preview_hold(preview, img, status, cli_signals_first());
     }
     glint_image_free(img);
     cli_preview_close(preview);
-    if (atomic_load(&first_signal)) return interrupted_status(); // Ctrl-C while the window waited
-    return interrupted ? interrupted_status() : lost ? 1 : 0;
+    if (atomic_load(cli_signals_first())) return cli_signals_status(); // Ctrl-C while the window waited
+    return interrupted ? cli_signals_status() : lost ? 1 : 0;
 }
 
 int main(int argc, char **argv) {
@@ -320,7 +244,11 @@ int main(int argc, char **argv) {
             return exit_code(GLINT_ERR_RENDER);
         }
     }
-    int status = run(&opt, trace);
+    glint_cancel *cancel = glint_cancel_new();
+    int status = cancel ? run(&opt, trace, cancel) : exit_code(GLINT_ERR_RENDER);
+    if (!cancel) fprintf(stderr, "glint: out of memory\n");
+    cli_signals_block(); // no handler may use the token once it is freed
+    glint_cancel_free(cancel);
     glint_trace_free(trace);
     return status;
 }

@@ -2,6 +2,7 @@
 // three buffers and drawn by SDL2 on the main thread (SDL's video functions belong to the thread that opened it).
 #include "preview.h"
 #include "cli.h"
+#include "signals.h"
 
 #include <signal.h>
 #include <stdio.h>
@@ -330,7 +331,7 @@ static void *render_main(void *arg) {
     return NULL;
 }
 
-void cli_preview_run(cli_preview *p, void (*render)(void *), void *arg) {
+void cli_preview_run(cli_preview *p, void (*render)(void *), void *arg, glint_cancel *cancel) {
     render_thread t = {p, render, arg};
     pthread_t thread;
     sigset_t old;
@@ -345,7 +346,7 @@ void cli_preview_run(cli_preview *p, void (*render)(void *), void *arg) {
     set_title(p, "starting");
     while (!atomic_load(&p->render_done)) {
         if (pump_events(p) && p->window && !p->stopping) {
-            glint_request_stop(); // as Ctrl-C: the render ends soon and the program writes what it has
+            glint_cancel_request(cancel); // as Ctrl-C: the render ends soon and the program writes what it has
             // Hidden, not destroyed, while the render's threads run: SDL wakes this loop from them by sending
             // an X event to the window, and one sent to a destroyed window ends the program (BadWindow).
             SDL_HideWindow(p->window);
@@ -402,8 +403,9 @@ void cli_preview_live_image(const glint_image *img, int spp_done, double fractio
     (void)user;
 }
 
-void cli_preview_run(cli_preview *p, void (*render)(void *), void *arg) {
+void cli_preview_run(cli_preview *p, void (*render)(void *), void *arg, glint_cancel *cancel) {
     (void)p;
+    (void)cancel;
     render(arg);
 }
 

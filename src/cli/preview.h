@@ -21,9 +21,9 @@ cli_preview *cli_preview_open(const char *name, int width, int height, bool quie
 void cli_preview_live_image(const glint_image *img, int spp_done, double fraction_done, void *user);
 
 /// Runs render(arg) on a thread of its own (the stop signals blocked there, so that this thread alone hears
-/// them) while this thread runs the window: Esc or closing the window calls glint_request_stop and closes it.
+/// them) while this thread runs the window: Esc or closing the window requests `cancel` (the render's token) and closes it.
 /// Returns when render has returned.
-void cli_preview_run(cli_preview *p, void (*render)(void *), void *arg);
+void cli_preview_run(cli_preview *p, void (*render)(void *), void *arg, glint_cancel *cancel);
 
 /// Whether the window is still open (neither closed by the user nor unavailable).
 bool cli_preview_is_open(const cli_preview *p);

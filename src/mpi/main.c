@@ -3,6 +3,7 @@
 // what glint prints; the image is glint's, byte for byte, for any number of ranks and threads.
 #include "accel/accel.h"
 #include "cli/cli.h"
+#include "cli/signals.h"
 #include "core/clock.h"
 #include "film/film.h"
 #include "mpi/farm.h"
@@ -18,8 +19,6 @@
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
-
-_Static_assert(ATOMIC_INT_LOCK_FREE == 2, "the signal handler needs a lock-free atomic int");
 
 static const cli_program CLI_MPI = {
     .name = "glint-mpi",
@@ -41,53 +40,8 @@ static const cli_program CLI_MPI = {
              "docs/distributed.md: clusters, hostfiles, threads per rank, faults, and render farms without MPI.\n",
 };
 
-static atomic_int first_signal; // the signal that asked the render to stop, 0 while none has
-static atomic_int stopping;     // polled before every sample: set by a signal, or by the farm
-static atomic_int loading;      // 1 while the scene is read: a signal then ends the process at once
-static bool speaks;             // rank 0 without --quiet: prints the signal messages
-
-static const int STOP_SIGNALS[] = {SIGINT, SIGTERM, SIGHUP};
-enum { STOP_SIGNAL_COUNT = sizeof STOP_SIGNALS / sizeof STOP_SIGNALS[0] };
-
-// As glint's: while loading, leave at once; during the render, stop (rank 0 then writes what it has); a
-// second signal dies by the signal's default action.
-static void on_signal(int sig) {
-    if (atomic_load(&loading)) {
-        static const char msg[] = "glint-mpi: interrupted while loading the scene\n";
-        if (speaks) {
-            ssize_t ignored = write(STDERR_FILENO, msg, sizeof msg - 1);
-            (void)ignored;
-        }
-        _exit(128 + sig);
-    }
-    int expected = 0;
-    if (atomic_compare_exchange_strong(&first_signal, &expected, sig)) {
-        atomic_store(&stopping, 1);
-        return;
-    }
-    struct sigaction dfl;
-    memset(&dfl, 0, sizeof dfl);
-    dfl.sa_handler = SIG_DFL;
-    sigemptyset(&dfl.sa_mask);
-    sigaction(sig, &dfl, NULL);
-    raise(sig);
-}
-
-static void install_signal_handlers(void) {
-    struct sigaction sa;
-    memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_signal;
-    sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESTART;
-    for (int i = 0; i < STOP_SIGNAL_COUNT; i++) sigaction(STOP_SIGNALS[i], &sa, NULL);
-}
-
-static void block_stop_signals(void) {
-    sigset_t set;
-    sigemptyset(&set);
-    for (int i = 0; i < STOP_SIGNAL_COUNT; i++) sigaddset(&set, STOP_SIGNALS[i]);
-    pthread_sigmask(SIG_BLOCK, &set, NULL);
-}
+static atomic_int stopping; // polled before every sample: set by a signal (cli/signals.c), or by the farm
+static bool speaks;         // rank 0 without --quiet: prints the signal messages
 
 // Whether the launcher that started this process (mpirun, when rank 0 runs on its node) writes its standard
 // output to a terminal. mpirun gives a rank a pseudo-terminal for standard output even when its own output
@@ -156,7 +110,7 @@ static bool all_ready(glint_status st, const glint_error *err, int rank, int siz
     memset(&why, 0, sizeof why);
     if (rank == first) {
         why.status = (int)st;
-        why.signal = atomic_load(&first_signal);
+        why.signal = atomic_load(cli_signals_first());
         int len = 0;
         MPI_Get_processor_name(why.host, &len);
         memcpy(why.message, err->message, sizeof why.message);
@@ -246,15 +200,14 @@ int main(int argc, char **argv) {
 
     glint_error err;
     glint_status st = rank == 0 ? check_output(&opt, format, &err) : GLINT_OK;
-    atomic_store(&loading, 1);
-    install_signal_handlers();
+    cli_signals_install("glint-mpi", !speaks, NULL, &stopping);
     glint_scene *scene = NULL;
     // A scene from standard input is broadcast: every rank takes part even when rank 0's output is refused.
     if (st == GLINT_OK || strcmp(opt.scene_path, "-") == 0) {
         glint_status loaded = load_scene(opt.scene_path, rank, opt.threads > 0 ? opt.threads : glint_cpu_count(), &scene, &err);
         if (st == GLINT_OK) st = loaded;
     }
-    atomic_store(&loading, 0);
+    cli_signals_loaded();
     if (st == GLINT_OK) st = glint_scene_override(scene, &opt.overrides, &err);
     if (st == GLINT_OK && rank == 0 && glint_scene_reads_file(scene, opt.output)) {
         snprintf(err.message, sizeof err.message,
@@ -294,7 +247,7 @@ int main(int argc, char **argv) {
     bool bar_on_stderr = isatty(STDERR_FILENO);
     if (!bar_on_stderr && launcher_on_terminal() && strcmp(opt.output, "-") != 0) bar.stream = stdout;
     farm_setup setup = {.rank = rank, .size = size, .grid = &grid, .integrator = frame.integrator,
-                        .stop = &stopping, .signal = &first_signal, .threads = threads,
+                        .stop = &stopping, .signal = cli_signals_first(), .threads = threads,
                         .rank_threads = rank_threads,
                         .deadline = opt.time_limit > 0 ? t_built + (double)opt.time_limit : 0.0,
                         .progress = speaks && (bar_on_stderr || bar.stream) ? cli_progress_draw : NULL, .user = &bar};
@@ -303,7 +256,7 @@ int main(int argc, char **argv) {
         frame_release(&frame);
         glint_scene_free(scene);
         if (!ok) MPI_Abort(MPI_COMM_WORLD, 1);
-        int sig = atomic_load(&first_signal);
+        int sig = atomic_load(cli_signals_first());
         return leave(sig ? 128 + sig : 0);
     }
 
@@ -368,7 +321,7 @@ int main(int argc, char **argv) {
         code = 128 + sig;
     } else {
         if (interrupted && !opt.quiet) cli_print_interrupted(&prog, img, stats.samples, opt.output);
-        if (strcmp(opt.output, "-") != 0) block_stop_signals();
+        if (strcmp(opt.output, "-") != 0) cli_signals_block();
         st = glint_image_write(img, opt.output, format, &err);
         if (st != GLINT_OK) fprintf(stderr, "glint-mpi: %s\n", err.message);
         code = st != GLINT_OK ? exit_code(st) : interrupted ? 128 + sig : lost ? 1 : 0;

@@ -28,14 +28,6 @@ enum {
     PASS_SKIP = 2,
 };
 
-// Set by render_request_stop (possibly from a signal handler), polled before every sample, cleared when a
-// render returns: a request made while no render runs stops the next one at once.
-static _Alignas(64) atomic_int stop_requested; // read before every sample: a line of its own
-
-void render_request_stop(void) { atomic_store(&stop_requested, 1); }
-
-static bool stop_is_requested(void) { return atomic_load_explicit(&stop_requested, memory_order_relaxed) != 0; }
-
 // Work is a sequence of items, item = pass * tile_count + tile. Pass p renders samples
 // [pass_start[p], pass_start[p+1]) of every pixel of the tile, adding them to the running sums in sample
 // order, so the final mean is bit for bit the plain sum over samples 0..spp-1 divided by spp.
@@ -50,6 +42,11 @@ typedef struct render_job {
     atomic_int *tile_passes;       ///< passes completed by each tile; pass p of a tile waits for p
     atomic_int waiters;            ///< workers blocked in wait_for_tile
     atomic_int stopping;           ///< a worker saw the stop request; waiters must give up
+    // What stops this render, and no other: the caller's cancel token (polled before every sample when given)
+    // and the render's own flag (a failed checkpoint; polled before every sample when there is no token, else
+    // between tiles).
+    const atomic_int *cancel;
+    _Alignas(64) atomic_int stop;  ///< read before every sample: a line of its own
     double deadline;               ///< clock_seconds() after which no new pass starts (0: no time limit)
     bool gated;                    ///< a time limit or checkpoints: each pass waits for its first tile's decision
     atomic_int pass_decision[MAX_PASSES]; ///< when gated: 0 undecided, PASS_RUN or PASS_SKIP
@@ -93,10 +90,16 @@ typedef struct progress_state {
 
 // Samples [k0, k1) of the pixels [x0, x1) x [y0, y1) (rect, full-image coordinates) into the film; false when
 // stopped part-way (ft then says where: pixels not reached keep the previous pass's mean).
+// Whether the render must stop: its caller's token or its own flag is set.
+static bool job_stopping(const render_job *job) {
+    return atomic_load_explicit(&job->stop, memory_order_relaxed) != 0 ||
+           (job->cancel && atomic_load_explicit(job->cancel, memory_order_relaxed) != 0);
+}
+
 static bool render_rect(render_job *job, const int rect[4], int k0, int k1, thread_stats *ts,
                         _Atomic uint64_t *progress, film_tile *ft) {
     tile_pass tp = {.x0 = rect[0], .y0 = rect[1], .x1 = rect[2], .y1 = rect[3], .k0 = k0, .k1 = k1,
-                    .stop = &stop_requested};
+                    .stop = job->cancel ? job->cancel : &job->stop};
     film_tile_begin(ft, &job->film, tp.x0, tp.y0, tp.x1, tp.y1, k0, k1, ts, progress);
     return job->integrator->render_tile(job->integrator, &tp, ft, ts);
 }
@@ -203,7 +206,7 @@ static bool job_write_checkpoint(render_job *job) {
                                        {{"file", 0, job->checkpoint}, {"spp", complete, NULL}}});
     if (st == GLINT_OK) return true;
     if (atomic_exchange(&job->failed, 1) == 0) job->failure = e;
-    render_request_stop();
+    atomic_store(&job->stop, 1);
     return false;
 }
 
@@ -245,7 +248,7 @@ static bool pass_may_run(render_job *job, int pass, int tile) {
     pthread_mutex_lock(&job->lock);
     atomic_fetch_add(&job->waiters, 1);
     bool waited = false;
-    while ((d = atomic_load(&job->pass_decision[pass])) == 0 && !atomic_load(&job->stopping) && !stop_is_requested()) {
+    while ((d = atomic_load(&job->pass_decision[pass])) == 0 && !atomic_load(&job->stopping) && !job_stopping(job)) {
         waited = true;
         // A stop request sets a flag and wakes nobody: look at it again every 50 ms.
         struct timespec until;
@@ -288,7 +291,7 @@ static void *worker_main(void *arg) {
     int items = job->grid.pass_count * job->grid.tile_count;
     trace_set_current(w->lane); // for what records deeper down: checkpoints, waits
     for (;;) {
-        if (stop_is_requested()) break;
+        if (job_stopping(job)) break;
         int item = atomic_fetch_add(&job->next_item, 1);
         if (item >= items) break;
         int pass = item / job->grid.tile_count, tile = item % job->grid.tile_count;
@@ -304,7 +307,7 @@ static void *worker_main(void *arg) {
         wake_waiters(job);
     }
     // Whoever leaves early releases the waiters: the tiles they wait for may never finish now.
-    if (stop_is_requested()) {
+    if (job_stopping(job)) {
         pthread_mutex_lock(&job->lock);
         atomic_store(&job->stopping, 1);
         pthread_cond_broadcast(&job->tile_finished);
@@ -551,6 +554,7 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
                  region[3] - region[1]);
         return GLINT_ERR_RENDER;
     }
+    job.cancel = opt ? opt->cancel : NULL;
     if (opt && (opt->checkpoint || opt->resume)) {
         st = job_prepare_checkpoints(&job, s, opt, err);
         if (st != GLINT_OK) {
@@ -561,10 +565,9 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
     int threads = opt && opt->threads > 0 ? opt->threads : thread_pool_online_cpus();
     if (threads > MAX_THREADS) threads = MAX_THREADS;
     render_frame frame;
-    st = frame_build(&frame, s, opt ? &opt->integrator : NULL, threads, &stop_requested, err);
+    st = frame_build(&frame, s, opt ? &opt->integrator : NULL, threads, job.cancel, err);
     if (st == GLINT_ERR_INTERRUPTED) { // stopped while the BVH was built: no sample, a black image
         job_free(&job);
-        atomic_store(&stop_requested, 0);
         if (stats) memset(stats, 0, sizeof *stats);
         film f;
         if (!film_init(&f, region, s->settings.width, s->settings.height, 1, 1, s->settings.transform, aovs)) {
@@ -668,10 +671,8 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
     if (stats) stats->spp_done = done == job.total_samples ? s->settings.spp : timed_out ? uniform : 0;
     free(workers);
     frame_release(&frame);
-    atomic_store(&stop_requested, 0); // this render has answered any stop request made so far
     // The last checkpoint, whatever ended the render; none after a failed one (its message is the error).
     if (job.checkpoint && !atomic_load(&job.failed)) job_write_checkpoint(&job);
-    atomic_store(&stop_requested, 0);
     if (atomic_load(&job.failed)) {
         *err = job.failure;
         job_free(&job);

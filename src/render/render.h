@@ -17,6 +17,7 @@ typedef struct render_options {
     integrator_options integrator; ///< choices of the integrator that are not in the scene
     const char *checkpoint;        ///< a checkpoint file written after each pass and at the end, or NULL
     const char *resume;            ///< a checkpoint file the render continues, or NULL
+    const atomic_int *cancel;      ///< nonzero: stop before the next sample (the caller's token); NULL: never
 } render_options;
 
 /// Builds the render frame of s, renders every sample of the region's pixels into a new image (*out) of the
@@ -26,7 +27,5 @@ typedef struct render_options {
 /// of another render); with o->checkpoint it writes one after every pass and when it ends, stopped or not.
 glint_status render_scene(const glint_scene *s, const render_options *o, glint_progress_fn progress, void *user,
                           glint_image **out, glint_render_stats *stats, glint_error *err);
-/// Asks running renders to stop soon; async-signal-safe (it stores one atomic flag).
-void render_request_stop(void);
 
 #endif

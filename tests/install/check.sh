@@ -36,6 +36,8 @@ export PKG_CONFIG_PATH
 LIBDIR=$(pkg-config --variable=libdir glint)
 VERSION=$(pkg-config --modversion glint)
 MAJOR=${VERSION%%.*}
+# The ABI's name: the major version, or major.minor before 1.0 (CMakeLists.txt, GLINT_SOVERSION).
+if [[ $MAJOR == 0 ]]; then MINOR=${VERSION#*.}; MAJOR=0.${MINOR%%.*}; fi
 
 # --- The installed files, and the shared library's version chain
 for f in "$PREFIX/bin/glint" "$PREFIX/include/glint.h" "$PREFIX/share/man/man1/glint.1" "$LIBDIR/libglint.a" \
