@@ -551,6 +551,15 @@ static void test_unsupported_keys(void) {
     CHECK(same_string(w.msg[1], "keys.mtl:20: warning: 'Ka spectral' statements are not supported; ignored (reported once)"));
     CHECK(same_string(w.msg[2], "keys.mtl:21: warning: 'foo' statements are not supported; ignored (reported once)"));
     mtl_library_free(&lib);
+    // Options of used keys are noted too, not the keys.
+    text = "newmtl a\nd -halo 1\nmap_Kd -clamp on -s 2 2 t.png\nmap_Kd -weird.png\n";
+    CHECK(mtl_parse("opt.mtl", text, strlen(text), &opt, &lib, &err) == GLINT_OK);
+    CHECK(lib.count == 1 && lib.unsupported_line == 2 && __builtin_popcount(lib.unsupported) == 2);
+    for (unsigned k = 0; k < 32; k++)
+        if (lib.unsupported >> k & 1)
+            CHECK(strcmp(mtl_unsupported_key_name(k), "d -halo") == 0 ||
+                  strcmp(mtl_unsupported_key_name(k), "map_Kd -options") == 0);
+    mtl_library_free(&lib);
     // mtl_unsupported_key_name names MTL_UNSUPPORTED_KEYS keys, then none.
     unsigned n = 0;
     while (mtl_unsupported_key_name(n)) n++;

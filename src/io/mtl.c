@@ -13,12 +13,15 @@
 #include <string.h>
 #include <sys/stat.h>
 
-// Keys read and not used, in the order the warning lists them (bit k of mtl_library.unsupported is key k).
+// What is read and not used, in the order the warning lists it (bit k of mtl_library.unsupported is entry k):
+// the keys (the first UNSUPPORTED_STATEMENTS entries), then the options of used keys.
 static const char *const unsupported_keys[] = {
     "Ka",      "Ps",     "Pc",    "Pcr",   "Pr",     "Pm",       "aniso",    "anisor",   "sharpness",
     "map_Ka",  "map_Ks", "map_Ns", "map_d", "map_Tr", "map_Ke",  "map_Pr",   "map_Pm",   "map_Ps",
     "map_aat", "bump",   "map_bump", "map_Bump", "norm", "disp", "decal", "refl", "map_refl",
+    "map_Kd -options", "d -halo",
 };
+enum { UNSUPPORTED_STATEMENTS = 27, MAP_KD_OPTIONS = 27, D_HALO = 28 };
 _Static_assert(sizeof unsupported_keys / sizeof unsupported_keys[0] == MTL_UNSUPPORTED_KEYS,
                "one name per bit of mtl_library.unsupported");
 _Static_assert(MTL_UNSUPPORTED_KEYS <= 32, "the keys fit the bits of mtl_library.unsupported");
@@ -69,6 +72,13 @@ static bool mtl_finish_block(mtl_parser *ps) {
     }
     lib->count++;
     return true;
+}
+
+// Notes entry k of unsupported_keys, given on the current line, for the library's warning.
+static void note_unsupported(mtl_parser *ps, unsigned k) {
+    mtl_library *lib = ps->lib;
+    if (!lib->unsupported) lib->unsupported_line = ps->rep.line;
+    lib->unsupported |= UINT32_C(1) << k;
 }
 
 // `Kd r [g b]` (g = b = r when only r is given); components must be finite and >= 0.
@@ -125,6 +135,7 @@ static bool mtl_map_kd(mtl_parser *ps, obj_cursor *c) {
             if (obj_token_is(tok, n, options[i].name)) args = options[i].args;
         if (args == 0) break; // not an option: a file name that starts with '-'
         *c = peek;
+        note_unsupported(ps, MAP_KD_OPTIONS);
         // -o, -s, -t take one to three numbers: take those that parse.
         for (int k = 0; k < (args < 0 ? -args : args); k++) {
             obj_cursor arg = *c;
@@ -164,7 +175,7 @@ static bool mtl_map_kd(mtl_parser *ps, obj_cursor *c) {
     return true;
 }
 
-// Key k of unsupported_keys, read (Ka checked as a colour) and noted for the library's warning.
+// Key k of unsupported_keys, read (Ka checked as a colour) and noted.
 static bool mtl_unsupported(mtl_parser *ps, obj_cursor *c, unsigned k) {
     if (k == 0) { // Ka
         vec3 ka;
@@ -172,9 +183,7 @@ static bool mtl_unsupported(mtl_parser *ps, obj_cursor *c, unsigned k) {
         if (!mtl_color(ps, c, "Ka", &ka, &has)) return false;
         if (!has) return true; // `Ka spectral`: a warning of its own
     }
-    mtl_library *lib = ps->lib;
-    if (!lib->unsupported) lib->unsupported_line = ps->rep.line;
-    lib->unsupported |= UINT32_C(1) << k;
+    note_unsupported(ps, k);
     return true;
 }
 
@@ -208,10 +217,10 @@ static bool mtl_statement(mtl_parser *ps, obj_cursor *c) {
     static const char *const used[] = {"Kd", "Ks", "Ke", "Tf", "Ns", "Ni", "d", "Tr", "illum", "map_Kd"};
     bool is_used = false;
     for (size_t i = 0; i < sizeof used / sizeof used[0] && !is_used; i++) is_used = obj_token_is(kw, kn, used[i]);
-    unsigned unsupported = MTL_UNSUPPORTED_KEYS;
-    for (unsigned k = 0; k < MTL_UNSUPPORTED_KEYS && !is_used && unsupported == MTL_UNSUPPORTED_KEYS; k++)
+    unsigned unsupported = UNSUPPORTED_STATEMENTS;
+    for (unsigned k = 0; k < UNSUPPORTED_STATEMENTS && !is_used && unsupported == UNSUPPORTED_STATEMENTS; k++)
         if (obj_token_is(kw, kn, unsupported_keys[k])) unsupported = k;
-    if (!is_used && unsupported == MTL_UNSUPPORTED_KEYS) {
+    if (!is_used && unsupported == UNSUPPORTED_STATEMENTS) {
         obj_warn_unsupported(&ps->rep, kw, kn);
         return true;
     }
@@ -229,7 +238,10 @@ static bool mtl_statement(mtl_parser *ps, obj_cursor *c) {
         obj_cursor peek = *c;
         const char *tok;
         size_t n;
-        if (obj_next_token(&peek, &tok, &n) && obj_token_is(tok, n, "-halo")) *c = peek;
+        if (obj_next_token(&peek, &tok, &n) && obj_token_is(tok, n, "-halo")) {
+            *c = peek;
+            note_unsupported(ps, D_HALO);
+        }
         return mtl_scalar(ps, c, "d", 0.0f, 1.0f, &b->d, &b->has_d);
     }
     if (obj_token_is(kw, kn, "illum")) {

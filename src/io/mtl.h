@@ -6,16 +6,17 @@
 // components >= 0), `Ns`, `Ni` (>= 0), `d` (optionally `-halo`) and `Tr` (in [0, 1]), `illum` (an integer from 0
 // to 10), `map_Kd [-options] file` (the options skipped; the file resolved relative to the MTL file, `\` turned
 // into `/`, a Windows absolute path retried as its file name next to the MTL file).
-// Read, checked where they have numbers (`Ka` as a colour), and not used: `Ka` and the other keys of
-// mtl_unsupported_key_name; the library records which of them it gives (mtl_library.unsupported) so that its
-// user can say so once per file. `Kd spectral`, `Kd xyz` (and the same of the other colours) and unknown
-// statements are warnings of the reader, once per keyword and file.
+// Read (`Ka` checked as a colour) and not used: `Ka`, the other keys mtl_unsupported_key_name names, and the
+// options `map_Kd -o ...` and `d -halo`; the library records which of them the file gives
+// (mtl_library.unsupported) and the line of the first, so that its user can name them once per file.
+// `Kd spectral`, `Kd xyz` (and the same of the other colours) and unknown statements are warnings of the
+// reader, once per keyword and file.
 //
 // Errors ("file:line: what is wrong, expected what"): a key other than `newmtl` before the first `newmtl`, a
 // `newmtl` or `map_Kd` without a name, malformed or non-finite numbers, too few or too many numbers, values out
 // of range. Warnings: a name defined again (the first definition is kept), a texture that cannot be found
-// (map_kd NULL), unsupported statements. Lines are limited to OBJ_MAX_LINE_BYTES (obj.h); a file read by the
-// OBJ reader to MTL_MAX_FILE_BYTES.
+// (map_kd NULL), unsupported statements. Lines are limited to OBJ_MAX_LINE_BYTES (obj.h); the OBJ reader reads
+// MTL files of up to MTL_MAX_FILE_BYTES.
 #ifndef GLINT_MTL_H
 #define GLINT_MTL_H
 
@@ -29,7 +30,7 @@
 /// Largest MTL file read, in bytes (64 MiB): material libraries are small.
 #define MTL_MAX_FILE_BYTES ((size_t)64 << 20)
 /// How many keys mtl_unsupported_key_name names (bits of mtl_library.unsupported).
-#define MTL_UNSUPPORTED_KEYS 27
+#define MTL_UNSUPPORTED_KEYS 29
 
 /// The values of one `newmtl` block that glint reads, as the file gives them (has_*: given).
 typedef struct mtl_values {
@@ -73,7 +74,8 @@ glint_status mtl_parse(const char *name, const char *text, size_t length, const 
                        glint_error *err);
 /// Frees the records of a library and leaves it empty.
 void mtl_library_free(mtl_library *lib);
-/// The MTL key of bit k of mtl_library.unsupported, as files write it ("Ka", "map_Bump"); NULL past the last.
+/// What bit k of mtl_library.unsupported stands for: a key as files write it ("Ka", "map_Bump"), or an option of
+/// a used key ("map_Kd -options", "d -halo"); NULL past the last.
 const char *mtl_unsupported_key_name(unsigned k);
 
 #endif
