@@ -164,7 +164,8 @@ static bool mtl_map_kd(mtl_parser *ps, obj_cursor *c) {
             } else {
                 free(alt);
                 obj_warn_at(&ps->rep, ps->rep.line, "texture '%s' not found (%s); material '%s' uses its Kd colour",
-                        obj_quote_path(file, n).s, filepath_problem_text(e), obj_quote(ps->cur.rec.name, ps->cur.name_len).s);
+                            obj_quote_path(file, n).s, filepath_problem_text(e),
+                            obj_quote(ps->cur.rec.name, ps->cur.name_len).s);
                 free(path);
                 return true;
             }

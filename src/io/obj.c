@@ -114,7 +114,7 @@ static bool parse_corner(obj_parser *ps, const char *tok, size_t n, obj_corner *
     ok = ok && obj_parse_index(vs, vl, &vi) && (tl == 0 || obj_parse_index(ts, tl, &ti)) && (nl == 0 || obj_parse_index(ns, nl, &ni));
     if (!ok)
         return obj_fail(&ps->rep, "malformed face vertex '%s', expected v, v/vt, v//vn or v/vt/vn with integer indices",
-                    obj_quote(tok, n).s);
+                        obj_quote(tok, n).s);
     out->t = out->n = -1;
     if (!resolve_index(ps, vs, vl, vi, m->position_count, "vertex", "vertices", &out->v)) return false;
     if (tl && !resolve_index(ps, ts, tl, ti, m->uv_count, "texture coordinate", "texture coordinates", &out->t))
@@ -129,7 +129,7 @@ static bool obj_face(obj_parser *ps, obj_cursor *c) {
     while (obj_next_token(c, &tok, &len)) {
         if (n == OBJ_MAX_FACE_CORNERS)
             return obj_fail(&ps->rep, "face has more than %d vertices, expected at most %d", OBJ_MAX_FACE_CORNERS,
-                        OBJ_MAX_FACE_CORNERS);
+                            OBJ_MAX_FACE_CORNERS);
         if (!array_reserve((void **)&ps->corners, &ps->corner_cap, n + 1, sizeof *ps->corners))
             return obj_out_of_memory(&ps->rep);
         if (!parse_corner(ps, tok, len, &ps->corners[n])) return false;
