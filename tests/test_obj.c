@@ -1,11 +1,14 @@
 // test_obj.c — the OBJ/MTL loader: real meshes load with counts taken independently (awk/Python over the
 // files), edge cases from tinyobjloader and assimp, a table of malformed inputs with their exact messages,
-// a table of warnings, the MTL -> material mapping, triangulation of concave faces, and the number parser.
+// a table of warnings, MTL records and the scene's MTL -> material mapping of them (sf_mtl_material), the MTL
+// keys glint does not use, triangulation of concave faces, and the number parser.
 #include "check.h"
 #include "test_util.h"
 #include "core/rng.h"
+#include "io/mtl.h"
 #include "io/obj.h"
 #include "obj_same.h"
+#include "scene/scene_file.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -53,6 +56,9 @@ static glint_status load(const char *path, obj_model *m, warnings *w, glint_erro
     obj_options opt = {collect, w, false, statements_only, load_threads, load_block};
     return obj_load(path, &opt, m, err);
 }
+
+// The glint material the scene makes of a slot's MTL values.
+static material mapped(const obj_material *om) { return sf_mtl_material(&om->mtl); }
 
 static bool same_string(const char *got, const char *expected) {
     if (strcmp(got, expected) == 0) return true;
@@ -122,10 +128,10 @@ static void test_cornell_original(void) {
         CHECK(strcmp(m.materials[i].name, names[i]) == 0);
         CHECK(m.materials[i].defined);
         CHECK(m.materials[i].diffuse_map == NULL);
-        CHECK(m.materials[i].mat.kind == (i == 7 ? MAT_DIFFUSE_LIGHT : MAT_LAMBERTIAN));
+        CHECK(mapped(&m.materials[i]).kind == (i == 7 ? MAT_DIFFUSE_LIGHT : MAT_LAMBERTIAN));
     }
-    material light = m.materials[7].mat, left = m.materials[4].mat;
-    CHECK(light.emission.x == 17.0f && light.emission.y == 12.0f && light.emission.z == 4.0f);
+    material lamp = mapped(&m.materials[7]), left = mapped(&m.materials[4]);
+    CHECK(lamp.emission.x == 17.0f && lamp.emission.y == 12.0f && lamp.emission.z == 4.0f);
     CHECK(left.albedo.x == 0.63f && left.albedo.y == 0.065f && left.albedo.z == 0.05f);
     CHECK(m.mesh.triangles[0].material == 0);
     CHECK(m.mesh.triangles[35].material == 7); // the light is the last face
@@ -186,13 +192,13 @@ static void test_spider(void) {
     for (size_t i = 0; i < 4 && i < m.material_count; i++) {
         const obj_material *om = &m.materials[i];
         CHECK(strcmp(om->name, names[i]) == 0);
-        CHECK(om->defined && om->mat.kind == MAT_LAMBERTIAN);
+        CHECK(om->defined && mapped(om).kind == MAT_LAMBERTIAN);
         char expect[512];
         snprintf(expect, sizeof expect, "%sassimp-spider/%s", DATA, maps[i]);
         CHECK(om->diffuse_map && same_string(om->diffuse_map, expect));
         CHECK(om->diffuse_map && access(om->diffuse_map, R_OK) == 0);
     }
-    CHECK(m.materials[1].mat.albedo.x == 0.827451f);
+    CHECK(mapped(&m.materials[1]).albedo.x == 0.827451f);
     bool full = true;
     for (size_t i = 0; i < m.mesh.triangle_count; i++)
         for (int k = 0; k < 3; k++)
@@ -229,13 +235,13 @@ static void test_edge_cases(void) {
     CHECK(m.mesh.triangle_count == 12 && m.material_count == 3 && w.count == 0);
     static const int slot[12] = {0, 0, 0, 0, 1, 1, 0, 0, 2, 2, 0, 0}; // white white(inherited) red white green white
     for (int i = 0; i < 12 && (size_t)i < m.mesh.triangle_count; i++) CHECK(m.mesh.triangles[i].material == slot[i]);
-    CHECK(m.materials[1].mat.albedo.x == 1.0f && m.materials[1].mat.albedo.y == 0.0f);
+    CHECK(mapped(&m.materials[1]).albedo.x == 1.0f && mapped(&m.materials[1]).albedo.y == 0.0f);
     obj_model_free(&m);
     // Full v/vt/vn faces, smoothing groups, indented MTL keys with Tr/Tf/d/Ke.
     CHECK(load(DATA "tinyobjloader/issue-162-smoothing-group.obj", &m, &w, &err) == GLINT_OK);
     CHECK(m.mesh.triangle_count == 12 && m.mesh.uv_count == 4 && m.mesh.normal_count == 6 && w.count == 0);
-    CHECK(m.material_count == 2 && m.materials[0].mat.kind == MAT_LAMBERTIAN);
-    CHECK(m.materials[0].mat.albedo.x == 0.5f && m.materials[1].mat.albedo.y == 0.5f);
+    CHECK(m.material_count == 2 && mapped(&m.materials[0]).kind == MAT_LAMBERTIAN);
+    CHECK(mapped(&m.materials[0]).albedo.x == 0.5f && mapped(&m.materials[1]).albedo.y == 0.5f);
     CHECK(mesh_triangle_uvs(&m.mesh, 2).i[0] == 0 && mesh_triangle_normals(&m.mesh, 2).i[0] == 1);
     obj_model_free(&m);
     // N-gons of 7, 8 and 5 corners; the pentagon repeats a vertex (v19 = v20), so one fan triangle has no
@@ -265,7 +271,7 @@ static void test_edge_cases(void) {
     // Lines and points among faces; `usemtl Default` without any mtllib.
     CHECK(load(DATA "assimp/testmixed.obj", &m, &w, &err) == GLINT_OK);
     CHECK(m.mesh.triangle_count == 12 && m.material_count == 1 && !m.materials[0].defined);
-    CHECK(m.materials[0].mat.kind == MAT_LAMBERTIAN && m.materials[0].mat.albedo.x == 0.5f);
+    CHECK(mapped(&m.materials[0]).kind == MAT_LAMBERTIAN && mapped(&m.materials[0]).albedo.x == 0.5f);
     CHECK(w.count == 3);
     CHECK(same_string(w.msg[0], DATA "assimp/testmixed.obj:15: warning: 'l' statements are not supported; ignored (reported once)"));
     CHECK(same_string(w.msg[1], DATA "assimp/testmixed.obj:23: warning: 'p' statements are not supported; ignored (reported once)"));
@@ -467,13 +473,15 @@ static void test_mapping(void) {
         const map_case *c = &map_cases[i];
         char text[512];
         snprintf(text, sizeof text, "newmtl m\n%s\n", c->mtl);
-        obj_material *mats;
-        size_t count;
+        mtl_library lib;
         glint_error err;
-        CHECK(mtl_parse("x.mtl", text, strlen(text), NULL, &mats, &count, &err) == GLINT_OK);
-        CHECK(count == 1);
-        if (count != 1) continue;
-        const material *m = &mats[0].mat;
+        CHECK(mtl_parse("x.mtl", text, strlen(text), NULL, &lib, &err) == GLINT_OK);
+        CHECK(lib.count == 1);
+        if (lib.count != 1) {
+            mtl_library_free(&lib);
+            continue;
+        }
+        const material mat = sf_mtl_material(&lib.records[0].values), *m = &mat;
         bool ok = m->kind == c->kind;
         vec3 v = m->kind == MAT_DIFFUSE_LIGHT ? m->emission : m->albedo;
         ok &= fabsf(v.x - c->a) < 1e-6f && fabsf(v.y - c->b) < 1e-6f && fabsf(v.z - c->c) < 1e-6f;
@@ -483,30 +491,29 @@ static void test_mapping(void) {
         if (!ok)
             fprintf(stderr, "  mapping case %zu: got %s (%g %g %g) fuzz %g ior %g\n", i, material_kind_name(m->kind),
                     (double)v.x, (double)v.y, (double)v.z, (double)m->fuzz, (double)m->ior);
-        CHECK(strcmp(mats[0].name, "m") == 0 && mats[0].defined && mats[0].line == 1);
-        obj_materials_free(mats, count);
+        CHECK(strcmp(lib.records[0].name, "m") == 0 && lib.records[0].line == 1);
+        mtl_library_free(&lib);
     }
 }
 
 static void test_texture_paths(void) {
-    obj_options skip = {NULL, NULL, true, false, 0, 0};
-    obj_material *mats;
-    size_t count;
+    mtl_options skip = {NULL, NULL, true};
+    mtl_library lib;
     glint_error err;
     // Options before the file name are skipped; `\` becomes `/`; paths are relative to the MTL's directory.
     const char *text = "newmtl a\nmap_Kd -s 1 1 1 -o 0 0 -bm 2 -clamp on tex.png\n"
                        "newmtl b\nmap_Kd .\\sub\\tex 2.png\n"
                        "newmtl c\nmap_Kd /abs/t.png # comment\n"
                        "newmtl d\nmap_Kd -s 2 -weird.png\n";
-    CHECK(mtl_parse("dir/x.mtl", text, strlen(text), &skip, &mats, &count, &err) == GLINT_OK);
-    CHECK(count == 4);
-    if (count == 4) {
-        CHECK(same_string(mats[0].diffuse_map, "dir/tex.png"));
-        CHECK(same_string(mats[1].diffuse_map, "dir/sub/tex 2.png"));
-        CHECK(same_string(mats[2].diffuse_map, "/abs/t.png"));
-        CHECK(same_string(mats[3].diffuse_map, "dir/-weird.png"));
+    CHECK(mtl_parse("dir/x.mtl", text, strlen(text), &skip, &lib, &err) == GLINT_OK);
+    CHECK(lib.count == 4);
+    if (lib.count == 4) {
+        CHECK(same_string(lib.records[0].map_kd, "dir/tex.png"));
+        CHECK(same_string(lib.records[1].map_kd, "dir/sub/tex 2.png"));
+        CHECK(same_string(lib.records[2].map_kd, "/abs/t.png"));
+        CHECK(same_string(lib.records[3].map_kd, "dir/-weird.png"));
     }
-    obj_materials_free(mats, count);
+    mtl_library_free(&lib);
     // A Windows absolute path is retried as the bare file name next to the MTL file.
     write_text("tex.png", "not really a png");
     write_text("win.mtl", "newmtl a\nmap_Kd C:\\Users\\me\\textures\\tex.png\n");
@@ -516,6 +523,64 @@ static void test_texture_paths(void) {
     CHECK(load(tmp_path("win.obj"), &m, &w, &err) == GLINT_OK);
     CHECK(w.count == 0 && m.material_count == 1);
     if (m.material_count == 1) CHECK(m.materials[0].diffuse_map && same_string(m.materials[0].diffuse_map, tmp_path("tex.png")));
+    obj_model_free(&m);
+}
+
+// The MTL keys glint reads and does not use are not warnings of the reader: the library notes which (one bit
+// each, in every block, a dropped duplicate's too) and the line of the first, for the scene's one warning per
+// file. `Ka spectral` and unknown keys are the reader's own warnings; used keys are not noted.
+static void test_unsupported_keys(void) {
+    const char *text = "newmtl a\nNs 10\nNi 1.5\nd 1\nillum 2\nKd 1 1 1\nKs 0 0 0\nKe 0 0 0\nTf 1 1 1\nTr 0\n"
+                       "map_Kd t.png\nKa 0.2 0.2 0.2\nbump b.png\nnewmtl b\nKa 1 1 1\nmap_Bump -bm 2 b.png\nPr 0.5\n"
+                       "newmtl a\nPm 1\nKa spectral x.rfl\nfoo 1\n";
+    warnings w;
+    memset(&w, 0, sizeof w);
+    mtl_options opt = {collect, &w, true};
+    mtl_library lib;
+    glint_error err;
+    CHECK(mtl_parse("keys.mtl", text, strlen(text), &opt, &lib, &err) == GLINT_OK);
+    CHECK(lib.count == 2 && lib.unsupported_line == 12);
+    uint32_t expected = 0;
+    static const char *const given[] = {"Ka", "bump", "map_Bump", "Pr", "Pm"};
+    for (unsigned k = 0; mtl_unsupported_key_name(k); k++)
+        for (size_t i = 0; i < sizeof given / sizeof given[0]; i++)
+            if (strcmp(mtl_unsupported_key_name(k), given[i]) == 0) expected |= UINT32_C(1) << k;
+    CHECK(lib.unsupported == expected && __builtin_popcount(expected) == 5);
+    CHECK(w.count == 3 && lib.warning_count == 3);
+    CHECK(same_string(w.msg[0], "keys.mtl:18: warning: material 'a' is defined again; the first definition is used"));
+    CHECK(same_string(w.msg[1], "keys.mtl:20: warning: 'Ka spectral' statements are not supported; ignored (reported once)"));
+    CHECK(same_string(w.msg[2], "keys.mtl:21: warning: 'foo' statements are not supported; ignored (reported once)"));
+    mtl_library_free(&lib);
+    // Options of used keys are noted too, not the keys.
+    text = "newmtl a\nd -halo 1\nmap_Kd -clamp on -s 2 2 t.png\nmap_Kd -weird.png\n";
+    CHECK(mtl_parse("opt.mtl", text, strlen(text), &opt, &lib, &err) == GLINT_OK);
+    CHECK(lib.count == 1 && lib.unsupported_line == 2 && __builtin_popcount(lib.unsupported) == 2);
+    for (unsigned k = 0; k < 32; k++)
+        if (lib.unsupported >> k & 1)
+            CHECK(strcmp(mtl_unsupported_key_name(k), "d -halo") == 0 ||
+                  strcmp(mtl_unsupported_key_name(k), "map_Kd -options") == 0);
+    mtl_library_free(&lib);
+    // mtl_unsupported_key_name names MTL_UNSUPPORTED_KEYS keys, then none.
+    unsigned n = 0;
+    while (mtl_unsupported_key_name(n)) n++;
+    CHECK(n == MTL_UNSUPPORTED_KEYS);
+    // A file with none of them notes none; the OBJ reader passes each library's note on.
+    text = "newmtl a\nKd 0.5 0.5 0.5\nillum 2\n";
+    CHECK(mtl_parse("none.mtl", text, strlen(text), NULL, &lib, &err) == GLINT_OK);
+    CHECK(lib.unsupported == 0 && lib.unsupported_line == 0 && lib.warning_count == 0);
+    mtl_library_free(&lib);
+    write_text("k1.mtl", "newmtl a\nKd 1 0 0\n");
+    write_text("k2.mtl", "newmtl b\nKd 0 1 0\n\nmap_Ks s.png\nKa 0 0 0\n");
+    write_text("k.obj", "mtllib k1.mtl k2.mtl\n" TRI "usemtl a\nf 1 2 3\nusemtl b\nf 1 2 3\n");
+    obj_model m;
+    CHECK(load(tmp_path("k.obj"), &m, &w, &err) == GLINT_OK);
+    CHECK(w.count == 0 && m.library_count == 2);
+    if (m.library_count == 2) {
+        CHECK(same_string(m.libraries[0].path, tmp_path("k1.mtl")) && m.libraries[0].unsupported == 0);
+        CHECK(same_string(m.libraries[1].path, tmp_path("k2.mtl")) && m.libraries[1].unsupported_line == 4);
+        CHECK(m.libraries[1].unsupported == ((UINT32_C(1) << 0) | (UINT32_C(1) << 10))); // Ka, map_Ks
+        CHECK(strcmp(mtl_unsupported_key_name(0), "Ka") == 0 && strcmp(mtl_unsupported_key_name(10), "map_Ks") == 0);
+    }
     obj_model_free(&m);
 }
 
@@ -698,10 +763,10 @@ static void test_materials_in_obj(void) {
     if (m.material_count == 4 && m.mesh.triangle_count == 6) {
         static const int slots[6] = {-1, 0, 1, 2, 3, 0};
         for (int i = 0; i < 6; i++) CHECK(m.mesh.triangles[i].material == slots[i]);
-        CHECK(strcmp(m.materials[0].name, "green") == 0 && m.materials[0].mat.albedo.y == 1.0f);
-        CHECK(m.materials[1].mat.albedo.x == 1.0f);
-        CHECK(m.materials[2].mat.albedo.x == 0.1f);
-        CHECK(m.materials[3].mat.kind == MAT_DIFFUSE_LIGHT);
+        CHECK(strcmp(m.materials[0].name, "green") == 0 && mapped(&m.materials[0]).albedo.y == 1.0f);
+        CHECK(mapped(&m.materials[1]).albedo.x == 1.0f);
+        CHECK(mapped(&m.materials[2]).albedo.x == 0.1f);
+        CHECK(mapped(&m.materials[3]).kind == MAT_DIFFUSE_LIGHT);
         CHECK(m.materials[0].line == 5 && m.materials[3].line == 14);
     }
     obj_model_free(&m);
@@ -1111,6 +1176,7 @@ int main(void) {
     statements_only = false;
     test_mapping();
     test_texture_paths();
+    test_unsupported_keys();
     test_index_forms();
     test_polygons();
     test_large_convex_face();

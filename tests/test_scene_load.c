@@ -606,8 +606,13 @@ static void test_meshes(void) {
                 CHECK(s->materials[red].kind == MAT_LAMBERTIAN && s->materials[red].albedo_texture == -1);
                 CHECK_VEC(s->materials[red].albedo, 0.63, 0.065, 0.05);
             }
-            // Every face has a material of its own: no fallback was needed.
-            CHECK(s->warning_count == 0);
+            // Every face has a material of its own: no fallback was needed. The MTL gives `Ka` in each of its 8
+            // materials, and the file is read for both meshes: one warning, once for the file.
+            CHECK(s->warning_count == 1);
+            if (s->warning_count == 1)
+                CHECK(strcmp(s->warnings[0], GLINT_SOURCE_DIR "/scenes/meshes/cornell-box-original/"
+                                             "CornellBox-Original.mtl:16: warning: MTL keys not supported: Ka; "
+                                             "ignored in every material (reported once per file)") == 0);
         }
         glint_scene_free(s);
     }
@@ -720,6 +725,50 @@ static void test_issue5_scenes(void) {
         CHECK(s->texture_count == 5 && s->sphere_count == 5);
         glint_scene_free(s);
     }
+}
+
+// MTL keys glint does not use are named in one warning per MTL file, however many materials give them and however
+// many OBJ files read it; a library without them warns nothing.
+static void test_mtl_unsupported_keys(void) {
+    if (!tmpdir_make("glint-test-scene-mtl")) return;
+    char obj_a[600], obj_b[600];
+    snprintf(obj_a, sizeof obj_a, "%s", tmp_path("a.obj"));
+    snprintf(obj_b, sizeof obj_b, "%s", tmp_path("b.obj"));
+    static const char shared[] = "# shared\nnewmtl m1\nKa 1 1 1\nKd 0.5 0.5 0.5\nbump b.png\nmap_Bump b.png\nPr 0.5\n"
+                                 "newmtl m2\nKa 1 1 1\nKd 0.2 0.2 0.2\nPm 1\nillum 2\nNs 10\nNi 1.5\nd 1\n";
+    static const char plain[] = "newmtl m3\nKd 0.1 0.2 0.3\nillum 2\nNs 10\nNi 1.5\nd 1\nTr 0\n";
+    static const char tri[] = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    char text_a[200], text_b[200];
+    snprintf(text_a, sizeof text_a, "mtllib shared.mtl\n%susemtl m1\nf 1 2 3\nusemtl m2\nf 1 2 3\n", tri);
+    snprintf(text_b, sizeof text_b, "mtllib plain.mtl shared.mtl\n%susemtl m3\nf 1 2 3\nusemtl m2\nf 1 2 3\n", tri);
+    CHECK(tmp_write(tmp_path("shared.mtl"), shared, strlen(shared)) && tmp_write(tmp_path("plain.mtl"), plain, strlen(plain)));
+    CHECK(tmp_write(obj_a, text_a, strlen(text_a)) && tmp_write(obj_b, text_b, strlen(text_b)));
+    char scene[2000];
+    snprintf(scene, sizeof scene,
+             "{\"render\": {\"background\": 1}, \"objects\": [{\"type\": \"mesh\", \"file\": \"%s\"}, "
+             "{\"type\": \"mesh\", \"file\": \"%s\"}, {\"type\": \"mesh\", \"file\": \"%s\", \"face_normals\": true}]}",
+             obj_a, obj_b, obj_a);
+    glint_scene *s = parse(scene);
+    if (s) {
+        CHECK(s->mesh_count == 3 && s->warning_count == 1);
+        char expected[1200];
+        snprintf(expected, sizeof expected,
+                 "%s:3: warning: MTL keys not supported: Ka, Pr, Pm, bump, map_Bump; ignored in every material "
+                 "(reported once per file)",
+                 tmp_path("shared.mtl"));
+        for (size_t i = 0; i < s->warning_count; i++) {
+            bool same = strcmp(s->warnings[i], expected) == 0;
+            CHECK(same);
+            if (!same) fprintf(stderr, "  warning %zu: %s\n  expected:   %s\n", i, s->warnings[i], expected);
+        }
+        // The keys that are used still make the materials.
+        char name[700];
+        snprintf(name, sizeof name, "%s:m1", obj_a);
+        long m1 = scene_find_material(s, name);
+        CHECK(m1 >= 0 && s->materials[m1].kind == MAT_LAMBERTIAN && s->materials[m1].albedo.x == 0.5f);
+        glint_scene_free(s);
+    }
+    tmpdir_remove();
 }
 
 // Checks that text parses with exactly the warnings listed (NULL-terminated), in order.
@@ -908,6 +957,7 @@ int main(void) {
     test_textured_sphere_rotates();
     test_meshes();
     test_issue5_scenes();
+    test_mtl_unsupported_keys();
     test_no_light_warning();
     test_paper_mode_warnings();
     test_large_mesh_on_threads();

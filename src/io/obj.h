@@ -1,4 +1,5 @@
-// obj.h — a strict, fast Wavefront OBJ/MTL reader producing a glint triangle mesh and its materials.
+// obj.h — a strict, fast Wavefront OBJ reader producing a glint triangle mesh, its material slots and what its MTL
+// libraries say about them.
 //
 // OBJ: `v x y z [w | r g b [a]]` (extra numbers ignored), `vt u [v [w]]`, `vn x y z`, and faces `f` of 3 or
 // more corners in any of the forms v, v/vt, v//vn, v/vt/vn, with positive (1-based) or negative (relative)
@@ -10,18 +11,8 @@
 // to the OBJ file's directory (several names on one line allowed). CRLF line endings, tabs and `#` comments
 // (a token starting with `#` ends the line) are accepted; `\` line continuation is not.
 //
-// MTL -> glint material, first rule that applies:
-//   1. Ke with a component > 0                             -> diffuse_light, emission Ke
-//   2. transparent: d < 1, or (without d) Tr > 0, or illum 4, 6, 7 or 9
-//                                                          -> dielectric, ior Ni (1.5 when absent or <= 0),
-//                                                             tint Tf clamped to [0,1] (white when absent)
-//   3. illum 3, 5 or 8 with strong Ks: max(Ks) >= 0.25 and max(Ks) >= max(Kd)
-//                                                          -> metal, albedo Ks clamped to [0,1],
-//                                                             fuzz sqrt(2 / (Ns + 2)) clamped to [0,1] (0 without Ns)
-//   4. otherwise                                           -> lambertian, albedo Kd (0.5 grey when absent)
-//   map_Kd (after its -options; `\` turned into `/`; relative to the MTL file) gives diffuse_map, meant to
-//   replace the albedo. Ka, Tf (except for glass), map_Ka/Ks/Ns/d/bump, PBR keys and similar are accepted
-//   and ignored; unknown statements warn once per keyword.
+// Material libraries are read by the MTL reader (mtl.h) into plain records; every `usemtl` slot carries its
+// record's values (obj_material.mtl), and the scene turns them into glint materials (scene_file_mesh.c).
 //
 // Errors (the load fails; the message is "file:line: what is wrong, expected what"): malformed or
 // non-finite numbers, index 0 or out of range, too few/many numbers, faces with fewer than 3 corners,
@@ -34,28 +25,29 @@
 //   - a face of zero area (collinear or repeated corners): skipped;
 //   - a material library that cannot be opened (missing, a directory, or not a regular file such as a
 //     device or FIFO): its materials are undefined;
-//   - `usemtl` of a name no library defines: the slot stays with defined = false and a 0.5 grey
-//     Lambertian, so the scene can substitute the material the scene file gives the mesh;
-//   - a texture file that cannot be found: diffuse_map is NULL, the material keeps its Kd colour
-//     (a Windows-style absolute path is retried as its file name in the MTL file's directory);
+//   - `usemtl` of a name no library defines: the slot stays with defined = false, so the scene can
+//     substitute the material the scene file gives the mesh (or its grey fallback);
+//   - the MTL reader's warnings (mtl.h): a texture file that cannot be found (diffuse_map is NULL), a material
+//     defined again, unsupported MTL statements;
 //   - unsupported statements (`l`, `p`, curves, ...): ignored, reported once per keyword;
 //   - a file without faces.
+// The MTL keys glint reads and does not use (`Ka`, `bump`, ...) are not warnings of the reader: each library
+// records them (obj_library.unsupported) and the scene warns once per file.
 #ifndef GLINT_OBJ_H
 #define GLINT_OBJ_H
 
 #include "glint.h"
 #include "geometry/mesh.h"
-#include "material/material.h"
+#include "io/mtl.h"
 
 #include <stdbool.h>
 #include <stddef.h>
+#include <stdint.h>
 
 /// Concave faces with more corners than this are fan-triangulated (ear clipping is quadratic).
 #define OBJ_MAX_EAR_CLIP 256
 /// Largest OBJ file read, in bytes (2 GiB): a mesh takes memory in proportion to its file.
 #define OBJ_MAX_FILE_BYTES ((size_t)1 << 31)
-/// Largest MTL file read, in bytes (64 MiB): material libraries are small.
-#define MTL_MAX_FILE_BYTES ((size_t)64 << 20)
 /// Longest line of an OBJ or MTL file, in bytes (32 MiB): a face of OBJ_MAX_FACE_CORNERS corners written
 /// v/vt/vn with 8-digit indices fits.
 #define OBJ_MAX_LINE_BYTES ((size_t)32 << 20)
@@ -65,11 +57,18 @@
 /// One material slot of a mesh, in the order of first `usemtl`; mesh_triangle.material indexes these.
 typedef struct obj_material {
     char *name;        ///< the `usemtl` / `newmtl` name
-    bool defined;      ///< false: no material library defines it; `mat` is a 0.5 grey Lambertian fallback
-    material mat;      ///< the glint material mapped from the MTL statements (rules above)
+    bool defined;      ///< false: no material library defines it; `mtl` is zeroed (illum -1)
+    mtl_values mtl;    ///< what the first library that defines the name says about it
     char *diffuse_map; ///< map_Kd as a path usable from the current directory; NULL when absent or missing
-    long line;         ///< OBJ line of the first `usemtl` (MTL: line of `newmtl`)
+    long line;         ///< OBJ line of the first `usemtl`
 } obj_material;
+
+/// A material library a model read, each once.
+typedef struct obj_library {
+    char *path;            ///< as opened
+    uint32_t unsupported;  ///< mtl_library.unsupported: bit k, the file gives key mtl_unsupported_key_name(k)
+    long unsupported_line; ///< the line of the first of them; 0 when there is none
+} obj_library;
 
 /// A loaded OBJ file.
 typedef struct obj_model {
@@ -78,7 +77,7 @@ typedef struct obj_model {
     size_t material_count;
     size_t warning_count;       ///< warnings reported (including those not passed to a callback)
     size_t zero_area_faces;     ///< faces skipped for having no area
-    char **libraries;           ///< the material library files read (paths as opened), each once
+    obj_library *libraries;     ///< the material library files read, in the order of their first `mtllib`
     size_t library_count;
 } obj_model;
 
@@ -106,12 +105,5 @@ glint_status obj_parse(const char *name, const char *text, size_t length, const 
                        glint_error *err);
 /// Frees what a successful load returned and leaves *m empty.
 void obj_model_free(obj_model *m);
-
-/// Parses an MTL library from memory into every material it defines (defined = true), in file order;
-/// texture paths are resolved relative to the directory of `name`. Free with obj_materials_free().
-glint_status mtl_parse(const char *name, const char *text, size_t length, const obj_options *opt,
-                       obj_material **out, size_t *count, glint_error *err);
-/// Frees an array of materials and their strings.
-void obj_materials_free(obj_material *m, size_t count);
 
 #endif

@@ -9,6 +9,7 @@
 #include "core/strmap.h"
 #include "io/image_read.h"
 #include "io/json_read.h"
+#include "io/mtl.h"
 #include "scene/scene.h"
 
 #include <stdbool.h>
@@ -155,6 +156,8 @@ bool sf_read_light(sf_loader *ld, jr_val v, size_t i);
 
 /// A "mesh" object: its OBJ file loaded once (materials mapped to scene materials), placed as an instance.
 bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what);
+/// The glint material of an MTL material's values (the policy: docs/scene-format.md, "Meshes").
+material sf_mtl_material(const mtl_values *v);
 
 // scene_file_media.c: participating media
 

@@ -1,16 +1,80 @@
 // scene_file_mesh.c — "mesh" objects: an OBJ file is loaded once (io/obj), its MTL materials become scene
-// materials ("file:name", map_Kd as an image texture, a grey fallback for faces without one), and every
-// object that names the file places an instance of it.
+// materials by the MTL -> glint policy below ("file:name", map_Kd as an image texture, a grey fallback for faces
+// without one; the MTL keys it does not use named in one warning per file), and every object that names the file
+// places an instance of it.
 #include "scene/scene_file.h"
 #include "core/array.h"
 #include "core/filepath.h"
 #include "core/trace.h"
 #include "io/obj.h"
 
+#include <math.h>
+#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <sys/stat.h>
+
+// ---------------------------------------------------------------------------------------------
+// MTL materials -> glint materials
+
+static float max3(vec3 v) { return fmaxf(v.x, fmaxf(v.y, v.z)); }
+static float clamp01(float x) { return fminf(1.0f, fmaxf(0.0f, x)); }
+static vec3 clamp01v(vec3 v) { return v3(clamp01(v.x), clamp01(v.y), clamp01(v.z)); }
+
+// The first rule that applies (docs/scene-format.md lists them with every MTL key):
+//   1. Ke with a component > 0                             -> diffuse_light, emission Ke
+//   2. transparent: d < 1, or (without d) Tr > 0, or illum 4, 6, 7 or 9
+//                                                          -> dielectric, ior Ni (1.5 when absent or <= 0),
+//                                                             tint Tf clamped to [0,1] (white when absent)
+//   3. illum 3, 5 or 8 with strong Ks: max(Ks) >= 0.25 and max(Ks) >= max(Kd)
+//                                                          -> metal, albedo Ks clamped to [0,1],
+//                                                             fuzz sqrt(2 / (Ns + 2)) clamped to [0,1] (0 without Ns)
+//   4. otherwise                                           -> lambertian, albedo Kd (0.5 grey when absent)
+// map_Kd replaces the albedo of a Lambertian (map_obj_materials).
+material sf_mtl_material(const mtl_values *b) {
+    if (b->has_ke && max3(b->ke) > 0.0f) {
+        material m = material_default(MAT_DIFFUSE_LIGHT);
+        m.emission = b->ke;
+        return m;
+    }
+    bool transparent = b->has_d ? b->d < 1.0f : (b->has_tr && b->tr > 0.0f);
+    if (b->illum == 4 || b->illum == 6 || b->illum == 7 || b->illum == 9) transparent = true;
+    if (transparent) {
+        material m = material_default(MAT_DIELECTRIC);
+        if (b->has_ni && b->ni > 0.0f) m.ior = b->ni;
+        if (b->has_tf) m.albedo = clamp01v(b->tf);
+        return m;
+    }
+    vec3 kd = b->has_kd ? b->kd : v3s(0.5f);
+    if ((b->illum == 3 || b->illum == 5 || b->illum == 8) && b->has_ks && max3(b->ks) >= 0.25f &&
+        max3(b->ks) >= max3(kd)) {
+        material m = material_default(MAT_METAL);
+        m.albedo = clamp01v(b->ks);
+        // A Phong exponent n corresponds to a Beckmann roughness of about sqrt(2 / (n + 2)).
+        m.fuzz = b->has_ns ? clamp01(sqrtf(2.0f / (b->ns + 2.0f))) : 0.0f;
+        return m;
+    }
+    material m = material_default(MAT_LAMBERTIAN);
+    m.albedo = kd;
+    return m;
+}
+
+// Keeps "LIBRARY:LINE: warning: MTL keys not supported: Ka, bump; ignored (reported once per file)".
+static void warn_unsupported_keys(sf_loader *ld, const obj_library *lib) {
+    char keys[512];
+    size_t k = 0;
+    keys[0] = '\0';
+    for (unsigned i = 0; i < MTL_UNSUPPORTED_KEYS; i++)
+        if (lib->unsupported & (UINT32_C(1) << i)) {
+            int w = snprintf(keys + k, sizeof keys - k, "%s%s", k ? ", " : "", mtl_unsupported_key_name(i));
+            if (w > 0 && (size_t)w < sizeof keys - k) k += (size_t)w;
+        }
+    char msg[2600];
+    snprintf(msg, sizeof msg, "%.2000s:%ld: warning: MTL keys not supported: %s; ignored in every material (reported "
+             "once per file)", lib->path, lib->unsupported_line, keys);
+    sf_add_warning(ld, msg);
+}
 
 // ---------------------------------------------------------------------------------------------
 // Meshes from OBJ files
@@ -54,7 +118,7 @@ static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model
             if (!fallback_material(ld, &sm->slot_material[i])) return false;
             continue;
         }
-        material m = om->mat;
+        material m = sf_mtl_material(&om->mtl);
         m.albedo_texture = m.emission_texture = -1;
         // map_Kd is a diffuse colour: it replaces the albedo of Lambertian materials only (a metal's albedo is Ks).
         if (om->diffuse_map && m.kind == MAT_LAMBERTIAN) {
@@ -113,10 +177,13 @@ static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id i
         return sf_fail_oom(ld);
     }
     // Its material libraries are inputs too: never overwritten by an image, part of a checkpoint's identity.
+    // The keys a library gives that glint does not use are said once, when it first becomes an input.
     for (size_t i = 0; i < model.library_count; i++) {
+        const obj_library *lib = &model.libraries[i];
         struct stat sb;
-        if (stat(model.libraries[i], &sb) == 0 &&
-            !scene_add_input(ld->scene, (uint64_t)sb.st_dev, (uint64_t)sb.st_ino, model.libraries[i])) {
+        if (stat(lib->path, &sb) != 0) continue;
+        if (lib->unsupported && !scene_reads_file(ld->scene, lib->path)) warn_unsupported_keys(ld, lib);
+        if (!scene_add_input(ld->scene, (uint64_t)sb.st_dev, (uint64_t)sb.st_ino, lib->path)) {
             obj_model_free(&model);
             return sf_fail_oom(ld);
         }

@@ -5,6 +5,7 @@
 // Build with -DGLINT_FUZZ=ON and CC=clang; run: build/tests/fuzz_obj -dict=tests/fuzz/obj.dict NEWDIR tests/fuzz/corpus_obj
 #define _GNU_SOURCE // memfd_create
 #include "geometry/mesh.h"
+#include "io/mtl.h"
 #include "io/obj.h"
 #include "../obj_same.h"
 
@@ -91,10 +92,17 @@ int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size) {
         if (m.mesh.positions || m.mesh.triangles || m.materials) __builtin_trap();
     }
     // The same bytes as a material library.
-    obj_material *mats;
-    size_t count;
-    if (mtl_parse("fuzz.mtl", (const char *)data, size, &opt, &mats, &count, &err) == GLINT_OK)
-        obj_materials_free(mats, count);
-    else check_failure(&err);
+    mtl_options mopt = {NULL, NULL, true};
+    mtl_library lib;
+    if (mtl_parse("fuzz.mtl", (const char *)data, size, &mopt, &lib, &err) == GLINT_OK) {
+        // The unsupported keys are named, and the line of the first is known when there are any.
+        for (unsigned k = 0; k < 32; k++)
+            if ((lib.unsupported >> k & 1) && !mtl_unsupported_key_name(k)) __builtin_trap();
+        if (!lib.unsupported != !lib.unsupported_line) __builtin_trap();
+        mtl_library_free(&lib);
+    } else {
+        check_failure(&err);
+        if (lib.records || lib.count) __builtin_trap();
+    }
     return 0;
 }
