@@ -5,11 +5,11 @@
 
 #include <stdlib.h>
 
-// The parallel build makes exactly the tree of bvh_build_range(bd, 0, n, 0, NULL), for any number of threads. Ranges of at least
-// subtree_min primitives (the top of the tree, where the root alone reads every primitive) are split one
-// at a time by all threads together: their bounds and bins are computed in chunks and grown together in
-// chunk order (the bits of one pass: bvh_range_bounds), and parallel_partition reproduces the serial partition's order.
-// Smaller ranges are subtrees, each built by bvh_build_range on one thread into its own node buffer, largest
+// The parallel build makes exactly the tree of bvh_build_range(bd, 0, n, 0, NULL), for any number of threads.
+// Ranges of at least subtree_min primitives (the top of the tree, where the root alone reads every primitive) are
+// split one at a time by all threads together: their bounds and bins are computed in chunks and grown together in
+// chunk order (the bits of one pass: bvh_range_bounds), and parallel_partition reproduces the serial partition's
+// order. Smaller ranges are subtrees, each built by bvh_build_range on one thread into its own node buffer, largest
 // first; then every subtree is copied to where the serial build numbers it, its child offsets moved along.
 
 // Defaults (beside PARALLEL_MIN, bvh_build_internal.h): the top leaves at least SUBTREES_PER_THREAD subtrees per

@@ -15,8 +15,8 @@
 /// anything was hit. Defined by every file that includes this header, with the traversal `mode` names.
 static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode);
 
-// An instance: the ray taken to object space by world_to_object (direction not normalised, so t keeps its
-// meaning), then the mesh's BVH or the object-space sphere. True when it hit (any-hit queries stop there).
+/// An instance: the ray taken to object space by world_to_object (direction not normalised, so t keeps its
+/// meaning), then the mesh's BVH or the object-space sphere. True when it hit (any-hit queries stop there).
 static bool instance_hit(const bvh *b, uint32_t index, const mat4 *world_to_object, const ray *r, hit *best, bool any,
                          trav_mode mode) {
     const instance *in = &b->instances[index];
@@ -31,8 +31,8 @@ static bool instance_hit(const bvh *b, uint32_t index, const mat4 *world_to_obje
     return blas_traverse(&b->blas[in->index], &o, best, index, any, mode);
 }
 
-// A moving instance: its transform at the ray's time, then as any instance. Out of line: only scenes with
-// motion reach it.
+/// A moving instance: its transform at the ray's time, then as any instance. Out of line: only scenes with
+/// motion reach it.
 static __attribute__((noinline)) bool moving_instance_hit(const bvh *b, uint32_t index, const ray *r, hit *best,
                                                           bool any, trav_mode mode) {
     transform xf;
@@ -40,7 +40,7 @@ static __attribute__((noinline)) bool moving_instance_hit(const bvh *b, uint32_t
     return instance_hit(b, index, &xf.inv, r, best, any, mode);
 }
 
-// A moving sphere: the sphere where it is at the ray's time.
+/// A moving sphere: the sphere where it is at the ray's time.
 static __attribute__((noinline)) bool moving_sphere_hit(const bvh *b, uint32_t index, const ray *r, hit *best,
                                                         uint32_t inst_id) {
     vec3 c = moving_sphere_center(&b->moving_spheres[index], r->time);
@@ -50,9 +50,9 @@ static __attribute__((noinline)) bool moving_sphere_hit(const bvh *b, uint32_t i
     return true;
 }
 
-// One primitive that is not tested in SIMD: a quad, a triangle of b's mesh or of the flattened instance
-// `owner` (else HIT_NO_INSTANCE), an instance (or a sphere in the binary BVH). `inst_id` is the instance whose
-// mesh b is, or HIT_NO_INSTANCE. True when it hit.
+/// One primitive that is not tested in SIMD: a quad, a triangle of b's mesh or of the flattened instance
+/// `owner` (else HIT_NO_INSTANCE), an instance (or a sphere in the binary BVH). `inst_id` is the instance whose
+/// mesh b is, or HIT_NO_INSTANCE. True when it hit.
 static inline bool prim_hit(const bvh *b, uint32_t kind, uint32_t index, uint32_t owner, const ray *r, tri_cache *tc,
                             hit *best, uint32_t inst_id, bool any, trav_mode mode) {
     switch ((prim_kind)kind) {

@@ -24,9 +24,9 @@ enum { LEAVES_SPHERES, LEAVES_TRIANGLES, LEAVES_ANY };
 hit bvh_packet_hit(const bvh *b, const bvh_index_packet *p, const ray *r, tri_cache *tc, hit best, uint32_t inst_id,
                    bool any, trav_mode mode, bool *hit_any);
 
-// Offers the hit on lane k of triangle packet p: a triangle of the BVH's mesh or of the packet's flattened
-// instance, or half of a quad (lanes 2j and 2j + 1 are quad prim[2j]). `inst_id` is the instance whose mesh
-// the BVH is; at most one of it and the packet's instance is not HIT_NO_INSTANCE (the largest value).
+/// Offers the hit on lane k of triangle packet p: a triangle of the BVH's mesh or of the packet's flattened
+/// instance, or half of a quad (lanes 2j and 2j + 1 are quad prim[2j]). `inst_id` is the instance whose mesh
+/// the BVH is; at most one of it and the packet's instance is not HIT_NO_INSTANCE (the largest value).
 static inline void offer_triangle(hit *best, const bvh_triangle_packet *p, int k, float t, float b1, float b2,
                                   uint32_t inst_id) {
     uint32_t id = p->h.instance < inst_id ? p->h.instance : inst_id;
@@ -38,10 +38,11 @@ static inline void offer_triangle(hit *best, const bvh_triangle_packet *p, int k
     }
 }
 
-// A packet of triangles one lane at a time, through tri_intersect: the scalar path, and the reference the
-// SIMD test matches bit for bit. Out of line and by value, as bvh_packet_hit.
+/// A packet of triangles one lane at a time, through tri_intersect: the scalar path, and the reference the
+/// SIMD test matches bit for bit. Out of line and by value, as bvh_packet_hit (`unused`: a file may not need it).
 static __attribute__((noinline, unused)) hit triangle_packet_scalar(const bvh_triangle_packet *p, const ray *r,
-                                                                   tri_cache *tc, hit best, uint32_t inst_id, bool any, bool *hit_any) {
+                                                                    tri_cache *tc, hit best, uint32_t inst_id,
+                                                                    bool any, bool *hit_any) {
     const tri_ray *tr = tri_for(tc, r);
     *hit_any = false;
     uint32_t lanes = p->h.kind == PRIM_QUAD ? 2 * p->h.count : p->h.count;
@@ -58,8 +59,8 @@ static __attribute__((noinline, unused)) hit triangle_packet_scalar(const bvh_tr
 }
 
 
-// Box tests of every child of a wide node; returns the mask of children the ray enters before
-// tlimit, and their entry distances in tnear.
+/// Box tests of every child of a wide node; returns the mask of children the ray enters before
+/// tlimit, and their entry distances in tnear.
 static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr, float tlimit, bool ties,
                                          float *tnear) {
     unsigned mask = 0;
@@ -82,7 +83,7 @@ static inline unsigned wnode_test_scalar(const bvh_wnode *n, const trav_ray *tr,
     return mask;
 }
 
-// Tests one leaf's packets one primitive at a time. True when something was hit.
+/// Tests one leaf's packets one primitive at a time. True when something was hit.
 static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cache *tc, hit *best, uint32_t inst_id,
                                bool any, int leaves) {
     const bvh_slot *slot = &b->slots[ref & ~BVH_LEAF];
@@ -118,9 +119,10 @@ static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cac
 }
 
 #if BVH_SIMD
-// A packet of triangles in SIMD (triangles_simd), its hits offered lane by lane.
+/// A packet of triangles in SIMD (triangles_simd), its hits offered lane by lane.
 static __attribute__((noinline, unused)) hit triangle_packet_simd(const bvh_triangle_packet *p, const ray *r,
-                                                                 tri_cache *tc, hit best, uint32_t inst_id, bool any, bool *hit_any) {
+                                                                  tri_cache *tc, hit best, uint32_t inst_id,
+                                                                  bool any, bool *hit_any) {
     _Alignas(32) float t[BVH_PACKET], b1[BVH_PACKET], b2[BVH_PACKET];
     simd_tri st;
     simd_tri_setup(tri_for(tc, r), r->tmin, r->tmax, &st);
@@ -135,9 +137,9 @@ static __attribute__((noinline, unused)) hit triangle_packet_simd(const bvh_tria
     return best;
 }
 
-// Tests one leaf: spheres and triangles in SIMD packets, everything else one at a time. True when something was hit.
-// In a triangle-only BVH the triangle test is inlined here, the out-of-line calls (around which every vector
-// register is saved) left out.
+/// Tests one leaf: spheres and triangles in SIMD packets, everything else one at a time. True when something was hit.
+/// In a triangle-only BVH the triangle test is inlined here, the out-of-line calls (around which every vector
+/// register is saved) left out.
 static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32_t ref, const ray *r,
                                                             const simd_ray *s, const simd_tri *st, tri_cache *tc,
                                                             hit *best,
@@ -193,8 +195,8 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
     }
 }
 
-// Starts fetching the children `mask` of node n in a tree of triangles: the nearest is read next, the others soon
-// after, and on a large mesh nodes and leaves come from beyond the L2 cache.
+/// Starts fetching the children `mask` of node n in a tree of triangles: the nearest is read next, the others soon
+/// after, and on a large mesh nodes and leaves come from beyond the L2 cache.
 static inline __attribute__((always_inline)) void prefetch_children(const bvh *b, const bvh_wnode *n, unsigned mask) {
     for (; mask; mask &= mask - 1) {
         uint32_t c = n->child[__builtin_ctz(mask)];
@@ -217,14 +219,14 @@ typedef struct front_spheres {
     pk t;
 } front_spheres;
 
-// Tests b's huge spheres (one sphere packet) for the ray in sr, before the tree.
+/// Tests b's huge spheres (one sphere packet) for the ray in sr, before the tree.
 static inline __attribute__((always_inline)) void front_spheres_test(const bvh *b, const simd_ray *sr,
                                                                      front_spheres *f) {
     f->p = (const bvh_sphere_packet *)(const void *)&b->slots[b->front & ~BVH_LEAF];
     f->mask = spheres_simd(f->p, sr, &f->t);
 }
 
-// Offers the hits front_spheres_test found, after the tree; true when there was one.
+/// Offers the hits front_spheres_test found, after the tree; true when there was one.
 static inline __attribute__((always_inline)) bool front_spheres_offer(const front_spheres *f, hit *best,
                                                                       uint32_t inst_id) {
     if (!f->mask) return false;
@@ -249,7 +251,7 @@ typedef struct front_spheres {
     char unused;
 } front_spheres;
 
-// trav_setup under simd_setup's name; false for a NaN ray.
+/// trav_setup under simd_setup's name; false for a NaN ray.
 static inline bool simd_setup(const ray *r, simd_ray *s, bool boxes_only) {
     (void)boxes_only;
     if (ray_is_nan(r)) return false;
@@ -257,7 +259,7 @@ static inline bool simd_setup(const ray *r, simd_ray *s, bool boxes_only) {
     return true;
 }
 
-// Nothing to set up: the scalar triangle test reads the tri_cache.
+/// Nothing to set up: the scalar triangle test reads the tri_cache.
 static inline void simd_tri_setup(const tri_ray *tr, float tmin, float tmax, simd_tri *st) {
     (void)tr;
     (void)tmin;
@@ -265,12 +267,12 @@ static inline void simd_tri_setup(const tri_ray *tr, float tmin, float tmax, sim
     (void)st;
 }
 
-// The scalar box tests under wnode_test_simd's name.
+/// The scalar box tests under wnode_test_simd's name.
 static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, float tlimit, bool ties, float *tnear) {
     return wnode_test_scalar(n, &s->tr, tlimit, ties, tnear);
 }
 
-// The scalar leaf test under leaf_simd's name.
+/// The scalar leaf test under leaf_simd's name.
 static inline bool leaf_simd(const bvh *b, uint32_t ref, const ray *r, const simd_ray *s, const simd_tri *st,
                              tri_cache *tc, hit *best, uint32_t inst_id, bool any, int leaves) {
     (void)s;
@@ -278,21 +280,21 @@ static inline bool leaf_simd(const bvh *b, uint32_t ref, const ray *r, const sim
     return leaf_scalar(b, ref, r, tc, best, inst_id, any, leaves);
 }
 
-// No prefetch without SIMD.
+/// No prefetch without SIMD.
 static inline void prefetch_children(const bvh *b, const bvh_wnode *n, unsigned mask) {
     (void)b;
     (void)n;
     (void)mask;
 }
 
-// Never called without SIMD (wide_run tests the huge spheres after the tree).
+/// Never called without SIMD (wide_run tests the huge spheres after the tree).
 static inline void front_spheres_test(const bvh *b, const simd_ray *sr, front_spheres *f) {
     (void)b;
     (void)sr;
     (void)f;
 }
 
-// Never called without SIMD: no hit.
+/// Never called without SIMD: no hit.
 static inline bool front_spheres_offer(const front_spheres *f, hit *best, uint32_t inst_id) {
     (void)f;
     (void)best;
@@ -312,9 +314,9 @@ typedef struct walk {
 
 enum { STEP_MORE, STEP_DONE, STEP_FOUND };
 
-// One step of a traversal: visits w->ref (a node: choose the children to visit; a leaf: test it), then
-// picks the next reference. STEP_DONE when nothing is left, STEP_FOUND when an any-hit query found one.
-// The scalar path reads tr, the SIMD path sr; *found records whether anything was hit.
+/// One step of a traversal: visits w->ref (a node: choose the children to visit; a leaf: test it), then
+/// picks the next reference. STEP_DONE when nothing is left, STEP_FOUND when an any-hit query found one.
+/// The scalar path reads tr, the SIMD path sr; *found records whether anything was hit.
 static inline __attribute__((always_inline)) int wide_step(const bvh *b, const ray *r, const trav_ray *tr,
                                                           const simd_ray *sr, const simd_tri *stri, tri_cache *tc,
                                                           stack_entry *stack,
