@@ -67,7 +67,6 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
     return found;
 }
 
-
 // An instance's BLAS (bvh_prim.h), by the path of the wide traversal that entered it.
 static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode) {
     switch (mode) {
