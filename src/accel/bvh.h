@@ -1,5 +1,13 @@
 // bvh.h — bounding volume hierarchies (private to src/accel and the tests): a binary BVH built with
 // binned SAH, and the wide BVH collapsed from it whose boxes and leaf primitives are tested in SIMD.
+//
+// Built by bvh_build (bvh_build.c and the files it names). Queried three ways, with the same hits:
+// - one ray at a time: bvh_intersect, bvh_occluded (bvh_traverse.c; binary: bvh2_intersect, bvh2_occluded in
+//   bvh2_traverse.c);
+// - a stream of up to BVH_STREAM (64) rays of any kind, one traversal step of each in turn, so that while one
+//   waits for memory the others work: bvh_intersect_stream (bvh_stream.c), where bvh_streams says it pays;
+// - a packet of up to BVH_COHERENT (16) coherent rays (a pixel's camera rays), one interval box test of a node
+//   for them all: bvh_intersect_coherent (bvh_packet.c), where bvh_coherent says it applies.
 #ifndef GLINT_BVH_H
 #define GLINT_BVH_H
 
@@ -196,6 +204,8 @@ bool bvh_build(bvh *b, const bvh_input *in, bool wide);
 /// Frees what bvh_build allocated.
 void bvh_release(bvh *b);
 
+// ---- One ray at a time (bvh_traverse.c: wide; bvh2_traverse.c: binary) ----
+
 /// Closest hit in the binary BVH.
 bool bvh2_intersect(const bvh *b, const ray *r, hit *h);
 /// Any hit in the binary BVH.
@@ -204,6 +214,9 @@ bool bvh2_occluded(const bvh *b, const ray *r);
 bool bvh_intersect(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH, SIMD when compiled in, else scalar.
 bool bvh_occluded(const bvh *b, const ray *r);
+
+// ---- Streams (bvh_stream.c): rays traced together, one step of each in turn ----
+
 /// Rays a stream query traces together.
 #define BVH_STREAM ACCEL_STREAM
 /// Closest hits of n <= BVH_STREAM rays in the wide BVH, traced together (the same hits as bvh_intersect):
@@ -212,6 +225,9 @@ void bvh_intersect_stream(const bvh *b, int n, const ray *rays, hit *hits, bool 
 /// Whether bvh_intersect_stream traces b's rays together (SIMD compiled in, not only spheres, no huge spheres),
 /// rather than one by one.
 bool bvh_streams(const bvh *b);
+
+// ---- Packets (bvh_packet.c): coherent rays traversed as one, interval box tests ----
+
 /// Most rays bvh_intersect_coherent takes at once.
 enum { BVH_COHERENT = 16 };
 /// Closest hits of n <= BVH_COHERENT rays that start close together and point alike (a pixel's camera rays),
@@ -219,6 +235,9 @@ enum { BVH_COHERENT = 16 };
 void bvh_intersect_coherent(const bvh *b, int n, const ray *rays, hit *hits, bool *found);
 /// Whether bvh_intersect_coherent traverses b's rays as a packet (a tree of triangles, SIMD compiled in).
 bool bvh_coherent(const bvh *b);
+
+// ---- The portable scalar path of the single-ray traversal (bvh_traverse.c) ----
+
 /// Closest hit in the wide BVH by the portable scalar path (always compiled, for tests).
 bool bvh_intersect_scalar(const bvh *b, const ray *r, hit *h);
 /// Any hit in the wide BVH by the portable scalar path.

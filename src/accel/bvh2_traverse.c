@@ -1,6 +1,6 @@
 // bvh2_traverse.c — closest-hit and any-hit traversal of the binary BVH: nearest child first, a small stack,
 // every primitive tested one at a time (the structure --accel bvh2 selects, and the reference layout).
-#include "accel/bvh_kernel.h"
+#include "accel/bvh_prim.h"
 
 // Entry distance of the ray into a binary node's box, or +inf when it misses within (tmin, tlimit].
 static inline float box2_enter(const bvh2_node *n, const trav_ray *tr, float tlimit, bool ties) {
@@ -13,7 +13,8 @@ static inline float box2_enter(const bvh2_node *n, const trav_ray *tr, float tli
     return tn <= tf ? tn : INFINITY;
 }
 
-bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any) {
+// One ray through the binary BVH b from its root, improving *best; true when anything was hit.
+static bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any) {
     if (!b->nodes2 || ray_is_nan(r)) return false;
     trav_ray tr = trav_setup(r);
     tri_cache tc = {.ready = false};
@@ -42,7 +43,8 @@ bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any)
         } else {
             for (uint32_t i = 0; i < n->count; i++) {
                 prim_ref ref = b->refs[n->offset + i];
-                if (!bvh_prim_hit(b, ref, r, &tc, best, inst_id, any, MODE_BINARY)) continue;
+                if (!prim_hit(b, ref.kind, ref.index, prim_ref_instance(ref), r, &tc, best, inst_id, any, MODE_BINARY))
+                    continue;
                 found = true;
                 if (any) return true;
             }
@@ -54,6 +56,12 @@ bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any)
             if (slab_keeps(e.t, best->t, any)) { id = e.ref; break; }
         }
     }
+}
+
+// An instance's BLAS (bvh_prim.h): a binary BVH too.
+static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode) {
+    (void)mode; // MODE_BINARY: the binary BVH enters only binary BLASes
+    return bvh2_run(blas, r, best, inst_id, any);
 }
 
 bool bvh2_intersect(const bvh *b, const ray *r, hit *h) {

@@ -100,12 +100,4 @@ static inline bool offer(hit *best, hit c) {
 /// How instances are entered: the structure of the BLAS and which traversal path runs it.
 typedef enum trav_mode { MODE_WIDE_SIMD, MODE_WIDE_SCALAR, MODE_BINARY } trav_mode;
 
-/// Tests one primitive of b that is not in a SIMD packet (a quad, a triangle of b's mesh or of a flattened
-/// instance, an instance, or a sphere of the binary BVH), improving *best; `inst_id` is the instance whose mesh
-/// b is, or HIT_NO_INSTANCE. True when it hit.
-bool bvh_prim_hit(const bvh *b, prim_ref ref, const ray *r, tri_cache *tc, hit *best, uint32_t inst_id, bool any,
-                  trav_mode mode);
-/// One ray through the binary BVH b from its root, improving *best; true when anything was hit.
-bool bvh2_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id, bool any);
-
 #endif
