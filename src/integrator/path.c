@@ -6,7 +6,7 @@
 // are sampled there with the phase function, their shadow rays carrying the media's transmittance.
 #include "integrator/path.h"
 #include "integrator/light_sampler.h"
-#include "integrator/sample_scheduler.h"
+#include "integrator/sample_stream.h"
 #include "integrator/spawn.h"
 #include "integrator/surface.h"
 #include "material/scatter.h"
@@ -331,7 +331,7 @@ static inline bool path_crosses(const surface *sf, float in_side, vec3 dir, bool
 
 // The path goes on from sp along dir, its throughput times `weight`; false (the path ends) when that is black,
 // as nothing more can be gained.
-static inline bool path_continue(path_state *ps, ray *cur, const spawn_point *sp, vec3 weight, vec3 dir) {
+static inline __attribute__((always_inline)) bool path_continue(path_state *ps, ray *cur, const spawn_point *sp, vec3 weight, vec3 dir) {
     ps->throughput = v3_mul(ps->throughput, weight);
     if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return false;
     *cur = spawn_ray(sp, dir, 0.0f, INFINITY);
@@ -574,40 +574,39 @@ typedef struct path_lanes {
     medium_path mpath[SCHEDULER_STREAM];
 } path_lanes;
 
-/// What the stream loop's path steps see (scheduler_tile_stream's ctx): a local of the tile function, so that
-/// once the steps are inlined its fields live in registers.
-typedef struct path_stream_ctx {
+/// The stream loop's paths as the scheduler sees them (scheduler_paths): a local of the tile function, so that once
+/// the steps are inlined its fields live in registers.
+struct scheduler_paths {
     const path_integrator *pi;
     path_setup setup;
     int max_depth;
     path_state *ps;
     medium_path *mpath;
-} path_stream_ctx;
+};
 
-// A new path in a lane of the stream (scheduler_start_fn).
-static inline __attribute__((always_inline)) void path_lane_start(void *ctx, int lane, film_aov_sample *aov) {
-    path_stream_ctx *c = ctx;
-    c->ps[lane] = path_start(aov);
-    c->mpath[lane] = medium_path_start();
+// A new path in a lane of the stream.
+static inline __attribute__((always_inline)) void scheduler_paths_start(scheduler_paths *p, int lane,
+                                                                       film_aov_sample *aov) {
+    p->ps[lane] = path_start(aov);
+    p->mpath[lane] = medium_path_start();
 }
 
-// One vertex of a lane's path, which goes on while it is under the depth limit (scheduler_step_fn).
-static inline __attribute__((always_inline)) bool path_lane_step(void *ctx, int lane, ray *cur, bool found, hit *h,
-                                                                rng *r, thread_stats *ts, film_aov_sample *aov) {
-    path_stream_ctx *c = ctx;
-    return path_vertex(c->pi, c->setup, &c->ps[lane], cur, &c->mpath[lane], found, h, r, ts, aov) &&
-           ++c->ps[lane].depth < c->max_depth;
+// One vertex of a lane's path, which goes on while it is under the depth limit.
+static inline __attribute__((always_inline)) bool scheduler_paths_step(scheduler_paths *p, int lane, ray *cur,
+                                                                      bool found, hit *h, rng *r, thread_stats *ts,
+                                                                      film_aov_sample *aov) {
+    return path_vertex(p->pi, p->setup, &p->ps[lane], cur, &p->mpath[lane], found, h, r, ts, aov) &&
+           ++p->ps[lane].depth < p->max_depth;
 }
 
-// What a lane's path gathered (scheduler_radiance_fn).
-static inline __attribute__((always_inline)) vec3 path_lane_radiance(void *ctx, int lane) {
-    return ((path_stream_ctx *)ctx)->ps[lane].radiance;
+// What a lane's path gathered.
+static inline __attribute__((always_inline)) vec3 scheduler_paths_radiance(const scheduler_paths *p, int lane) {
+    return p->ps[lane].radiance;
 }
 
-// A lane's path moves to another lane (scheduler_move_fn).
-static inline __attribute__((always_inline)) void path_lane_move(void *ctx, int to, int from) {
-    path_stream_ctx *c = ctx;
-    c->ps[to] = c->ps[from], c->mpath[to] = c->mpath[from];
+// A lane's path moves to another lane.
+static inline __attribute__((always_inline)) void scheduler_paths_move(scheduler_paths *p, int to, int from) {
+    p->ps[to] = p->ps[from], p->mpath[to] = p->mpath[from];
 }
 
 // The stream loop with the path tracer's steps; `lean` (a constant): path_lean holds. A depth limit of at least 1.
@@ -616,9 +615,8 @@ static inline __attribute__((always_inline)) bool path_render_tile_stream_with(c
                                                                               thread_stats *ts, path_lanes *pl,
                                                                               bool lean, bool aovs) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    path_stream_ctx c = {pi, path_setup_of(pi, lean), it->scene->settings.max_depth, pl->ps, pl->mpath};
-    return scheduler_tile_stream(it, tp, ft, ts, &pl->stream, aovs, &c, path_lane_start, path_lane_step,
-                                 path_lane_radiance, path_lane_move);
+    scheduler_paths paths = {pi, path_setup_of(pi, lean), it->scene->settings.max_depth, pl->ps, pl->mpath};
+    return scheduler_tile_stream(it, tp, ft, ts, &pl->stream, aovs, &paths);
 }
 
 // The tile loop without AOVs is kept free of the AOV bookkeeping (film_tile_add alone).
