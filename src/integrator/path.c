@@ -331,7 +331,8 @@ static inline bool path_crosses(const surface *sf, float in_side, vec3 dir, bool
 
 // The path goes on from sp along dir, its throughput times `weight`; false (the path ends) when that is black,
 // as nothing more can be gained.
-static inline __attribute__((always_inline)) bool path_continue(path_state *ps, ray *cur, const spawn_point *sp, vec3 weight, vec3 dir) {
+static inline __attribute__((always_inline)) bool path_continue(path_state *ps, ray *cur, const spawn_point *sp,
+                                                                vec3 weight, vec3 dir) {
     ps->throughput = v3_mul(ps->throughput, weight);
     if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return false;
     *cur = spawn_ray(sp, dir, 0.0f, INFINITY);

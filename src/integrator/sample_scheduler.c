@@ -1,5 +1,5 @@
-// sample_scheduler.c — the sample scheduler's choices made once per tile pass (its loops are inline, in sample_scheduler.h
-// and sample_stream.h).
+// sample_scheduler.c — the sample scheduler's choices made once per tile pass (its loops are inline, in
+// sample_scheduler.h and sample_stream.h).
 #include "integrator/sample_scheduler.h"
 
 // Whether the stream loop traces its camera rays as packets (accel_intersect_coherent): in a BVH of triangles and
