@@ -1,5 +1,8 @@
-// integrator.c — choosing and building the integrator a scene asks for, and the sample-by-sample tile loop.
+// integrator.c — choosing and building the integrator a scene asks for, and freeing it: the chooser, which calls
+// down into the integrators (path.c, whitted.c) and nothing calls back.
 #include "integrator/integrator.h"
+#include "integrator/path.h"
+#include "integrator/whitted.h"
 
 #include <stddef.h>
 #include <stdlib.h>
@@ -16,15 +19,4 @@ void integrator_free(integrator *it) {
     if (!it) return;
     if (it->release) it->release(it);
     else free(it);
-}
-
-void integrator_init(integrator *it, const glint_scene *s, const accel *a) {
-    it->scene = s;
-    it->accel = a;
-    it->camera = s->camera;
-    camera_prepare(&it->camera, s->settings.width, s->settings.height);
-    it->stream = rng_seed_stream(s->settings.seed);
-    it->sample = NULL;
-    it->render_tile = NULL;
-    it->release = NULL;
 }

@@ -4,13 +4,12 @@
 // are emissive quads, mesh triangles and spheres, combined with the BSDF samples that hit them by multiple
 // importance sampling. Participating media (medium/medium.h) scatter paths inside them, and the same lights
 // are sampled there with the phase function, their shadow rays carrying the media's transmittance.
-#include "integrator/integrator.h"
+#include "integrator/path.h"
 #include "integrator/light_sampler.h"
+#include "integrator/sample_stream.h"
 #include "integrator/spawn.h"
 #include "integrator/surface.h"
 #include "material/scatter.h"
-
-#include "camera/camera_batch.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -332,103 +331,170 @@ static inline bool path_crosses(const surface *sf, float in_side, vec3 dir, bool
 
 // The path goes on from sp along dir, its throughput times `weight`; false (the path ends) when that is black,
 // as nothing more can be gained.
-static inline bool path_continue(path_state *ps, ray *cur, const spawn_point *sp, vec3 weight, vec3 dir) {
+static inline __attribute__((always_inline)) bool path_continue(path_state *ps, ray *cur, const spawn_point *sp,
+                                                                vec3 weight, vec3 dir) {
     ps->throughput = v3_mul(ps->throughput, weight);
     if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return false;
     *cur = spawn_ray(sp, dir, 0.0f, INFINITY);
     return true;
 }
 
+// A lean path's Lambertian bounce (the book's n + u): the direction is not normalised, since only the direction
+// matters to the next intersection; a mirror, glass or the background makes it a unit vector when it needs one.
+static inline __attribute__((always_inline)) vec3 path_lean_lambertian(path_state *ps, vec3 n, rng *r) {
+    ps->unit = false;
+    return mat_lambertian_sum(n, sample_sphere_uniform(r));
+}
+
+// Next-event estimation at a vertex that scatters diffusely (nv: a surface or a point in a medium), with the
+// vertex's scattering weight and the density of the direction it samples (dir_pdf, for MIS): the point and
+// directional lights, then (where the path goes on, `more`, so that the two strategies cover the same paths) the
+// emissive surfaces and the environment.
+static inline __attribute__((always_inline)) void path_nee(const path_integrator *pi, path_setup setup,
+                                                          path_state *ps, const nee_vertex *nv,
+                                                          const spawn_point *sp, vec3 weight, float dir_pdf,
+                                                          bool more, rng *r, thread_stats *ts) {
+    const integrator *it = &pi->base;
+    ps->light_sampled = ps->env_sampled = false;
+    if (setup.has_lights)
+        ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, direct_light(it, sp, nv, weight, ts)));
+    if (setup.pl && more) {
+        vec3 direct = sample_light(it, setup.pl, nv, sp, r, ts);
+        ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, v3_mul(weight, direct)));
+        ps->light_sampled = true;
+        ps->bsdf_pdf = dir_pdf;
+    }
+    if (setup.es && more) {
+        vec3 direct = sample_environment(it, setup.es, nv, sp, r, ts);
+        ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, v3_mul(weight, direct)));
+        ps->env_sampled = true;
+        ps->bsdf_pdf = dir_pdf;
+    }
+}
+
+// The ray's free flight through the media up to the surface it meets (found: at h->t) or to infinity. Returns 1
+// when it scatters in a medium (lights sampled there, the next ray drawn from the phase function), 0 when the
+// path ends (black throughput), -1 when it reaches the surface or the background (the throughput attenuated).
+static inline __attribute__((always_inline)) int path_medium_step(const path_integrator *pi, path_setup setup,
+                                                                 path_state *ps, ray *cur, medium_path *mpath,
+                                                                 bool found, hit *h, rng *r, thread_stats *ts) {
+    const glint_scene *s = pi->base.scene;
+    if (!ps->unit) { // distances in the media are lengths: a unit direction, t in its units
+        float len = v3_len(cur->d);
+        cur->d = v3_scale(cur->d, 1.0f / len);
+        if (found) h->t *= len;
+        ps->unit = true;
+    }
+    medium_event me = medium_sample(s->media, setup.media, s->textures, cur->o, cur->d, found ? h->t : INFINITY,
+                                    mpath, r);
+    ps->throughput = v3_mul(ps->throughput, me.weight);
+    if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return 0;
+    if (!me.scattered) return -1;
+    // It scatters in the medium: the lights are sampled as at a diffuse surface, with the phase function in place
+    // of the BSDF (weight 1), and the next direction is drawn from the phase function.
+    float g = s->media[me.index].g;
+    nee_vertex nv = {NULL, 0.0f, cur->d, g};
+    spawn_point mp = {me.p, v3s(0.0f), 0.0f, cur->time}; // no surface to step off; the path's time
+    path_nee(pi, setup, ps, &nv, &mp, v3s(1.0f), 0.0f, ps->depth + 1 < s->settings.max_depth, r, ts);
+    float a = rng_float(r), b = rng_float(r);
+    vec3 wi = phase_hg_sample(g, cur->d, a, b);
+    ps->bsdf_pdf = phase_hg(g, v3_dot(cur->d, wi));
+    *cur = (ray){me.p, wi, 0.0f, INFINITY, cur->time};
+    return 1;
+}
+
+// The background a ray *cur that met nothing sees, weighted against the environment's sampling at the last
+// vertex; the path ends there.
+static inline __attribute__((always_inline)) void path_escape(const glint_scene *s, path_setup setup,
+                                                             path_state *ps, ray *cur, film_aov_sample *aov) {
+    if (!ps->unit) cur->d = v3_unit(cur->d);
+    vec3 bg = scene_background(s, cur->d);
+    // The background seen (through mirrors and glass) is the albedo; the normal stays (0 for no surface).
+    if (ps->aov_pending) aov->albedo = integrator_aov_albedo(v3_mul(ps->throughput, bg));
+    if (ps->env_sampled) bg = v3_scale(bg, mis_weight(ps->bsdf_pdf, envmap_pdf(setup.es, &s->environment, cur->d)));
+    ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, bg));
+}
+
+// A lean path at a world sphere of an untextured material that does not emit (the book's scenes): the sphere's
+// own hit frame in place of the surface record, which with texture lookups, emission, shading normals and light
+// sampling costs as much as the bounce itself; the bounce is the general vertex's. -1 when the sphere is not such
+// a one, else whether the path goes on.
+static inline __attribute__((always_inline)) int path_lean_sphere(const glint_scene *s, path_state *ps, ray *cur,
+                                                                 const hit *h, rng *r, film_aov_sample *aov) {
+    const sphere *sp = &s->spheres[h->prim];
+    const material *m = &s->materials[sp->material];
+    if (m->kind == MAT_DIFFUSE_LIGHT || m->albedo_texture >= 0) return -1;
+    vec3 p, n;
+    sphere_hit_frame(sp, cur, h->t, &p, &n);
+    bool front = v3_dot(cur->d, n) < 0.0f;
+    if (!front) n = v3_neg(n);
+    if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, m->albedo, n, m);
+    scatter_event ev;
+    if (m->kind == MAT_LAMBERTIAN) {
+        ev.dir = path_lean_lambertian(ps, n, r);
+        ev.weight = m->albedo;
+    } else {
+        if (!ps->unit) cur->d = v3_unit(cur->d);
+        ps->unit = true;
+        if (!mat_scatter(m, m->albedo, cur->d, n, front, r, &ev)) return 0;
+    }
+    spawn_point spt = spawn_point_sphere(p, n, sp->radius, cur->time);
+    return path_continue(ps, cur, &spt, ev.weight, ev.dir);
+}
+
+// A lean path at an untextured Lambertian quad or mesh (the floors and models of most scenes, surface_at_flat):
+// the general vertex's bounce without its texture lookup, emitter test and light sampling, which cost 5 % on
+// the bunny. Whether the path goes on.
+static inline __attribute__((always_inline)) bool path_lean_flat(const glint_scene *s, path_state *ps, ray *cur,
+                                                                const surface *sf, const material *m, rng *r,
+                                                                film_aov_sample *aov) {
+    if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, m->albedo, sf->n, m);
+    vec3 dir = path_lean_lambertian(ps, sf->n, r);
+    if (path_crosses(sf, v3_dot(cur->d, sf->ng), dir, false)) return false;
+    spawn_point sp = spawn_point_of(s, sf);
+    return path_continue(ps, cur, &sp, m->albedo, dir);
+}
+
+// An emitter ends the path: its emission, weighted against the area lights' sampling at the last vertex.
+static inline __attribute__((always_inline)) void path_emitter(const glint_scene *s, path_setup setup,
+                                                              path_state *ps, const ray *cur, const hit *h,
+                                                              const surface *sf, const material *m,
+                                                              film_aov_sample *aov) {
+    vec3 tp = surface_texture_point(s, sf, m->emission_texture);
+    vec3 le = mat_emitted(m, s->textures, sf->front, sf->u, sf->v, tp);
+    if (ps->aov_pending) {
+        aov->albedo = integrator_aov_albedo(v3_mul(ps->throughput, integrator_aov_emitter(le)));
+        aov->normal = sf->n;
+    }
+    if (ps->light_sampled) {
+        float pdf_light = light_sampler_pdf(setup.pl, s, sf, cur->o, cur->d, h->t);
+        if (pdf_light > 0.0f) le = v3_scale(le, mis_weight(ps->bsdf_pdf, pdf_light));
+    }
+    ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, le));
+}
+
 // What the path does where its ray *cur ends, at hit *h (found; by address, as the query wrote it: a copy would
 // load it whole, which waits for the query's stores to retire) or in the background, at depth ps->depth:
-// gathers light into ps->radiance and makes the next ray. False when the path ends there.
+// gathers light into ps->radiance and makes the next ray. False when the path ends there. Lean paths (setup.lean)
+// take the spheres' and flat surfaces' own frames (path_lean_sphere, surface_at_flat) and the book's Lambertian
+// bounce (path_lean_flat); every vertex ends in the same steps (path_aov_surface, path_nee, path_continue).
 static inline __attribute__((always_inline)) bool path_vertex(const path_integrator *pi, path_setup setup,
                                                              path_state *ps, ray *cur, medium_path *mpath, bool found,
                                                              hit *h, rng *r, thread_stats *ts, film_aov_sample *aov) {
-    const integrator *it = &pi->base;
-    const glint_scene *s = it->scene;
-    bool has_lights = setup.has_lights, lean = setup.lean;
-    const light_sampler *pl = setup.pl;
-    const envmap_sampler *es = setup.es;
-    size_t media = setup.media;
-    int depth = ps->depth;
-    if (media) {
-        if (!ps->unit) { // distances in the media are lengths: a unit direction, t in its units
-            float len = v3_len(cur->d);
-            cur->d = v3_scale(cur->d, 1.0f / len);
-            if (found) h->t *= len;
-            ps->unit = true;
-        }
-        // The ray's free flight through the media up to the surface it meets (or to infinity).
-        medium_event me =
-            medium_sample(s->media, media, s->textures, cur->o, cur->d, found ? h->t : INFINITY, mpath, r);
-        ps->throughput = v3_mul(ps->throughput, me.weight);
-        if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return false;
-        if (me.scattered) {
-            // It scatters in the medium: the lights are sampled as at a diffuse surface, with the phase
-            // function in place of the BSDF, and the next direction is drawn from the phase function.
-            float g = s->media[me.index].g;
-            nee_vertex nv = {NULL, 0.0f, cur->d, g};
-            spawn_point mp = {me.p, v3s(0.0f), 0.0f, cur->time}; // no surface to step off; the path's time
-            bool more = depth + 1 < s->settings.max_depth;
-            ps->light_sampled = ps->env_sampled = false;
-            if (has_lights) ps->radiance = v3_add(ps->radiance, direct_light(it, &mp, &nv, ps->throughput, ts));
-            if (pl && more) {
-                ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, sample_light(it, pl, &nv, &mp, r, ts)));
-                ps->light_sampled = true;
-            }
-            if (es && more) {
-                vec3 direct = sample_environment(it, es, &nv, &mp, r, ts);
-                ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, direct));
-                ps->env_sampled = true;
-            }
-            float a = rng_float(r), b = rng_float(r);
-            vec3 wi = phase_hg_sample(g, cur->d, a, b);
-            ps->bsdf_pdf = phase_hg(g, v3_dot(cur->d, wi));
-            *cur = (ray){me.p, wi, 0.0f, INFINITY, cur->time};
-            return true;
-        }
+    const glint_scene *s = pi->base.scene;
+    bool lean = setup.lean;
+    if (setup.media) {
+        int scattered = path_medium_step(pi, setup, ps, cur, mpath, found, h, r, ts);
+        if (scattered >= 0) return scattered != 0;
     }
     if (!found) {
-        if (!ps->unit) cur->d = v3_unit(cur->d);
-        vec3 bg = scene_background(s, cur->d);
-        // The background seen (through mirrors and glass) is the albedo; the normal stays (0 for no surface).
-        if (ps->aov_pending) aov->albedo = integrator_aov_albedo(v3_mul(ps->throughput, bg));
-        if (ps->env_sampled) bg = v3_scale(bg, mis_weight(ps->bsdf_pdf, envmap_pdf(es, &s->environment, cur->d)));
-        ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, bg));
+        path_escape(s, setup, ps, cur, aov);
         return false;
     }
-    if (aov && depth == 0) aov->depth = ps->unit ? h->t : h->t * v3_len(cur->d); // camera rays may be unnormalised
-    // A world sphere of an untextured material that does not emit, with no light to sample (the book's
-    // scenes): exactly what the general code below computes for it, without the surface record, texture
-    // lookups, emission, shading normals and light sampling, which cost as much as the bounce itself.
+    if (aov && ps->depth == 0) aov->depth = ps->unit ? h->t : h->t * v3_len(cur->d); // camera rays: unnormalised
     if (lean && h->kind == HIT_SPHERE && h->instance == HIT_NO_INSTANCE) {
-        const sphere *sp = &s->spheres[h->prim];
-        const material *m = &s->materials[sp->material];
-        if (m->kind != MAT_DIFFUSE_LIGHT && m->albedo_texture < 0) {
-            vec3 p, n;
-            sphere_hit_frame(sp, cur, h->t, &p, &n);
-            bool front = v3_dot(cur->d, n) < 0.0f;
-            if (!front) n = v3_neg(n);
-            if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, m->albedo, n, m);
-            scatter_event ev;
-            if (m->kind == MAT_LAMBERTIAN) {
-                // Only the direction matters to the next intersection: the normalisation (a square root
-                // and a division) waits until a mirror, glass or the background needs a unit vector.
-                ev.dir = mat_lambertian_sum(n, sample_sphere_uniform(r));
-                ev.weight = m->albedo;
-                ps->unit = false;
-            } else {
-                if (!ps->unit) cur->d = v3_unit(cur->d);
-                ps->unit = true;
-                if (!mat_scatter(m, m->albedo, cur->d, n, front, r, &ev)) return false;
-            }
-            ps->throughput = v3_mul(ps->throughput, ev.weight);
-            if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return false;
-            spawn_point spt = spawn_point_sphere(p, n, sp->radius, cur->time);
-            *cur = spawn_ray(&spt, ev.dir, 0.0f, INFINITY);
-            return true;
-        }
+        int more = path_lean_sphere(s, ps, cur, h, r, aov);
+        if (more >= 0) return more != 0;
     }
     // The general code below works with unit directions: the same ray, t in its units. A lean path's Lambertian
     // surface needs none (the book's n + u, as at spheres above): it waits until the material is known.
@@ -437,75 +503,43 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
     bool flat = lean && surface_at_flat(s, cur, h, &sf);
     if (!flat) sf = surface_at(s, cur, h);
     const material *m = &s->materials[sf.material];
-    if (flat && m->kind == MAT_LAMBERTIAN && m->albedo_texture < 0) {
-        // A lean path at an untextured Lambertian quad or mesh (the floors and models of most scenes): what the
-        // code below computes for it, without its general cases, which cost 5 % on the bunny.
-        if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, m->albedo, sf.n, m);
-        vec3 dir = mat_lambertian_sum(sf.n, sample_sphere_uniform(r));
-        if (path_crosses(&sf, v3_dot(cur->d, sf.ng), dir, false)) return false;
-        spawn_point sp = spawn_point_of(s, &sf);
-        ps->unit = false;
-        return path_continue(ps, cur, &sp, m->albedo, dir);
-    }
+    if (flat && m->kind == MAT_LAMBERTIAN && m->albedo_texture < 0) return path_lean_flat(s, ps, cur, &sf, m, r, aov);
     bool lean_diffuse = lean && m->kind == MAT_LAMBERTIAN;
     if (!ps->unit && !lean_diffuse) path_unit_direction(ps, cur, h);
     if (m->kind == MAT_DIFFUSE_LIGHT) {
-        vec3 tp = surface_texture_point(s, &sf, m->emission_texture);
-        vec3 le = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, tp);
-        if (ps->aov_pending) {
-            aov->albedo = integrator_aov_albedo(v3_mul(ps->throughput, integrator_aov_emitter(le)));
-            aov->normal = sf.n;
-        }
-        if (ps->light_sampled) {
-            float pdf_light = light_sampler_pdf(pl, s, &sf, cur->o, cur->d, h->t);
-            if (pdf_light > 0.0f) le = v3_scale(le, mis_weight(ps->bsdf_pdf, pdf_light));
-        }
-        ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, le));
+        path_emitter(s, setup, ps, cur, h, &sf, m, aov);
         return false;
     }
-    scatter_event ev;
     vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
     if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, albedo, sf.n, m);
+    scatter_event ev;
     if (lean_diffuse) { // mat_scatter's direction, not normalised: the next ray's direction needs no unit length
-        ev = (scatter_event){mat_lambertian_sum(sf.n, sample_sphere_uniform(r)), albedo, true, false};
-        ps->unit = false;
+        ev = (scatter_event){path_lean_lambertian(ps, sf.n, r), albedo, true, false};
     } else if (!mat_scatter(m, albedo, cur->d, sf.n, sf.front, r, &ev)) {
         return false;
     }
     spawn_point sp = spawn_point_of(s, &sf);
     float in_side = v3_dot(cur->d, sf.ng);
-    ps->light_sampled = ps->env_sampled = false;
     if (ev.diffuse) {
         float dir_pdf = s->importance_sphere_count ? aim_diffuse(s, sp.p, sf.n, r, &ev)
                                                    : v3_dot(ev.dir, sf.n) * inv_pi;
         nee_vertex nv = {&sf, in_side, cur->d, 0.0f};
-        if (has_lights)
-            ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, direct_light(it, &sp, &nv, ev.weight, ts)));
-        // Only where the BSDF sample is traced too, so that the two strategies cover the same paths.
-        if (pl && depth + 1 < s->settings.max_depth) {
-            vec3 direct = sample_light(it, pl, &nv, &sp, r, ts);
-            ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, v3_mul(ev.weight, direct)));
-            ps->light_sampled = true;
-            ps->bsdf_pdf = dir_pdf;
-        }
-        if (es && depth + 1 < s->settings.max_depth) {
-            vec3 direct = sample_environment(it, es, &nv, &sp, r, ts);
-            ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, v3_mul(ev.weight, direct)));
-            ps->env_sampled = true;
-            ps->bsdf_pdf = dir_pdf;
-        }
+        path_nee(pi, setup, ps, &nv, &sp, ev.weight, dir_pdf, ps->depth + 1 < s->settings.max_depth, r, ts);
+    } else {
+        ps->light_sampled = ps->env_sampled = false;
     }
     if (path_crosses(&sf, in_side, ev.dir, ev.transmitted)) return false;
     return path_continue(ps, cur, &sp, ev.weight, ev.dir);
 }
 
 // The radiance a path starting with the primary ray (origin o, direction d, all t > 0, at `time`) carries, and its AOVs
-// when aov is not NULL. The ray comes by its parts, in registers: a whole ray passed by value is copied with
-// wide loads that cannot be forwarded from the stores that just made it. d need not have unit length. One
-// copy: the AOV tests are predictable branches on a NULL pointer (a second, specialised copy cost the sphere
+// when aov is not NULL (a scheduler_trace_fn). The ray comes by its parts, in registers: a whole ray passed by value
+// is copied with wide loads that cannot be forwarded from the stores that just made it. d need not have unit length.
+// One copy: the AOV tests are predictable branches on a NULL pointer (a second, specialised copy cost the sphere
 // scenes 12 % through gcc's inlining budget).
-static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rng *r, thread_stats *ts,
+static vec3 path_trace(const integrator *it, vec3 o, vec3 d, float time, rng *r, thread_stats *ts,
                        film_aov_sample *aov, const hit *first, bool first_found) {
+    const path_integrator *pi = (const path_integrator *)(const void *)it;
     const glint_scene *s = pi->base.scene;
     path_setup setup = path_setup_of(pi, false);
     path_state ps = path_start(aov);
@@ -526,298 +560,97 @@ static vec3 path_trace(const path_integrator *pi, vec3 o, vec3 d, float time, rn
     return ps.radiance;
 }
 
-// One sample of pixel (x, y): its camera ray, then its path (what path_render_tile does sixteen at a time).
+// One sample of pixel (x, y): its camera ray, then its path (what the tile loops do sixteen at a time).
 static vec3 path_sample(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts,
                         film_aov_sample *aov) {
     (void)sample;
     ray primary = camera_sample_ray(&it->camera, x, y, r);
-    const path_integrator *pi = (const path_integrator *)(const void *)it;
-    return path_trace(pi, primary.o, primary.d, primary.time, r, ts, aov, NULL, false);
+    return path_trace(it, primary.o, primary.d, primary.time, r, ts, aov, NULL, false);
 }
 
-/// The next sample of a tile pass to make a camera ray for: pixel (x, y), its rng_pixel_key, sample k.
-typedef struct sample_cursor {
-    int x, y, k;
-    uint64_t key;
-} sample_cursor;
+/// The stream loop's memory: the scheduler's lanes and, beside them, the rest of each path's state, by lane.
+typedef struct path_lanes {
+    scheduler_stream stream;
+    path_state ps[SCHEDULER_STREAM];
+    medium_path mpath[SCHEDULER_STREAM];
+} path_lanes;
 
-static inline sample_cursor sample_cursor_start(const integrator *it, const tile_pass *tp) {
-    const render_settings *rs = &it->scene->settings;
-    return (sample_cursor){tp->x0, tp->y0, tp->k0,
-                           rng_pixel_key(rs->seed, (uint64_t)tp->y0 * (uint64_t)rs->width + (uint64_t)tp->x0)};
+/// The stream loop's paths as the scheduler sees them (scheduler_paths): a local of the tile function, so that once
+/// the steps are inlined its fields live in registers.
+struct scheduler_paths {
+    const path_integrator *pi;
+    path_setup setup;
+    int max_depth;
+    path_state *ps;
+    medium_path *mpath;
+};
+
+// A new path in a lane of the stream.
+static inline __attribute__((always_inline)) void scheduler_paths_start(scheduler_paths *p, int lane,
+                                                                       film_aov_sample *aov) {
+    p->ps[lane] = path_start(aov);
+    p->mpath[lane] = medium_path_start();
 }
 
-// The camera rays (and generators) of the next n <= CAMERA_BATCH samples, in vector instructions
-// (camera_batch.h); lanes past n repeat the first.
-static inline __attribute__((always_inline)) void sample_cursor_batch(const integrator *it, const tile_pass *tp,
-                                                                     sample_cursor *c, int n, camera_batch *cb) {
-    const render_settings *rs = &it->scene->settings;
-    for (int i = 0; i < CAMERA_BATCH; i++) {
-        if (i >= n) {
-            cb->x[i] = cb->x[0], cb->y[i] = cb->y[0], cb->key[i] = cb->key[0], cb->sample[i] = cb->sample[0];
-            continue;
-        }
-        cb->x[i] = c->x, cb->y[i] = c->y, cb->key[i] = c->key, cb->sample[i] = (uint64_t)c->k;
-        if (++c->k == tp->k1) {
-            c->k = tp->k0;
-            if (++c->x == tp->x1) {
-                c->x = tp->x0;
-                c->y++;
-            }
-            if (c->y < tp->y1) c->key = rng_pixel_key(rs->seed, (uint64_t)c->y * (uint64_t)rs->width + (uint64_t)c->x);
-        }
-    }
-    camera_batch_make(&it->camera, it->stream, cb);
+// One vertex of a lane's path, which goes on while it is under the depth limit.
+static inline __attribute__((always_inline)) bool scheduler_paths_step(scheduler_paths *p, int lane, ray *cur,
+                                                                      bool found, hit *h, rng *r, thread_stats *ts,
+                                                                      film_aov_sample *aov) {
+    return path_vertex(p->pi, p->setup, &p->ps[lane], cur, &p->mpath[lane], found, h, r, ts, aov) &&
+           ++p->ps[lane].depth < p->max_depth;
 }
 
-// Camera ray i of batch cb, open-ended.
-static inline ray batch_ray(const camera_batch *cb, int i) {
-    return (ray){cb->o[i], cb->d[i], 0.0f, INFINITY, cb->time[i]};
+// What a lane's path gathered.
+static inline __attribute__((always_inline)) vec3 scheduler_paths_radiance(const scheduler_paths *p, int lane) {
+    return p->ps[lane].radiance;
 }
 
-// One tile pass: the samples' camera rays are made CAMERA_BATCH at a time before their paths are traced one by
-// one. Same samples, same order, same sums as path_sample one at a time: the same bytes.
-static inline __attribute__((always_inline)) bool path_render_tile_with(const integrator *it, const tile_pass *tp,
-                                                                       film_tile *ft, thread_stats *ts, bool aovs) {
-    const path_integrator *pi = (const path_integrator *)(const void *)it;
-    int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
-    int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
-    sample_cursor cursor = sample_cursor_start(it, tp); // runs ahead of the film tile's by up to CAMERA_BATCH items
-    camera_batch cb;
-    film_tile t = *ft; // a local copy whose address does not escape: its fields can live in registers
-    // A tree of triangles traces each batch's camera rays (a pixel's samples, or neighbours) as one packet.
-    bool coherent = accel_coherent(it->accel) && it->scene->settings.max_depth > 0;
-    _Static_assert((int)CAMERA_BATCH <= (int)ACCEL_COHERENT, "a batch of camera rays fits in one packet");
-    hit first[CAMERA_BATCH];
-    bool first_found[CAMERA_BATCH] = {false};
-    for (int j = 0; j < items; j += CAMERA_BATCH) {
-        int n = items - j < CAMERA_BATCH ? items - j : CAMERA_BATCH;
-        sample_cursor_batch(it, tp, &cursor, n, &cb);
-        if (coherent) {
-            ray rays[CAMERA_BATCH];
-            for (int i = 0; i < n; i++) rays[i] = batch_ray(&cb, i);
-            accel_intersect_coherent(it->accel, n, rays, first, first_found);
-        }
-        for (int i = 0; i < n; i++) {
-            if (tile_pass_stopping(tp)) {
-                film_tile_stop(&t);
-                *ft = t;
-                return false;
-            }
-            rng r = cb.r[i];
-            bool more;
-            if (aovs) {
-                film_aov_sample a;
-                vec3 c = path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, &a, coherent ? &first[i] : NULL,
-                                    first_found[i]);
-                more = film_tile_add_aov(&t, c, &a);
-            } else {
-                more = film_tile_add(&t, path_trace(pi, cb.o[i], cb.d[i], cb.time[i], &r, ts, NULL,
-                                                    coherent ? &first[i] : NULL, first_found[i]));
-            }
-            if (!more) {
-                *ft = t;
-                return true;
-            }
-        }
-    }
-    *ft = t;
-    return true;
+// A lane's path moves to another lane.
+static inline __attribute__((always_inline)) void scheduler_paths_move(scheduler_paths *p, int to, int from) {
+    p->ps[to] = p->ps[from], p->mpath[to] = p->mpath[from];
 }
 
-/// Paths in flight in the stream loop, and samples started and not yet added to the film (a power of two). Many
-/// more paths than one traversal takes at once (ACCEL_STREAM), and a window that a long path rarely fills: on
-/// bunny1m 64 paths and a window of 256 ran 0.93 times as fast as 256 and 1,024, and those 0.98 times as fast as
-/// 1,024 and 4,096; the bunny and the 278k bunny, traced one by one, run as fast with any (docs/benchmarks.md).
-enum { PATH_STREAM = 1024, STREAM_WINDOW = 4096 };
-
-/// The stream loop's paths in flight and its window of finished samples: about 330 kB, on the heap rather than on
-/// the stack of a library caller's thread.
-typedef struct path_stream {
-    path_state ps[PATH_STREAM];
-    rng gen[PATH_STREAM];
-    int item[PATH_STREAM];
-    ray rays[PATH_STREAM];
-    medium_path mpath[PATH_STREAM];
-    hit hits[PATH_STREAM];
-    bool found[PATH_STREAM], has_hit[PATH_STREAM];
-    film_aov_sample aov[PATH_STREAM];
-    vec3 finished[STREAM_WINDOW];
-    film_aov_sample finished_aov[STREAM_WINDOW];
-    bool is_finished[STREAM_WINDOW];
-} path_stream;
-
-// Whether the stream loop traces its camera rays as packets (accel_intersect_coherent): in a BVH of triangles and
-// quads, unless its streams are traversed together (accel_interleaves) and it has more leaf packets than the image
-// has pixels. Then a pixel's sixteen rays spread over several leaves, and the stream traces them faster (bunny1m at
-// 400x300, 1.3 leaves a pixel: packets 0.970; the 500k bunny, 0.6: 1.050; docs/benchmarks.md).
-static bool stream_camera_packets(const integrator *it) {
-    if (!accel_coherent(it->accel)) return false;
-    if (!accel_interleaves(it->accel)) return true;
-    accel_stats st;
-    accel_get_stats(it->accel, &st);
-    const render_settings *rs = &it->scene->settings;
-    return st.leaves < (uint64_t)rs->width * (uint64_t)rs->height;
-}
-
-// The hits of the rays among rays[0, n) whose lanes have none yet (has_hit false), traversed together, ACCEL_STREAM
-// at a time, when `together` (accel_interleaves), else one by one in place; the other lanes keep the hits they came
-// with. Clears has_hit: the next round's rays are new.
-static inline void stream_trace(const accel *a, bool together, int n, const ray *rays, bool *has_hit, hit *hits,
-                                bool *found) {
-    if (!together) {
-        for (int l = 0; l < n; l++)
-            if (!has_hit[l]) found[l] = accel_intersect(a, &rays[l], &hits[l]);
-    } else {
-        int lane[PATH_STREAM], m = 0;
-        for (int l = 0; l < n; l++)
-            if (!has_hit[l]) lane[m++] = l;
-        for (int c = 0; c < m; c += ACCEL_STREAM) {
-            int k = m - c < ACCEL_STREAM ? m - c : ACCEL_STREAM;
-            if (m == n) { // no camera packets: the rays as they are, no copy
-                accel_intersect_stream(a, k, rays + c, hits + c, found + c);
-                continue;
-            }
-            ray todo[ACCEL_STREAM];
-            hit th[ACCEL_STREAM];
-            bool tf[ACCEL_STREAM];
-            for (int j = 0; j < k; j++) todo[j] = rays[lane[c + j]];
-            accel_intersect_stream(a, k, todo, th, tf);
-            for (int j = 0; j < k; j++) hits[lane[c + j]] = th[j], found[lane[c + j]] = tf[j];
-        }
-    }
-    for (int l = 0; l < n; l++) has_hit[l] = false; // the next round's rays are new
-}
-
-// A tile pass with many paths in flight (accel_streams): PATH_STREAM of them, the rays of each round traced before
-// any is shaded (stream_trace; shadow rays, one at a time, stay in path_vertex), so that the corners of the hits a
-// few paths ahead come from memory while one is shaded (SHADE_AHEAD), and a path that ends giving its place to the
-// next sample. The samples (and their AOVs when `aovs`) are added to the film in their order, from a window of
-// finished ones (sp): the same sums as path_render_tile_with, so the same bytes. `lean` (a constant): path_lean
-// holds. A depth limit of at least 1.
+// The stream loop with the path tracer's steps; `lean` (a constant): path_lean holds. A depth limit of at least 1.
 static inline __attribute__((always_inline)) bool path_render_tile_stream_with(const integrator *it,
                                                                               const tile_pass *tp, film_tile *ft,
-                                                                              thread_stats *ts, path_stream *sp,
+                                                                              thread_stats *ts, path_lanes *pl,
                                                                               bool lean, bool aovs) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    int max_depth = it->scene->settings.max_depth;
-    path_setup setup = path_setup_of(pi, lean);
-    int w = tp->x1 - tp->x0, spp = tp->k1 - tp->k0;
-    int items = w * (tp->y1 - tp->y0) * spp; // item j: sample k0 + j % spp of pixel j / spp
-    enum { WINDOW = STREAM_WINDOW };
-    enum { SHADE_AHEAD = 4 }; // paths between a hit whose corners are fetched and its shading
-    vec3 *finished = sp->finished;
-    film_aov_sample *finished_aov = sp->finished_aov, *aov = sp->aov;
-    bool *is_finished = sp->is_finished;
-    memset(is_finished, 0, sizeof sp->is_finished);
-    path_state *ps = sp->ps;
-    rng *gen = sp->gen;
-    int *item = sp->item;
-    ray *rays = sp->rays; // each path's next ray
-    medium_path *mpath = sp->mpath;
-    hit *hits = sp->hits;
-    bool *found = sp->found, *has_hit = sp->has_hit;
-    int lanes = 0, started = 0, added = 0; // paths in flight are lanes [0, lanes)
-    sample_cursor cursor = sample_cursor_start(it, tp);
-    camera_batch cb;
-    int batch_start = 0, batch_end = 0; // cb holds items [batch_start, batch_end)
-    film_tile t = *ft;
-    // Each batch of camera rays traced as a packet when it is made (stream_camera_packets); a path that starts
-    // from it comes with its first hit, and the stream traces the other paths' rays.
-    bool packets = stream_camera_packets(it), together = accel_interleaves(it->accel);
-    hit first[CAMERA_BATCH];
-    bool first_found[CAMERA_BATCH];
-    for (;;) {
-        while (lanes < PATH_STREAM && started < items && started < added + WINDOW) {
-            if (started == batch_end) {
-                int n = items - started < CAMERA_BATCH ? items - started : CAMERA_BATCH;
-                sample_cursor_batch(it, tp, &cursor, n, &cb);
-                batch_start = started;
-                batch_end = started + n;
-                if (packets) {
-                    ray cam[CAMERA_BATCH];
-                    for (int k = 0; k < n; k++) cam[k] = batch_ray(&cb, k);
-                    accel_intersect_coherent(it->accel, n, cam, first, first_found);
-                }
-            }
-            int i = started - batch_start;
-            ps[lanes] = path_start(aovs ? &aov[lanes] : NULL);
-            rays[lanes] = batch_ray(&cb, i);
-            mpath[lanes] = medium_path_start();
-            gen[lanes] = cb.r[i];
-            has_hit[lanes] = packets;
-            if (packets) hits[lanes] = first[i], found[lanes] = first_found[i];
-            item[lanes++] = started++;
-        }
-        if (lanes == 0) break;
-        stream_trace(it->accel, together, lanes, rays, has_hit, hits, found);
-        for (int l = 0; l < lanes;) {
-            ts->rays++;
-            // The corners of a hit a few paths ahead start coming from memory while this one is shaded.
-            if (l + SHADE_AHEAD < lanes && found[l + SHADE_AHEAD]) surface_prefetch(it->scene, &hits[l + SHADE_AHEAD]);
-            if (path_vertex(pi, setup, &ps[l], &rays[l], &mpath[l], found[l], &hits[l], &gen[l], ts,
-                            aovs ? &aov[l] : NULL) &&
-                ++ps[l].depth < max_depth) {
-                l++;
-                continue;
-            }
-            finished[item[l] % WINDOW] = ps[l].radiance;
-            if (aovs) finished_aov[item[l] % WINDOW] = aov[l];
-            is_finished[item[l] % WINDOW] = true;
-            // The last path in flight takes this place, with its hit still to be shaded.
-            lanes--;
-            ps[l] = ps[lanes], rays[l] = rays[lanes], mpath[l] = mpath[lanes];
-            gen[l] = gen[lanes], item[l] = item[lanes];
-            hits[l] = hits[lanes], found[l] = found[lanes];
-            if (aovs) aov[l] = aov[lanes];
-        }
-        for (; added < items && is_finished[added % WINDOW]; added++) {
-            if (tile_pass_stopping(tp)) {
-                film_tile_stop(&t);
-                *ft = t;
-                return false;
-            }
-            int k = added % WINDOW;
-            is_finished[k] = false;
-            if (!(aovs ? film_tile_add_aov(&t, finished[k], &finished_aov[k]) : film_tile_add(&t, finished[k]))) {
-                *ft = t;
-                return true;
-            }
-        }
-    }
-    *ft = t;
-    return true;
+    scheduler_paths paths = {pi, path_setup_of(pi, lean), it->scene->settings.max_depth, pl->ps, pl->mpath};
+    return scheduler_tile_stream(it, tp, ft, ts, &pl->stream, aovs, &paths);
 }
 
 // The tile loop without AOVs is kept free of the AOV bookkeeping (film_tile_add alone).
 static bool path_render_tile_plain(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
-    return path_render_tile_with(it, tp, ft, ts, false);
+    return scheduler_tile_batched(it, tp, ft, ts, false, path_trace);
 }
 
 static __attribute__((noinline)) bool path_render_tile_aov(const integrator *it, const tile_pass *tp, film_tile *ft,
                                                           thread_stats *ts) {
-    return path_render_tile_with(it, tp, ft, ts, true);
+    return scheduler_tile_batched(it, tp, ft, ts, true, path_trace);
 }
 
 // The stream loop for lean paths without AOVs: no code for lights, media or AOVs.
 static bool path_render_tile_stream_lean(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts,
-                                         path_stream *sp) {
-    return path_render_tile_stream_with(it, tp, ft, ts, sp, true, false);
+                                         path_lanes *pl) {
+    return path_render_tile_stream_with(it, tp, ft, ts, pl, true, false);
 }
 
 static __attribute__((noinline)) bool path_render_tile_stream_any(const integrator *it, const tile_pass *tp,
-                                                                 film_tile *ft, thread_stats *ts, path_stream *sp) {
-    return path_render_tile_stream_with(it, tp, ft, ts, sp, false, ft->film->aovs);
+                                                                 film_tile *ft, thread_stats *ts, path_lanes *pl) {
+    return path_render_tile_stream_with(it, tp, ft, ts, pl, false, ft->film->aovs);
 }
 
+// The path tracer's render_tile: its paths in streams where the tree is big enough to gain from them
+// (accel_streams), else one by one after their camera rays are made in batches.
 static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
     // Without the memory for the stream loop, the one-by-one loop makes the same bytes.
-    path_stream *sp = it->scene->settings.max_depth > 0 && accel_streams(it->accel) ? malloc(sizeof *sp) : NULL;
-    if (sp) {
-        bool more = path_lean(pi) && !ft->film->aovs ? path_render_tile_stream_lean(it, tp, ft, ts, sp)
-                                                     : path_render_tile_stream_any(it, tp, ft, ts, sp);
-        free(sp);
+    path_lanes *pl = it->scene->settings.max_depth > 0 && accel_streams(it->accel) ? malloc(sizeof *pl) : NULL;
+    if (pl) {
+        bool more = path_lean(pi) && !ft->film->aovs ? path_render_tile_stream_lean(it, tp, ft, ts, pl)
+                                                     : path_render_tile_stream_any(it, tp, ft, ts, pl);
+        free(pl);
         return more;
     }
     if (ft->film->aovs) return path_render_tile_aov(it, tp, ft, ts);

@@ -1,5 +1,6 @@
 // whitted.c — the paper's Whitted ray tracer (exact, in double) and its colour-correct variant.
-#include "integrator/integrator.h"
+#include "integrator/whitted.h"
+#include "integrator/sample_scheduler.h"
 #include "integrator/spawn.h"
 #include "material/scatter.h"
 
@@ -557,7 +558,7 @@ static vec3 whitted_sample(const integrator *it, int x, int y, uint32_t sample, 
 
 // A tile pass, sample by sample.
 static bool whitted_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
-    return integrator_tile_by_samples(it, tp, ft, ts, whitted_sample);
+    return scheduler_tile_by_samples(it, tp, ft, ts, whitted_sample);
 }
 
 integrator *whitted_create(const glint_scene *s, const accel *a, glint_error *err) {
