@@ -75,6 +75,7 @@ typedef struct exr_target {
     float *rgb;
     int x0, y0, width, height; ///< the data window
     bool grey;                 ///< Y alone fills R (and is copied to G and B); beside R, G and B it is skipped
+    uint64_t file_size;        ///< every chunk's bytes must lie inside the file
 } exr_target;
 
 // Decodes one chunk whose first pixel is (cx, cy) of the data window into the target; a chunk that claims to
@@ -82,6 +83,11 @@ typedef struct exr_target {
 static exr_result_t decode_chunk(exr_context_t ctx, const exr_chunk_info_t *ci, int cx, int cy, const exr_target *t) {
     if (cx < 0 || cy < 0 || ci->width < 0 || ci->height < 0 || cx + ci->width > t->width ||
         cy + ci->height > t->height)
+        return EXR_ERR_CORRUPT_CHUNK;
+    // The library decodes a chunk shorter than its pixels without a word (the rest stays black): a chunk must lie
+    // inside the file, and an uncompressed one must hold all its pixels.
+    if (ci->data_offset > t->file_size || ci->packed_size > t->file_size - ci->data_offset ||
+        (ci->compression == EXR_COMPRESSION_NONE && ci->packed_size != ci->unpacked_size))
         return EXR_ERR_CORRUPT_CHUNK;
     exr_decode_pipeline_t dec = EXR_DECODE_PIPELINE_INITIALIZER;
     exr_result_t rv = exr_decoding_initialize(ctx, 0, ci, &dec);
@@ -201,7 +207,7 @@ glint_status exr_read_open(FILE *f, const char *path, image_rgb *out, glint_erro
         return fail(path, "unreadable OpenEXR header", rv, src.kept, err);
     }
     exr_storage_t storage;
-    exr_target t = {0};
+    exr_target t = {.file_size = (uint64_t)src.size};
     glint_status status = check_header(ctx, path, &storage, &t, src.kept, err);
     if (status != GLINT_OK) {
         exr_finish(&ctx);

@@ -16,7 +16,10 @@
 
 static const char EXPECTED_PART[] = "expected a PNG written by glint with --region";
 
-enum { MAX_SIDE = 16384 }; // the largest image width and height a scene renders at: a part cannot claim more
+enum {
+    MAX_SIDE = 16384,       // the largest image width and height a scene renders at: a part cannot claim more
+    DEFLATE_MAX_RATIO = 1032 // the most bytes deflate (PNG's compression) makes of one byte of its stream
+};
 
 // One part: where it lies in the full image, and its 8-bit RGB rows.
 typedef struct part {
@@ -35,6 +38,7 @@ typedef struct png_reader {
     png_uint_32 row, height;
     bool cut_short;     ///< the file ended before libpng had what it asked for
     bool libpng_failed; ///< the message is libpng's (a damaged file)
+    uint64_t file_size;
     char message[IMAGE_PNG_MESSAGE]; ///< libpng's message (the error pointer), or why the file is no part
 } png_reader;
 
@@ -116,6 +120,14 @@ static bool png_decode_part(png_reader *r, part *p) {
                  (unsigned)w, (unsigned)h, MAX_SIDE);
         return false;
     }
+    // Deflate packs at most 1032 bytes into one: a file too small to hold the rows it declares is refused before
+    // they are allocated (a 783 kB part once declared 16384 x 16384 pixels).
+    uint64_t rows_bytes = (uint64_t)h * (1u + (uint64_t)w * 3u);
+    if (r->file_size * DEFLATE_MAX_RATIO < rows_bytes) {
+        snprintf(r->message, sizeof r->message, "truncated PNG: %llu bytes cannot hold %ux%u pixels",
+                 (unsigned long long)r->file_size, (unsigned)w, (unsigned)h);
+        return false;
+    }
     // The colour chunks glint writes: sRGB, or the gAMA of gamma 2 (0.5) or of linear values (1).
     int intent;
     double gamma = 1.0;
@@ -150,6 +162,7 @@ static glint_status read_part(const char *path, part *p, glint_error *err) {
     struct stat st;
     int problem = 0;
     png_reader r = {.f = filepath_open_regular(path, &st, &problem)};
+    r.file_size = r.f ? (uint64_t)st.st_size : 0;
     if (!r.f) {
         snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, filepath_problem_text(problem));
         return problem == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;

@@ -81,6 +81,11 @@ check "R, G, B with Y: exit 0 (got $rc)" test "$rc" -eq 0
 check "R, G, B with Y: the sky is red, not black (got $first)" awk -v r="$r" -v g="$g" -v b="$b" \
     'BEGIN { exit !(r > 0.1 && g == 0 && b == 0) }'
 
+# Found by fuzz_exr: 586 bytes declaring 50331651x2 uncompressed pixels, whose chunks hold 161 bytes; OpenEXRCore
+# decoded them without a word into 1.5 GB of black. Every chunk must now lie in the file and hold its pixels.
+envmap exr_short_uncompressed_chunks.exr
+refused 2 "corrupt OpenEXR data" env.json -q -o out.pfm
+
 # ---- output paths: never a FIFO, a device or a socket, nor through a link to one ----
 mkfifo c.fifo
 refused 1 "c.fifo: cannot write: it is a FIFO, not a regular file" $SCENE -q -o out.pfm --checkpoint c.fifo
@@ -129,6 +134,13 @@ refused 2 "cut_in_data.png: truncated PNG: the file ends in its image data" merg
 refused 1 "f.png: cannot write: it is a FIFO" merge f.png a.png b.png
 check "the merge left the FIFO a FIFO" test -p f.png
 check "no merge output from refused parts" test ! -e m3.png
+
+# A part too small to hold the rows it declares is refused before they are allocated (deflate packs at most
+# 1032 bytes into one): 200 kB that claim 16384 x 16384 pixels.
+python3 "$SRC/tests/cli/hostile_files.py" big 16384 16384 huge.png || fail "hostile_files.py big failed"
+head -c 200000 huge.png >huge_cut.png
+refused 2 "huge_cut.png: truncated PNG: 200000 bytes cannot hold 16384x16384 pixels" merge hm.png huge_cut.png
+rm -f huge.png huge_cut.png
 
 # 8-bit parts merge in 8 bits: an 8192x4096 part (98 kB on disk) takes about 240 MB, not 530 MB (floats).
 if grep -qa __asan_init "$GLINT"; then
