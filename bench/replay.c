@@ -10,6 +10,7 @@
 //   replay: N rays (H% hit), glint G ns/ray [, embree E ns/ray, glint/embree speed S, hit or miss agree A%]
 // Exit status 1 when glint's replay does not find exactly the hits it recorded (the traversal is deterministic),
 // or on bad input. Meshes and quads only for Embree (a scene with spheres is timed for glint alone).
+#include "glint.h"
 #include "accel/accel.h"
 #include "core/clock.h"
 #include "core/sampling.h"

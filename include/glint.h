@@ -41,22 +41,10 @@ extern "C" {
 #define GLINT_API
 #endif
 
-/// What a call did. These are status values, not exit codes; the glint program exits with 0, 1 or 2 for
-/// the first three, and with 128 + the signal's number (130 for SIGINT, 143 for SIGTERM) when a signal
-/// stopped the render, after writing the partial image. 3 is never an exit code.
-typedef enum glint_status {
-    GLINT_OK = 0,
-    GLINT_ERR_RENDER = 1,     ///< rendering, memory or I/O failure (the program exits 1)
-    GLINT_ERR_INPUT = 2,      ///< bad usage, scene file, mesh or image file (the program exits 2)
-    GLINT_ERR_INTERRUPTED = 3 ///< the render was stopped by its cancel token; the partial image is kept
-} glint_status;
-
-/// A value struct: a human-readable error, already formatted as "file:line:col: what is wrong, what was
-/// expected". Every function that can fail fills it (when not NULL) whenever it returns a status other than
-/// GLINT_OK.
-typedef struct glint_error {
-    char message[1024];
-} glint_error;
+// glint_status (what a call did) and glint_error (why it failed): the vocabulary the library's every layer shares.
+#define GLINT_PUBLIC_HEADER
+#include "glint/status.h"
+#undef GLINT_PUBLIC_HEADER
 
 /// Opaque: a scene, plain data read from a scene file. Free with glint_scene_free.
 typedef struct glint_scene glint_scene;

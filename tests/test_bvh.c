@@ -1,6 +1,7 @@
 // test_bvh.c — the wide and the binary BVH against brute force on random rays over random scenes of
 // spheres, quads, meshes and instances: same hit, same primitive, bit-identical t; any-hit agrees with
 // closest-hit; the SIMD path agrees with the scalar one; streams of rays traced together give the same hits.
+#include "glint.h"
 #include "accel/accel.h"
 #include "accel/brute_force.h"
 #include "accel/bvh.h"

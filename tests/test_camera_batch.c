@@ -2,6 +2,7 @@
 // the rays and generators that rng_for_key and camera_sample_ray make one at a time: with and without
 // defocus blur, with and without an open shutter (the ray's time), for the look-at and the viewport camera, for
 // any pixel and sample index.
+#include "glint.h"
 #include "check.h"
 #include "camera/camera_batch.h"
 #include "scene/scene.h"

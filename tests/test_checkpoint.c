@@ -2,6 +2,7 @@
 // anywhere and resumed, on any thread count, to its spp or a larger one, is bit for bit the uninterrupted render;
 // pixels of different counts in one tile (built deterministically from complete renders) resume exactly; regions;
 // every mismatched, truncated, corrupt or foreign file is refused with a message naming what is wrong.
+#include "glint.h"
 #include "check.h"
 #include "test_util.h"
 #include "film/film.h"
@@ -64,7 +65,7 @@ static void set_spp(glint_scene *s, int spp) {
 typedef struct run {
     glint_status status;
     glint_image *image;
-    glint_render_stats stats;
+    render_stats stats;
     glint_error err;
 } run;
 

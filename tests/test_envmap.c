@@ -141,7 +141,7 @@ static void test_plane_under_envmap(void) {
         CHECK(scene_add_quad(s, q));
         render_options opt = {.threads = 0, .integrator = {.no_light_sampling = !nee}};
         glint_image *out = NULL;
-        glint_render_stats st;
+        render_stats st;
         glint_error err;
         CHECK(render_scene(s, &opt, NULL, NULL, &out, &st, &err) == GLINT_OK);
         int iw, ih;

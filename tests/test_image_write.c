@@ -1,5 +1,6 @@
 // test_image_write.c — every image format written through glint_image_write and read back; the
 // temporary-file-and-rename contract: failures leave neither a half image nor a temporary file behind.
+#include "glint.h"
 #include "check.h"
 #include "test_util.h"
 #include "film/film.h"

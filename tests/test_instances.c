@@ -5,6 +5,7 @@
 // sphere written out; and a sphere under a non-uniform scale (an ellipsoid instance) against the analytic
 // ellipsoid. Scenes are JSON text parsed with glint_scene_parse, meshes small OBJ files in a temporary
 // directory; images are 48x32 at 4 spp, path-traced and colour-Whitted, with every acceleration structure.
+#include "glint.h"
 #include "check.h"
 #include "test_util.h"
 #include "camera/camera.h"

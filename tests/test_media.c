@@ -278,11 +278,11 @@ static material lambertian(float a) {
     return m;
 }
 
-static glint_image *render(const glint_scene *s, int threads, bool nee, glint_render_stats *stats) {
+static glint_image *render(const glint_scene *s, int threads, bool nee, render_stats *stats) {
     render_options opt = {.threads = threads, .integrator = {.no_light_sampling = !nee}};
     glint_image *img = NULL;
     glint_error err;
-    glint_render_stats local;
+    render_stats local;
     if (!stats) stats = &local;
     glint_status st = render_scene(s, &opt, NULL, NULL, &img, stats, &err);
     if (st != GLINT_OK) fprintf(stderr, "render: %s\n", err.message);
@@ -346,7 +346,7 @@ static void test_furnaces(void) {
             s->settings.background = BACKGROUND_ENVMAP;
             s->environment = envmap_make(img, 1.0f, 0.0f);
         }
-        glint_render_stats st;
+        render_stats st;
         glint_image *img = render(s, 2, true, &st);
         double se, mean = image_mean(img, -1, &se);
         double dev = max_deviation(img, 1.0);

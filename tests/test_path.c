@@ -78,13 +78,13 @@ static glint_scene *plane_under_light(int nee, float rho) {
 // Renders with the given thread count, without next-event estimation towards area lights when the scene's
 // builder set without_nee (the choice holds for that one render); the image's linear pixels stay valid until
 // glint_image_free.
-static glint_image *render(glint_scene *s, int threads, glint_render_stats *stats) {
+static glint_image *render(glint_scene *s, int threads, render_stats *stats) {
     render_options opt = {.threads = threads, .aovs = with_aovs, .integrator = {.no_light_sampling = without_nee}};
     without_nee = false;
     with_aovs = 0;
     glint_image *img = NULL;
     glint_error err;
-    glint_render_stats local;
+    render_stats local;
     if (!stats) stats = &local;
     glint_status st = render_scene(s, &opt, NULL, NULL, &img, stats, &err);
     CHECK(st == GLINT_OK);
@@ -149,7 +149,7 @@ static void test_convex_albedo(void) {
             m.albedo = v3s(0.5f);
         }
         add_sphere(s, v3(0, 0, -2), 0.6f, add_material(s, m));
-        glint_render_stats st;
+        render_stats st;
         glint_image *img = render(s, 1, &st);
         int w, h;
         const float *rgb = pixels(img, &w, &h);
@@ -254,7 +254,7 @@ static void test_lights(void) {
         ambient.kind = LIGHT_AMBIENT; // ignored by the path tracer
         ambient.intensity = v3s(0.5f);
         CHECK(scene_add_light(s, ambient));
-        glint_render_stats st;
+        render_stats st;
         glint_image *img = render(s, 1, &st);
         // The footprint is ~0.03 wide, so 1/d^3 varies by < 0.05% over the image.
         CHECK_NEAR(max_deviation(img, expect), 0.0, 1e-3 * expect + 1e-7);
@@ -489,7 +489,7 @@ static void test_quad_light_irradiance(void) {
                 lamp.two_sided = true;
                 add_quad(s, v3(0, h, -a), v3(0, 0, 2 * a), v3(a, 0, 0), add_material(s, lamp)); // faces up
             }
-            glint_render_stats st;
+            render_stats st;
             glint_image *img = render(s, 0, &st);
             image_mean(img, &mean[nee], &se[nee]);
             printf("quad light %d: %s: %.5f +- %.5f (exact %.5f), %llu rays, %llu shadow rays\n", layout,
@@ -529,7 +529,7 @@ static void test_sphere_light_irradiance(void) {
                 lamp.emission = v3s(2.0f);
                 add_sphere(s, v3((float)side_x, (float)height, 0), (float)side_r, add_material(s, lamp));
             }
-            glint_render_stats st;
+            render_stats st;
             glint_image *img = render(s, 0, &st);
             image_mean(img, &mean[nee], &se[nee]);
             printf("sphere light %d: %s: %.5f +- %.5f (exact %.5f), %llu rays, %llu shadow rays\n", layout,
@@ -771,7 +771,7 @@ static void test_triangle_light_irradiance(void) {
             } else {
                 add_mesh_instance(s, world_square, 4, tris, 2, lm, layout ? mat4_scale(v3(-1, 1, 1)) : mat4_identity());
             }
-            glint_render_stats st;
+            render_stats st;
             glint_image *img = render(s, 0, &st);
             image_mean(img, &mean[nee], &se[nee]);
             printf("triangle light %d: %s: %.5f +- %.5f (exact %.5f), %llu rays, %llu shadow rays\n", layout,

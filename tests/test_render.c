@@ -1,5 +1,6 @@
 // test_render.c — the render loop: each pixel is the mean of its samples in index order (bit for bit the
 // sequential sum), the same for any thread count; progress reports; a stop keeps completed samples only.
+#include "glint.h"
 #include "check.h"
 
 #include <pthread.h>

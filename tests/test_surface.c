@@ -5,6 +5,7 @@
 // ray, the material of the triangle's slot or of its instance, and the primitive's largest coordinate in world
 // units, which the spawn offset scales with — and the other hits (a turning instance, spheres) are left to
 // surface_at_general.
+#include "glint.h"
 #include "check.h"
 #include "test_util.h"
 #include "core/rng.h"

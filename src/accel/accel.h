@@ -3,7 +3,7 @@
 #ifndef GLINT_ACCEL_H
 #define GLINT_ACCEL_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "core/vec.h"
 #include "geometry/instance.h"
 #include "geometry/mesh.h"

@@ -16,6 +16,16 @@
 #include <stdlib.h>
 #include <string.h>
 
+// The public enums are the internal ones under other names: the values must agree.
+_Static_assert((int)GLINT_FORMAT_HDR == (int)IMAGE_FORMAT_HDR && (int)GLINT_FORMAT_EXR_HALF == (int)IMAGE_FORMAT_EXR_HALF &&
+                   (int)GLINT_FORMAT_PPM_ASCII == (int)IMAGE_FORMAT_PPM_ASCII && (int)GLINT_FORMAT_AUTO == 0,
+               "glint_format and image_format list the formats in one order");
+_Static_assert(GLINT_AOV_ALBEDO == 1u << FILM_AOV_ALBEDO && GLINT_AOV_NORMAL == 1u << FILM_AOV_NORMAL &&
+                   GLINT_AOV_DEPTH == 1u << FILM_AOV_DEPTH && GLINT_AOV_ALL == FILM_AOV_MASK_ALL,
+               "glint_aov bit i is the film's AOV plane i");
+_Static_assert((size_t)SCENE_MAX_FILE_BYTES == GLINT_MAX_SCENE_BYTES, "one scene size limit, public and private");
+_Static_assert(sizeof(render_stats) == sizeof(glint_render_stats), "render_stats is glint_render_stats, field for field");
+
 const char *glint_version(void) { return GLINT_VERSION; }
 
 void glint_overrides_init(glint_overrides *o) {
@@ -67,7 +77,8 @@ glint_status glint_scene_parse_with(const char *name, const char *text, size_t l
 
 glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err) {
     glint_error scratch;
-    return scene_override(scene, o, err ? err : &scratch);
+    scene_overrides so = {o->width, o->height, o->spp, o->max_depth, o->seed, o->accel, o->output_encoding};
+    return scene_override(scene, &so, err ? err : &scratch);
 }
 
 void glint_scene_size(const glint_scene *scene, int *width, int *height) {
@@ -105,7 +116,12 @@ glint_status glint_render(const glint_scene *scene, const glint_render_options *
         ro.cancel = opt->cancel ? &opt->cancel->requested : NULL;
     }
     ro.aovs = opt ? opt->aovs : 0u;
-    return render_scene(scene, &ro, progress, user, out, stats, err ? err : &scratch);
+    render_stats rs;
+    glint_status st = render_scene(scene, &ro, progress, user, out, stats ? &rs : NULL, err ? err : &scratch);
+    if (stats) *stats = (glint_render_stats){rs.wall_seconds, rs.build_seconds, rs.render_seconds, rs.samples, rs.rays,
+                                             rs.shadow_rays, rs.discarded_samples, rs.samples_resumed, rs.bvh_nodes,
+                                             rs.bvh_leaves, rs.bvh_depth, rs.threads, rs.spp, rs.spp_done};
+    return st;
 }
 
 glint_cancel *glint_cancel_new(void) {
@@ -128,7 +144,7 @@ void glint_cancel_free(glint_cancel *c) { free(c); }
 
 glint_status glint_image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
     glint_error scratch;
-    return image_write(img, path, format, err ? err : &scratch);
+    return image_write(img, path, (image_format)format, err ? err : &scratch);
 }
 
 glint_status glint_image_write_aov(const glint_image *img, glint_aov aov, const char *path, glint_error *err) {
@@ -141,7 +157,7 @@ glint_status glint_image_write_aov(const glint_image *img, glint_aov aov, const 
 
 glint_status glint_image_check_path(const char *path, glint_format format, glint_error *err) {
     glint_error scratch;
-    return image_check_path(path, format, err ? err : &scratch);
+    return image_check_path(path, (image_format)format, err ? err : &scratch);
 }
 
 void glint_image_info(const glint_image *img, int *width, int *height, const float **rgb) {

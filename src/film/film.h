@@ -3,7 +3,7 @@
 #ifndef GLINT_FILM_H
 #define GLINT_FILM_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "core/stats.h"
 #include "core/vec.h"
 
@@ -19,11 +19,15 @@ typedef enum output_transform { TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SR
 
 /// The AOVs a film can keep (the bits of glint_aov), in the order of glint_image.aov[].
 enum { FILM_AOV_ALBEDO, FILM_AOV_NORMAL, FILM_AOV_DEPTH, FILM_AOV_COUNT };
+/// Every AOV bit (bit i: plane FILM_AOV i, as glint_aov's bits are).
+#define FILM_AOV_MASK_ALL ((1u << FILM_AOV_COUNT) - 1u)
 
 /// Floats a pixel of AOV plane i (FILM_AOV_*): 3 for albedo RGB and normal XYZ, 1 for depth Z.
 static inline int film_aov_channels(int i) { return i == FILM_AOV_DEPTH ? 1 : 3; }
 
-/// The rendered image (the public glint_image): linear RGB means and how they are displayed.
+/// The rendered image: linear RGB means and how they are displayed. The API hands it out as the opaque
+/// glint_image, under this tag.
+typedef struct glint_image glint_image;
 struct glint_image {
     int width, height;
     float *rgb;                 ///< linear RGB, 3 floats a pixel, row 0 at the top

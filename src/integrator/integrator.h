@@ -5,7 +5,7 @@
 #ifndef GLINT_INTEGRATOR_H
 #define GLINT_INTEGRATOR_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "integrator/integrator_common.h"
 
 #include <stdbool.h>

@@ -2,7 +2,7 @@
 #ifndef GLINT_PATH_H
 #define GLINT_PATH_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "integrator/integrator_common.h"
 
 #include <stdbool.h>

@@ -2,7 +2,7 @@
 #ifndef GLINT_WHITTED_H
 #define GLINT_WHITTED_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "integrator/integrator_common.h"
 
 /// The Whitted integrator (paper or colour mode, as the scene says).

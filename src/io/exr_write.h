@@ -4,7 +4,8 @@
 #ifndef GLINT_EXR_WRITE_H
 #define GLINT_EXR_WRITE_H
 
-#include "glint.h"
+#include "core/status.h"
+#include "film/film.h"
 
 #include <stdbool.h>
 #include <stdio.h>

@@ -242,9 +242,9 @@ glint_status image_merge(const char *output, const char *const *parts_paths, siz
         snprintf(err->message, sizeof err->message, "merge: no parts given, expected one PNG per region");
         return GLINT_ERR_INPUT;
     }
-    glint_status st = image_check_path(output, GLINT_FORMAT_AUTO, err);
-    glint_format format = image_format_of(output);
-    if (st == GLINT_OK && format != GLINT_FORMAT_PNG && format != GLINT_FORMAT_PPM) {
+    glint_status st = image_check_path(output, IMAGE_FORMAT_AUTO, err);
+    image_format format = image_format_of(output);
+    if (st == GLINT_OK && format != IMAGE_FORMAT_PNG && format != IMAGE_FORMAT_PPM) {
         snprintf(err->message, sizeof err->message, "%s: merge writes the parts' 8-bit values, expected .png or .ppm",
                  output);
         st = GLINT_ERR_INPUT;

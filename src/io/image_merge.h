@@ -2,7 +2,7 @@
 #ifndef GLINT_IMAGE_MERGE_H
 #define GLINT_IMAGE_MERGE_H
 
-#include "glint.h"
+#include "core/status.h"
 
 #include <stddef.h>
 

@@ -1,6 +1,7 @@
 // image_read.c — PNG (libpng's simplified API) and JPEG (libjpeg, any scan mode) to linear RGB floats.
 #include "io/image_read.h"
 
+#include <stdbool.h>
 #include <errno.h>
 #include <math.h>
 #include <setjmp.h>

@@ -2,7 +2,7 @@
 #ifndef GLINT_IMAGE_READ_H
 #define GLINT_IMAGE_READ_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "core/image_rgb.h"
 
 #include <stddef.h>

@@ -28,9 +28,9 @@ static const char SUPPORTED_FORMATS[] =
 // ---- choosing the format ----
 
 // The format `requested`, or the one the path's extension names; GLINT_ERR_INPUT with a message otherwise.
-static glint_status resolve_format(const char *path, glint_format requested, glint_format *out, glint_error *err) {
-    if (requested != GLINT_FORMAT_AUTO) { *out = requested; return GLINT_OK; }
-    if (strcmp(path, "-") == 0) { *out = GLINT_FORMAT_PPM; return GLINT_OK; }
+static glint_status resolve_format(const char *path, image_format requested, image_format *out, glint_error *err) {
+    if (requested != IMAGE_FORMAT_AUTO) { *out = requested; return GLINT_OK; }
+    if (strcmp(path, "-") == 0) { *out = IMAGE_FORMAT_PPM; return GLINT_OK; }
     const char *base = strrchr(path, '/');
     base = base ? base + 1 : path;
     const char *dot = strrchr(base, '.');
@@ -39,11 +39,11 @@ static glint_status resolve_format(const char *path, glint_format requested, gli
                  SUPPORTED_FORMATS);
         return GLINT_ERR_INPUT;
     }
-    if (strcasecmp(dot, ".png") == 0) *out = GLINT_FORMAT_PNG;
-    else if (strcasecmp(dot, ".ppm") == 0) *out = GLINT_FORMAT_PPM;
-    else if (strcasecmp(dot, ".pfm") == 0) *out = GLINT_FORMAT_PFM;
-    else if (strcasecmp(dot, ".exr") == 0) *out = GLINT_FORMAT_EXR;
-    else if (strcasecmp(dot, ".hdr") == 0) *out = GLINT_FORMAT_HDR;
+    if (strcasecmp(dot, ".png") == 0) *out = IMAGE_FORMAT_PNG;
+    else if (strcasecmp(dot, ".ppm") == 0) *out = IMAGE_FORMAT_PPM;
+    else if (strcasecmp(dot, ".pfm") == 0) *out = IMAGE_FORMAT_PFM;
+    else if (strcasecmp(dot, ".exr") == 0) *out = IMAGE_FORMAT_EXR;
+    else if (strcasecmp(dot, ".hdr") == 0) *out = IMAGE_FORMAT_HDR;
     else {
         snprintf(err->message, sizeof err->message, "%s: unknown image format '%s', %s", path, dot, SUPPORTED_FORMATS);
         return GLINT_ERR_INPUT;
@@ -51,10 +51,10 @@ static glint_status resolve_format(const char *path, glint_format requested, gli
     return GLINT_OK;
 }
 
-glint_format image_format_of(const char *path) {
-    glint_format format = GLINT_FORMAT_AUTO;
+image_format image_format_of(const char *path) {
+    image_format format = IMAGE_FORMAT_AUTO;
     glint_error scratch;
-    return resolve_format(path, GLINT_FORMAT_AUTO, &format, &scratch) == GLINT_OK ? format : GLINT_FORMAT_AUTO;
+    return resolve_format(path, IMAGE_FORMAT_AUTO, &format, &scratch) == GLINT_OK ? format : IMAGE_FORMAT_AUTO;
 }
 
 // ---- encoders: each writes the whole image to f and returns 0, or an errno value (or -1: see why) ----
@@ -220,18 +220,18 @@ static int write_hdr(FILE *f, const glint_image *img) {
 }
 
 // Writes the image in `format`, or, for aov >= 0 (FILM_AOV_*), that AOV plane as a PFM.
-static int write_format(FILE *f, const glint_image *img, glint_format format, int aov, char *why, size_t why_size) {
+static int write_format(FILE *f, const glint_image *img, image_format format, int aov, char *why, size_t why_size) {
     if (aov >= 0) return write_pfm_plane(f, img, img->aov[aov], film_aov_channels(aov));
     rows8 src = rows8_of(img);
     switch (format) {
-    case GLINT_FORMAT_PNG: return write_png(f, &src, why, why_size);
-    case GLINT_FORMAT_PPM_ASCII: return write_ppm_ascii(f, &src);
-    case GLINT_FORMAT_PFM: return write_pfm(f, img);
-    case GLINT_FORMAT_EXR: return exr_write(f, img, false, why, why_size);
-    case GLINT_FORMAT_EXR_HALF: return exr_write(f, img, true, why, why_size);
-    case GLINT_FORMAT_HDR: return write_hdr(f, img);
-    case GLINT_FORMAT_PPM:
-    case GLINT_FORMAT_AUTO: break;
+    case IMAGE_FORMAT_PNG: return write_png(f, &src, why, why_size);
+    case IMAGE_FORMAT_PPM_ASCII: return write_ppm_ascii(f, &src);
+    case IMAGE_FORMAT_PFM: return write_pfm(f, img);
+    case IMAGE_FORMAT_EXR: return exr_write(f, img, false, why, why_size);
+    case IMAGE_FORMAT_EXR_HALF: return exr_write(f, img, true, why, why_size);
+    case IMAGE_FORMAT_HDR: return write_hdr(f, img);
+    case IMAGE_FORMAT_PPM:
+    case IMAGE_FORMAT_AUTO: break;
     }
     return write_ppm_binary(f, &src);
 }
@@ -385,7 +385,7 @@ static int publish_unnamed(int fd, const char *target) {
     return rc;
 }
 
-static glint_status write_stdout(const glint_image *img, glint_format format, glint_error *err) {
+static glint_status write_stdout(const glint_image *img, image_format format, glint_error *err) {
     char why[300] = "";
     int rc = write_format(stdout, img, format, -1, why, sizeof why);
     errno = 0;
@@ -396,7 +396,7 @@ static glint_status write_stdout(const glint_image *img, glint_format format, gl
 // The writer of the image (aov < 0) or of one AOV plane (as PFM) in one format, for image_write_file.
 typedef struct image_job {
     const glint_image *img;
-    glint_format format;
+    image_format format;
     int aov;
 } image_job;
 
@@ -406,7 +406,7 @@ static int write_image_job(FILE *f, const void *user, char *why, size_t why_size
 }
 
 // Writes the image (aov < 0) or one AOV plane to the file path, through a temporary file.
-static glint_status write_file(const glint_image *img, const char *path, glint_format format, int aov,
+static glint_status write_file(const glint_image *img, const char *path, image_format format, int aov,
                                glint_error *err) {
     image_job job = {img, format, aov};
     return image_write_file(path, write_image_job, &job, err);
@@ -446,7 +446,7 @@ glint_status image_write_file(const char *path, image_file_writer fill, const vo
 
 // Writes the image (aov < 0; "-": standard output) or one AOV plane, as an "image write" event on the calling
 // thread's trace when there is one.
-static glint_status write_traced(const glint_image *img, const char *path, glint_format format, int aov,
+static glint_status write_traced(const glint_image *img, const char *path, image_format format, int aov,
                                  glint_error *err) {
     static const char *const formats[] = {"auto", "PNG", "PPM", "PPM (ASCII)", "PFM", "EXR", "EXR (half)", "HDR"};
     static const char *const aovs[FILM_AOV_COUNT] = {"albedo", "normal", "depth"};
@@ -461,7 +461,7 @@ static glint_status write_traced(const glint_image *img, const char *path, glint
     return st;
 }
 
-glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err) {
+glint_status image_write(const glint_image *img, const char *path, image_format format, glint_error *err) {
     glint_status st = resolve_format(path, format, &format, err);
     if (st != GLINT_OK) return st;
     return write_traced(img, path, format, -1, err);
@@ -469,10 +469,10 @@ glint_status image_write(const glint_image *img, const char *path, glint_format 
 
 glint_status image_write_aov(const glint_image *img, int aov, const char *path, glint_error *err) {
     static const char *const names[FILM_AOV_COUNT] = {"albedo", "normal", "depth"};
-    glint_format format;
-    glint_status st = resolve_format(path, GLINT_FORMAT_AUTO, &format, err);
+    image_format format;
+    glint_status st = resolve_format(path, IMAGE_FORMAT_AUTO, &format, err);
     if (st != GLINT_OK) return st;
-    if (format != GLINT_FORMAT_PFM || strcmp(path, "-") == 0) {
+    if (format != IMAGE_FORMAT_PFM || strcmp(path, "-") == 0) {
         snprintf(err->message, sizeof err->message, "%s: an AOV is written as PFM alone, expected a .pfm file "
                  "(OpenEXR files hold the AOVs as channels beside the colour)", path);
         return GLINT_ERR_INPUT;
@@ -488,21 +488,21 @@ glint_status image_write_aov(const glint_image *img, int aov, const char *path, 
 // The 8-bit writer of rows8 in PNG or PPM, for image_write_file.
 typedef struct rows8_job {
     const rows8 *src;
-    glint_format format;
+    image_format format;
 } rows8_job;
 
 static int write_rows8_job(FILE *f, const void *user, char *why, size_t why_size) {
     const rows8_job *job = user;
-    if (job->format == GLINT_FORMAT_PNG) return write_png(f, job->src, why, why_size);
-    return job->format == GLINT_FORMAT_PPM_ASCII ? write_ppm_ascii(f, job->src) : write_ppm_binary(f, job->src);
+    if (job->format == IMAGE_FORMAT_PNG) return write_png(f, job->src, why, why_size);
+    return job->format == IMAGE_FORMAT_PPM_ASCII ? write_ppm_ascii(f, job->src) : write_ppm_binary(f, job->src);
 }
 
 glint_status image_write_rgb8(const uint8_t *rgb, int width, int height, output_transform transform,
                               const char *path, glint_error *err) {
-    glint_format format;
-    glint_status st = resolve_format(path, GLINT_FORMAT_AUTO, &format, err);
+    image_format format;
+    glint_status st = resolve_format(path, IMAGE_FORMAT_AUTO, &format, err);
     if (st != GLINT_OK) return st;
-    if (format != GLINT_FORMAT_PNG && format != GLINT_FORMAT_PPM) {
+    if (format != IMAGE_FORMAT_PNG && format != IMAGE_FORMAT_PPM) {
         snprintf(err->message, sizeof err->message, "%s: 8-bit values are written as .png or .ppm alone; a float "
                  "format would hold them as if they were linear light", path);
         return GLINT_ERR_INPUT;
@@ -517,7 +517,7 @@ glint_status image_write_rgb8(const uint8_t *rgb, int width, int height, output_
     return rc == 0 ? GLINT_OK : cannot_write("standard output", rc, why, err);
 }
 
-glint_status image_check_path(const char *path, glint_format format, glint_error *err) {
+glint_status image_check_path(const char *path, image_format format, glint_error *err) {
     glint_status st = resolve_format(path, format, &format, err);
     if (st != GLINT_OK || strcmp(path, "-") == 0) return st;
     return image_check_file(path, err);

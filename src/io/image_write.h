@@ -3,7 +3,7 @@
 #ifndef GLINT_IMAGE_WRITE_H
 #define GLINT_IMAGE_WRITE_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "film/film.h"
 
 #include <stddef.h>
@@ -13,10 +13,22 @@
 /// The PNG tEXt keyword under which a region's image records "X0,Y0,X1,Y1,W,H" (W x H: the full image).
 #define IMAGE_REGION_KEY "glint:region"
 
-/// The format a path's extension names ("-": PPM), GLINT_FORMAT_AUTO when it names none.
-glint_format image_format_of(const char *path);
-/// Writes img to path in the format (GLINT_FORMAT_AUTO: from the extension); "-" writes PPM to standard output.
-glint_status image_write(const glint_image *img, const char *path, glint_format format, glint_error *err);
+/// Image file formats, as glint_format lists them (the API converts; the values are the same).
+typedef enum image_format {
+    IMAGE_FORMAT_AUTO, ///< from the path's extension
+    IMAGE_FORMAT_PNG,
+    IMAGE_FORMAT_PPM,
+    IMAGE_FORMAT_PPM_ASCII,
+    IMAGE_FORMAT_PFM,
+    IMAGE_FORMAT_EXR,
+    IMAGE_FORMAT_EXR_HALF,
+    IMAGE_FORMAT_HDR
+} image_format;
+
+/// The format a path's extension names ("-": PPM), IMAGE_FORMAT_AUTO when it names none.
+image_format image_format_of(const char *path);
+/// Writes img to path in the format (IMAGE_FORMAT_AUTO: from the extension); "-" writes PPM to standard output.
+glint_status image_write(const glint_image *img, const char *path, image_format format, glint_error *err);
 /// Writes AOV plane `aov` (FILM_AOV_*) of img to the .pfm file path ("PF" for albedo and normal, "Pf" for depth),
 /// as image_write writes files; GLINT_ERR_INPUT for another extension or an AOV the image lacks.
 glint_status image_write_aov(const glint_image *img, int aov, const char *path, glint_error *err);
@@ -27,7 +39,7 @@ glint_status image_write_rgb8(const uint8_t *rgb, int width, int height, output_
                               const char *path, glint_error *err);
 /// Checks before a render that an image can be written at path: GLINT_ERR_INPUT for an unknown extension,
 /// GLINT_ERR_RENDER ("PATH: cannot write: reason") for a missing or unwritable directory or a read-only file.
-glint_status image_check_path(const char *path, glint_format format, glint_error *err);
+glint_status image_check_path(const char *path, image_format format, glint_error *err);
 
 /// Fills the open file f with what user describes: 0, an errno value, or -1 with the reason in why.
 typedef int (*image_file_writer)(FILE *f, const void *user, char *why, size_t why_size);

@@ -12,7 +12,7 @@
 #ifndef GLINT_JSON_READ_H
 #define GLINT_JSON_READ_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "core/vec.h"
 #include "io/json_scan.h"
 

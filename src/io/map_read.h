@@ -3,7 +3,7 @@
 #ifndef GLINT_MAP_READ_H
 #define GLINT_MAP_READ_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "core/image_rgb.h"
 
 /// Largest map accepted, in pixels (16384 x 8192: 1.5 GiB of floats): a file must not exhaust memory.

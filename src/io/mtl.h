@@ -20,7 +20,7 @@
 #ifndef GLINT_MTL_H
 #define GLINT_MTL_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "core/vec.h"
 
 #include <stdbool.h>

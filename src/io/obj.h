@@ -36,7 +36,7 @@
 #ifndef GLINT_OBJ_H
 #define GLINT_OBJ_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "geometry/mesh.h"
 #include "io/mtl.h"
 

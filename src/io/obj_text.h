@@ -3,7 +3,7 @@
 #ifndef GLINT_OBJ_TEXT_H
 #define GLINT_OBJ_TEXT_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "io/obj.h"
 
 #include <stdbool.h>

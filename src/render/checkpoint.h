@@ -4,7 +4,7 @@
 #ifndef GLINT_CHECKPOINT_H
 #define GLINT_CHECKPOINT_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "scene/scene.h"
 
 #include <stdbool.h>

@@ -4,7 +4,7 @@
 #ifndef GLINT_FRAME_H
 #define GLINT_FRAME_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "accel/accel.h"
 #include "integrator/integrator.h"
 #include "scene/scene.h"

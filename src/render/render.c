@@ -79,9 +79,9 @@ typedef struct progress_state {
     render_job *job;
     worker *workers;
     int worker_count;
-    glint_progress_fn fn;          ///< may be NULL
+    render_progress_fn fn;          ///< may be NULL
     void *user;
-    glint_live_image_fn live_image; ///< may be NULL
+    render_live_fn live_image; ///< may be NULL
     void *live_user;
     bool finished;
     pthread_mutex_t lock;
@@ -512,12 +512,12 @@ static void trace_passes(const render_job *job, trace_lane *passes) {
     }
 }
 
-static glint_status render_run(const glint_scene *s, const render_options *opt, glint_progress_fn progress,
-                               void *user, glint_image **out, glint_render_stats *stats, glint_error *err);
+static glint_status render_run(const glint_scene *s, const render_options *opt, render_progress_fn progress,
+                               void *user, glint_image **out, render_stats *stats, glint_error *err);
 
 // The render, as one "render" event on the calling thread's row of the trace when there is one.
-glint_status render_scene(const glint_scene *s, const render_options *opt, glint_progress_fn progress, void *user,
-                          glint_image **out, glint_render_stats *stats, glint_error *err) {
+glint_status render_scene(const glint_scene *s, const render_options *opt, render_progress_fn progress, void *user,
+                          glint_image **out, render_stats *stats, glint_error *err) {
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
     glint_status st = render_run(s, opt, progress, user, out, stats, err);
@@ -528,17 +528,17 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, glint
     return st;
 }
 
-static glint_status render_run(const glint_scene *s, const render_options *opt, glint_progress_fn progress,
-                               void *user, glint_image **out, glint_render_stats *stats, glint_error *err) {
+static glint_status render_run(const glint_scene *s, const render_options *opt, render_progress_fn progress,
+                               void *user, glint_image **out, render_stats *stats, glint_error *err) {
     *out = NULL;
     double t0 = clock_seconds();
     int region[4];
     glint_status st = tiles_resolve_region(&s->settings, opt ? opt->region : NULL, region, err);
     if (st != GLINT_OK) return st;
     unsigned aovs = opt ? opt->aovs : 0u;
-    if (aovs & ~(unsigned)GLINT_AOV_ALL) {
+    if (aovs & ~FILM_AOV_MASK_ALL) {
         snprintf(err->message, sizeof err->message, "--aov: unknown AOV bits 0x%x, expected GLINT_AOV_ALBEDO, "
-                 "GLINT_AOV_NORMAL or GLINT_AOV_DEPTH", aovs & ~(unsigned)GLINT_AOV_ALL);
+                 "GLINT_AOV_NORMAL or GLINT_AOV_DEPTH", aovs & ~FILM_AOV_MASK_ALL);
         return GLINT_ERR_INPUT;
     }
     // Checkpoints hold the colour's sums: AOVs are not saved in them (yet), so the two do not go together.
@@ -604,7 +604,7 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
     }
     trace_lane *passes_lane = trace_open_lanes(workers, threads);
 
-    glint_live_image_fn live_image = opt ? opt->live_image : NULL;
+    render_live_fn live_image = opt ? opt->live_image : NULL;
     progress_state prog = {.job = &job, .workers = workers, .worker_count = threads, .fn = progress, .user = user,
                            .live_image = live_image, .live_user = opt ? opt->live_user : NULL};
     pthread_t prog_thread;

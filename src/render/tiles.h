@@ -4,7 +4,7 @@
 #ifndef GLINT_TILES_H
 #define GLINT_TILES_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "core/stats.h"
 #include "integrator/integrator.h"
 #include "scene/scene.h"

@@ -199,7 +199,7 @@ static glint_status warn_brute_force(glint_scene *s, bool from_flag, glint_error
     return GLINT_ERR_RENDER;
 }
 
-glint_status scene_override(glint_scene *s, const glint_overrides *o, glint_error *err) {
+glint_status scene_override(glint_scene *s, const scene_overrides *o, glint_error *err) {
     render_settings *rs = &s->settings;
     if (o->width >= 0 && !override_in_range("--width", o->width, 1, SCENE_MAX_DIMENSION, err)) return GLINT_ERR_INPUT;
     if (o->height >= 0 && !override_in_range("--height", o->height, 1, SCENE_MAX_DIMENSION, err))

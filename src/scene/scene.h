@@ -3,7 +3,7 @@
 #ifndef GLINT_SCENE_H
 #define GLINT_SCENE_H
 
-#include "glint.h"
+#include "core/status.h"
 #include "accel/accel.h"
 #include "core/vec.h"
 #include "camera/camera.h"
@@ -47,6 +47,7 @@ typedef struct render_settings {
 /// Hard limits on sizes, so that a scene file cannot ask for absurd amounts of memory or time.
 enum {
     SCENE_MAX_DIMENSION = 16384,
+    SCENE_MAX_FILE_BYTES = 256 << 20, ///< larger scene texts are refused (GLINT_MAX_SCENE_BYTES, the public name)
     SCENE_MAX_SPP = 1000000,
     SCENE_MAX_DEPTH = 10000,
     SCENE_MAX_NAME = 128,
@@ -67,6 +68,8 @@ typedef struct scene_input {
     char *path; ///< the path it was opened by (owned), to read it again for a checkpoint's identity
 } scene_input;
 
+/// The scene: plain data read from a scene file. The API hands it out as the opaque glint_scene, under this tag.
+typedef struct glint_scene glint_scene;
 struct glint_scene {
     char *path;            ///< scene file name, as given, for messages
     uint64_t text_hash;    ///< hash_bytes of the scene text (a file or standard input), for checkpoints
@@ -158,8 +161,15 @@ bool scene_reads_file(const glint_scene *s, const char *path);
 bool scene_add_warning(glint_scene *s, const char *message);
 /// An empty scene with every render setting at its documented default.
 glint_scene *scene_new(const char *path);
+/// Values that replace the scene file's render settings (glint_overrides, field for field); < 0 or NULL: keep.
+typedef struct scene_overrides {
+    long width, height, spp, max_depth;
+    long long seed;
+    const char *accel;           ///< "bvh", "bvh2" or "none"
+    const char *output_encoding; ///< "linear", "gamma2" or "srgb"
+} scene_overrides;
 /// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise).
-glint_status scene_override(glint_scene *s, const glint_overrides *o, glint_error *err);
+glint_status scene_override(glint_scene *s, const scene_overrides *o, glint_error *err);
 /// Reads a JSON scene from memory (docs/scene-format.md); `name` is used in messages and to resolve relative
 /// paths. On failure *out is NULL and *err says "file:line:col: what is wrong, what was expected". Large mesh
 /// files are read on `threads` threads (0: all online CPUs); the scene is the same for every count.

@@ -18,7 +18,7 @@
 #include <sys/stat.h>
 
 enum {
-    SF_MAX_FILE_BYTES = 256 << 20, ///< larger scene files are refused before parsing
+    SF_MAX_FILE_BYTES = SCENE_MAX_FILE_BYTES, ///< larger scene files are refused before parsing
     SF_MAX_ITEMS = 10000000,       ///< at most this many objects, materials and lights each
     SF_MAX_EXTENT = 1000000000,    ///< what renders lies within [-1e9, 1e9] on every axis (sf_check_extent)
     SF_LIST_NAMES = 10,            ///< material names listed in an "is not defined" message
@@ -26,7 +26,6 @@ enum {
     SF_MAX_NOISE_DEPTH = 32,       ///< octaves of turbulence (2^32 p is already far beyond any detail)
 };
 
-_Static_assert((size_t)SF_MAX_FILE_BYTES == GLINT_MAX_SCENE_BYTES, "one scene size limit, public and private");
 
 /// A name defined in "materials" or "textures".
 typedef struct sf_name {

@@ -40,7 +40,7 @@ MAJOR=${VERSION%%.*}
 if [[ $MAJOR == 0 ]]; then MINOR=${VERSION#*.}; MAJOR=0.${MINOR%%.*}; fi
 
 # --- The installed files, and the shared library's version chain
-for f in "$PREFIX/bin/glint" "$PREFIX/include/glint.h" "$PREFIX/share/man/man1/glint.1" "$LIBDIR/libglint.a" \
+for f in "$PREFIX/bin/glint" "$PREFIX/include/glint.h" "$PREFIX/include/glint/status.h" "$PREFIX/share/man/man1/glint.1" "$LIBDIR/libglint.a" \
     "$LIBDIR/libglint.so.$VERSION"; do
     if [[ -f $f ]]; then pass; else fail "not installed: ${f#"$PREFIX/"}"; fi
 done
