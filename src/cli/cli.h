@@ -80,8 +80,11 @@ double cli_now(void);
 void cli_progress_draw(double fraction, void *user);
 /// Erases the bar, if one was drawn.
 void cli_progress_clear(cli_progress *p);
-/// Prints the one-line statistics summary of a render on stderr, naming the image (output NULL: none written).
-void cli_print_stats(const cli_program *p, const glint_render_stats *st, const char *output);
+/// Ends a finished render's bar: drawn once more at 100 % and left on its line (nothing when none was drawn).
+void cli_progress_finish(cli_progress *p);
+/// Prints the one-line statistics summary of a render on stderr, naming the image (output NULL: none written)
+/// and, when write_seconds >= 0, how long writing it took.
+void cli_print_stats(const cli_program *p, const glint_render_stats *st, const char *output, double write_seconds);
 /// Says on stderr that the render was interrupted and how many samples per pixel (of img's pixels) are written.
 void cli_print_interrupted(const cli_program *prog, const glint_image *img, uint64_t samples, const char *output);
 /// Share of a render's samples that may be NaN or infinite (and dropped) before the program exits 1: 1 %.

@@ -168,7 +168,8 @@ static int run(const cli_options *opt, glint_trace *trace, glint_cancel *cancel)
     err = call.err;
     st = call.status;
     glint_scene_free(scene);
-    cli_progress_clear(&bar);
+    if (st == GLINT_OK) cli_progress_finish(&bar); // the bar says 100 % where the render reached it
+    else cli_progress_clear(&bar);
     // Only a finished render keeps its window: a stopped one was stopped to end the program.
     if (st != GLINT_OK) {
         cli_preview_close(preview);
@@ -181,14 +182,8 @@ static int run(const cli_options *opt, glint_trace *trace, glint_cancel *cancel)
     }
     bool interrupted = st == GLINT_ERR_INTERRUPTED;
     uint64_t samples_kept = stats.samples + stats.samples_resumed; // a resumed render keeps what it resumed
-    if (!opt->quiet) cli_print_stats(&CLI_GLINT, &stats, interrupted && samples_kept == 0 ? NULL : opt->output);
-    // A render that lost more than a small share of its samples is wrong, but its image is still written.
-    bool lost = cli_warn_discarded(&CLI_GLINT, &stats);
-    if (st == GLINT_OK && stats.spp_done < stats.spp && !opt->quiet)
-        fprintf(stderr, "glint: time limit of %ld s reached: %d of %d samples per pixel rendered\n", opt->time_limit,
-                stats.spp_done, stats.spp);
-
     if (interrupted && samples_kept == 0) {
+        if (!opt->quiet) cli_print_stats(&CLI_GLINT, &stats, NULL, -1.0);
         if (!opt->quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
         glint_image_free(img);
         return cli_signals_status();
@@ -196,9 +191,17 @@ static int run(const cli_options *opt, glint_trace *trace, glint_cancel *cancel)
     if (interrupted && !opt->quiet) cli_print_interrupted(&CLI_GLINT, img, samples_kept, opt->output);
 
     if (strcmp(opt->output, "-") != 0) cli_signals_block();
+    double write_began = cli_now();
     st = glint_image_write(img, opt->output, format, &err);
     for (int i = 0; st == GLINT_OK && i < CLI_AOV_COUNT; i++)
         if (opt->aov_output[i][0]) st = glint_image_write_aov(img, (glint_aov)(1u << i), opt->aov_output[i], &err);
+    // The statistics once the image is written, with how long that took (a 4K EXR takes seconds).
+    if (st == GLINT_OK && !opt->quiet) cli_print_stats(&CLI_GLINT, &stats, opt->output, cli_now() - write_began);
+    // A render that lost more than a small share of its samples is wrong, but its image is still written.
+    bool lost = st == GLINT_OK && cli_warn_discarded(&CLI_GLINT, &stats);
+    if (st == GLINT_OK && !interrupted && stats.spp_done < stats.spp && !opt->quiet)
+        fprintf(stderr, "glint: time limit of %ld s reached: %d of %d samples per pixel rendered\n", opt->time_limit,
+                stats.spp_done, stats.spp);
     if (st != GLINT_OK) {
         fprintf(stderr, "glint: %s\n", err.message);
         glint_image_free(img);

@@ -96,12 +96,21 @@ void cli_progress_clear(cli_progress *p) {
     p->drawn = false;
 }
 
+void cli_progress_finish(cli_progress *p) {
+    if (!p->drawn) return;
+    cli_progress_draw(1.0, p);
+    FILE *out = p->stream ? p->stream : stderr;
+    fputc('\n', out);
+    fflush(out);
+    p->drawn = false;
+}
+
 // Three significant figures without an exponent: 0.731, 11.2, 734.
 static void format_rate(double v, char *buf, size_t size) {
     snprintf(buf, size, v >= 99.95 ? "%.0f" : v >= 9.995 ? "%.1f" : "%.2f", v);
 }
 
-void cli_print_stats(const cli_program *prog, const glint_render_stats *st, const char *output) {
+void cli_print_stats(const cli_program *prog, const glint_render_stats *st, const char *output, double write_seconds) {
     // Rates over the render loop alone (as the Embree yardstick counts): scene preparation, the BVH build
     // in the first place, is reported on its own.
     double wall = st->render_seconds > 1e-9 ? st->render_seconds : 1e-9;
@@ -123,6 +132,7 @@ void cli_print_stats(const cli_program *prog, const glint_render_stats *st, cons
     if (!output) fputs("; no image", stderr);
     else if (strcmp(output, "-") == 0) fputs("; image on standard output", stderr);
     else fprintf(stderr, "; image %s", output);
+    if (output && write_seconds >= 0.0) fprintf(stderr, ", written in %.3f s", write_seconds);
     fputc('\n', stderr);
 }
 

@@ -306,7 +306,7 @@ int main(int argc, char **argv) {
     film_release(&f);
 
     if (!opt.quiet) {
-        cli_print_stats(&prog, &stats, interrupted && stats.samples == 0 ? NULL : opt.output);
+        cli_print_stats(&prog, &stats, interrupted && stats.samples == 0 ? NULL : opt.output, -1.0);
         print_shares(&report, size, stats.render_seconds);
     }
     bool lost = cli_warn_discarded(&prog, &stats);
