@@ -1,0 +1,19 @@
+# gallery.sh — the README's gallery is what tools/gallery.sh makes: every committed PNG of docs/gallery/ equals,
+# byte for byte, the render of its scene at the size and sample count the script gives (skipped under the
+# sanitizers, where the fifteen renders take many minutes).
+source "$2/tests/cli/common.bash"
+
+if grep -qa __asan_init "$GLINT"; then
+    echo "skipped: glint is built with AddressSanitizer"
+    summary
+    exit 0
+fi
+bash "$SRC/tools/gallery.sh" "$GLINT" "$TMP/gallery" || fail "tools/gallery.sh failed"
+count=0
+for png in "$TMP"/gallery/*.png; do
+    name=$(basename "$png")
+    check "docs/gallery/$name is what tools/gallery.sh makes" cmp -s "$png" "$SRC/docs/gallery/$name"
+    count=$((count + 1))
+done
+check "the script made all 15 pictures (made $count)" test "$count" -eq 15
+summary
