@@ -107,6 +107,7 @@ static bool png_decode_part(png_reader *r, part *p) {
     png_set_read_fn(r->png, r, png_on_read);
     // A damaged chunk is an error, not a chunk quietly dropped (the region chunk is ancillary).
     png_set_crc_action(r->png, PNG_CRC_ERROR_QUIT, PNG_CRC_ERROR_QUIT);
+    png_set_user_limits(r->png, MAX_SIDE, MAX_SIDE);
     r->stage = "its header";
     png_read_info(r->png, r->info);
     png_uint_32 w = png_get_image_width(r->png, r->info), h = png_get_image_height(r->png, r->info);
@@ -156,6 +157,31 @@ static bool png_decode_part(png_reader *r, part *p) {
     return true;
 }
 
+// Walks the chunks after the signature: each must fit in what is left of the file, up to IEND. libpng allocates
+// a text chunk's declared length before reading it (a forged 2 GB tEXt in a 300-byte part). false with the
+// message written otherwise; the file is left at its start.
+static bool chunks_fit(png_reader *r) {
+    uint64_t at = 8;
+    for (;;) {
+        unsigned char head[8];
+        if (fseek(r->f, (long)at, SEEK_SET) != 0 || fread(head, 1, 8, r->f) != 8) {
+            snprintf(r->message, sizeof r->message, "truncated PNG: the file ends before its IEND chunk");
+            return false;
+        }
+        uint64_t length = (uint64_t)head[0] << 24 | (uint64_t)head[1] << 16 | (uint64_t)head[2] << 8 | head[3];
+        if (length > r->file_size - at - 8 || r->file_size - at - 8 - length < 4) {
+            snprintf(r->message, sizeof r->message, "truncated PNG: its %.4s chunk declares %llu bytes, the file holds "
+                     "%llu more", (const char *)head + 4, (unsigned long long)length,
+                     (unsigned long long)(r->file_size - at - 8));
+            return false;
+        }
+        at += 12 + length;
+        if (memcmp(head + 4, "IEND", 4) == 0) break;
+    }
+    rewind(r->f);
+    return true;
+}
+
 // Reads one part; GLINT_ERR_INPUT ("PATH: what is wrong") when it cannot be read or is no region PNG.
 static glint_status read_part(const char *path, part *p, glint_error *err) {
     memset(p, 0, sizeof *p);
@@ -170,6 +196,7 @@ static glint_status read_part(const char *path, part *p, glint_error *err) {
     uint8_t signature[8];
     bool ok = fread(signature, 1, sizeof signature, r.f) == sizeof signature && png_sig_cmp(signature, 0, 8) == 0;
     if (!ok) snprintf(r.message, sizeof r.message, "not a PNG file, %s", EXPECTED_PART);
+    ok = ok && chunks_fit(&r);
     if (ok) {
         rewind(r.f);
         r.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, r.message, image_png_error, image_png_warning);

@@ -130,17 +130,21 @@ refused 0 "" merge m2.png same_twice.png b.png
 refused 2 "two glint:region chunks that disagree" merge m3.png two_regions.png b.png
 refused 2 "glint:region '4294967296,0,6,8,12,8' is not X0,Y0,X1,Y1,W,H" merge m3.png overflow.png b.png
 refused 2 "bad_crc.png: corrupt PNG (tEXt: CRC error)" merge m3.png bad_crc.png b.png
-refused 2 "cut_in_data.png: truncated PNG: the file ends in its image data" merge m3.png cut_in_data.png b.png
+refused 2 "cut_in_data.png: truncated PNG: its IDAT chunk declares 74 bytes, the file holds 8 more" merge m3.png cut_in_data.png b.png
 refused 1 "f.png: cannot write: it is a FIFO" merge f.png a.png b.png
 check "the merge left the FIFO a FIFO" test -p f.png
 check "no merge output from refused parts" test ! -e m3.png
 
-# A part too small to hold the rows it declares is refused before they are allocated (deflate packs at most
-# 1032 bytes into one): 200 kB that claim 16384 x 16384 pixels.
+# A part too small to hold what it declares is refused before anything is allocated: a chunk longer than the rest
+# of the file (fuzz_merge found a 2 GB tEXt in 300 bytes), or rows that deflate (at most 1032 bytes from one)
+# cannot have made from the file's size.
 python3 "$SRC/tests/cli/hostile_files.py" big 16384 16384 huge.png || fail "hostile_files.py big failed"
 head -c 200000 huge.png >huge_cut.png
-refused 2 "huge_cut.png: truncated PNG: 200000 bytes cannot hold 16384x16384 pixels" merge hm.png huge_cut.png
-rm -f huge.png huge_cut.png
+refused 2 "huge_cut.png: truncated PNG: its IDAT chunk declares 782748 bytes, the file holds 199907 more" merge hm.png huge_cut.png
+refused 2 "png_oom_text_length.png: truncated PNG: its tEXt chunk declares 2130706457 bytes" merge hm.png png_oom_text_length.png
+python3 "$SRC/tests/cli/hostile_files.py" claim 16384 16384 claim.png || fail "hostile_files.py claim failed"
+refused 2 "claim.png: truncated PNG: 180 bytes cannot hold 16384x16384 pixels" merge hm.png claim.png
+rm -f huge.png huge_cut.png claim.png
 
 # 8-bit parts merge in 8 bits: an 8192x4096 part (98 kB on disk) takes about 240 MB, not 530 MB (floats).
 if grep -qa __asan_init "$GLINT"; then

@@ -4,6 +4,7 @@
   png SRC DIR   region PNGs: the region chunk after the image data, two region chunks that disagree, a region
                 of numbers beyond int, a region chunk with a bad CRC, the file cut in its image data
   big W H OUT   a black region PNG of W x H pixels that is the whole of a W x H image (small on disk)
+  claim W H OUT the same header, but image data for one row only
   hdr SRC DIR   run-length Radiance files: a zero run, a run past the end of a scanline, a scanline that is
                 not run-length encoded after ones that are, cut in the middle, flat pixels cut short
 """
@@ -95,10 +96,10 @@ def hdr_variants(src, out):
         open(os.path.join(out, name), "wb").write(body)
 
 
-def big_part(width, height, out):
+def big_part(width, height, out, rows=None):
     def chunk(kind, body):
         return struct.pack(">I", len(body)) + kind + body + struct.pack(">I", zlib.crc32(kind + body) & 0xFFFFFFFF)
-    rows = (b"\0" * (1 + width * 3)) * height  # filter byte 0 and black pixels, row by row
+    rows = rows if rows is not None else (b"\0" * (1 + width * 3)) * height  # filter byte 0, black pixels
     region = b"glint:region\0" + b"0,0,%d,%d,%d,%d" % (width, height, width, height)
     body = (chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 2, 0, 0, 0)) + chunk(b"tEXt", region)
             + chunk(b"IDAT", zlib.compress(rows, 9)) + chunk(b"IEND", b""))
@@ -108,6 +109,8 @@ def big_part(width, height, out):
 if __name__ == "__main__":
     if len(sys.argv) == 5 and sys.argv[1] == "big":
         big_part(int(sys.argv[2]), int(sys.argv[3]), sys.argv[4])
+    elif len(sys.argv) == 5 and sys.argv[1] == "claim":  # whole chunks, but one row of data for the size declared
+        big_part(int(sys.argv[2]), int(sys.argv[3]), sys.argv[4], rows=b"\0" * (1 + int(sys.argv[2]) * 3))
     elif len(sys.argv) == 4 and sys.argv[1] in ("png", "hdr"):
         (png_variants if sys.argv[1] == "png" else hdr_variants)(sys.argv[2], sys.argv[3])
     else:
