@@ -1,6 +1,6 @@
 // bvh_build_parallel.c — the binary BVH built on every thread of a pool: exactly the tree of the serial
 // bvh_build_range, for any number of threads (the top split range by range by all threads, then subtrees).
-#include "accel/bvh_build_internal.h"
+#include "accel/bvh_build_parallel.h"
 #include "core/array.h"
 
 #include <stdlib.h>
@@ -12,7 +12,7 @@
 // order. Smaller ranges are subtrees, each built by bvh_build_range on one thread into its own node buffer, largest
 // first; then every subtree is copied to where the serial build numbers it, its child offsets moved along.
 
-// Defaults (beside PARALLEL_MIN, bvh_build_internal.h): the top leaves at least SUBTREES_PER_THREAD subtrees per
+// Defaults (beside PARALLEL_MIN, bvh_build_parallel.h): the top leaves at least SUBTREES_PER_THREAD subtrees per
 // thread, for the balance of the threads; a step over a range is cut into at most CHUNKS_PER_THREAD chunks per
 // thread, of at least PARALLEL_MIN / CHUNK_DIVISOR primitives.
 enum { SUBTREES_PER_THREAD = 4, CHUNKS_PER_THREAD = 4, CHUNK_DIVISOR = 8 };

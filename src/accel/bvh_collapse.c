@@ -1,6 +1,8 @@
 // bvh_collapse.c — the binary BVH collapsed into the wide one by the SAH-optimal cover plan (plan_cover), its
 // leaves listed for their packets (bvh_packets.c), and the wide build's steps from the binary tree to the packets.
-#include "accel/bvh_build_internal.h"
+#include "accel/bvh_collapse.h"
+#include "accel/bvh_packets.h"
+#include "accel/bvh_sah.h"
 
 #include <stdlib.h>
 
@@ -22,6 +24,7 @@ static float node2_half_area(const bvh2_node *n) {
     return box_half_area(&b);
 }
 
+// Lists a binary leaf for the second pass and counts the slots of its packets (packet_run); returns its
 // temporary reference. The leaf's references are sorted already (bvh_sort_leaves).
 static uint32_t note_leaf(collapser *cl, const bvh2_node *leaf) {
     const prim_ref *refs = &cl->b->refs[leaf->offset];
@@ -31,6 +34,8 @@ static uint32_t note_leaf(collapser *cl, const bvh2_node *leaf) {
     return BVH_LEAF | (uint32_t)cl->span_count++;
 }
 
+/// The cheapest cover the SAH finds for a binary subtree by at most i children of a wide node (i = 1 .. BVH_WIDTH):
+/// cost[i - 1], and how: split[i - 1] = 0 keeps the subtree whole (a leaf, or an inner node that becomes a wide node
 /// of its own; always so for i = 1), k > 0 gives k of the i places to its left subtree and i - k to its right.
 /// node_split: how the wide node made from an inner node shares its BVH_WIDTH places between its two subtrees.
 typedef struct cover {
@@ -133,7 +138,8 @@ static uint32_t leaf_placed(const collapser *cl, uint32_t ref) {
     return ref == BVH_EMPTY || !(ref & BVH_LEAF) ? ref : BVH_LEAF | cl->spans[ref & ~BVH_LEAF].slot;
 }
 
-
+// The wide build's steps from the binary tree: sort the leaves, plan and make the wide nodes, free the binary
+// tree, then write the packets into the arena and point the nodes at them.
 bool bvh_collapse_wide(bvh *b, thread_pool *pool, size_t leaves, size_t tree, size_t front) {
     // The wide nodes (at most one per binary inner node) and the list of leaves, one per binary leaf and the front.
     size_t inner = b->node2_count - leaves;

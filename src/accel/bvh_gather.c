@@ -1,7 +1,7 @@
 // bvh_gather.c — the BVH build's input: every primitive's padded box and reference (gathered on the pool for big
 // meshes), long, slanted triangles pre-split into pieces with boxes of their own (tri_split.h), the huge spheres
 // set apart for the wide BVH, and the references made in place of the input.
-#include "accel/bvh_build_internal.h"
+#include "accel/bvh_gather.h"
 #include "accel/tri_split.h"
 
 #include <stdlib.h>

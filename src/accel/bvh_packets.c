@@ -1,8 +1,10 @@
 // bvh_packets.c — the wide BVH's leaf packets: every binary leaf's references sorted into packets of one kind and
 // one instance, and the packets written into the slot arena (spheres and triangles as structure of arrays).
-#include "accel/bvh_build_internal.h"
+#include "accel/bvh_packets.h"
 
+#include <math.h>
 #include <stdlib.h>
+#include <string.h>
 
 _Static_assert(sizeof(bvh_packet_header) == sizeof(bvh_slot), "a packet's header is one slot");
 _Static_assert(sizeof(bvh_sphere_packet) % sizeof(bvh_slot) == 0, "a packet is a whole number of slots");
@@ -163,8 +165,7 @@ static void emit_leaves(void *ctx, size_t item) {
     for (size_t i = begin; i < end; i++) emit_leaf(job->b, &job->spans[i]);
 }
 
-/// The cheapest cover the SAH finds for a binary subtree by at most i children of a wide node (i = 1 .. BVH_WIDTH):
-
+// emit_leaves over every listed leaf, on the pool's threads when there is one.
 void bvh_emit_packets(thread_pool *pool, const bvh *b, const leaf_span *spans, size_t count) {
     emit_job job = {b, spans, count, EMIT_LEAVES_PER_ITEM};
     size_t items = (count + EMIT_LEAVES_PER_ITEM - 1) / EMIT_LEAVES_PER_ITEM;

@@ -1,10 +1,11 @@
 // bvh_prim.h — the test of one primitive outside the SIMD packets, shared by the wide and the binary traversal
-// (private to bvh_traverse.c and bvh2_traverse.c): quads, triangles and spheres one at a time, moving spheres at
+// (private to bvh_wide.c and bvh2_traverse.c): quads, triangles and spheres one at a time, moving spheres at
 // the ray's time, and instances, whose ray is taken to object space and traced through their mesh's BVH.
 //
 // That last step recurses into a traversal: each file that includes this header defines `blas_traverse` (declared
-// below) with its own traversal, the binary one for the binary BVH's instances and the wide one for the wide BVH's.
-// The recursion through instances thus stays within one file, and neither traversal file calls the other. Include
+// below) with its own traversal, the binary one for the binary BVH's instances and the wide one (bvh_wide.c, with
+// bvh_wide.h's wide_run) for the wide BVH's. The recursion through instances thus stays within one module, and
+// neither traversal calls the other. Include
 // it only where prim_hit is used: its out-of-line helpers are plain static functions, as they were in one file.
 #ifndef GLINT_BVH_PRIM_H
 #define GLINT_BVH_PRIM_H

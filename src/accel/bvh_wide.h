@@ -1,6 +1,7 @@
 // bvh_wide.h — the wide BVH's traversal step, shared by the single-ray (bvh_traverse.c), stream (bvh_stream.c)
 // and packet (bvh_packet.c) traversals (private to them): the box tests of a node's eight children, the leaf tests,
-// and wide_step, one step of one ray, written once for both instruction sets. The per-instruction-set kernels are
+// wide_step, one step of one ray, and wide_run, one ray from the root, written once for both instruction sets;
+// its out-of-line leaf test, which enters instances, in bvh_wide.c. The per-instruction-set kernels are
 // whole functions: with AVX2 and FMA (BVH_SIMD) those of bvh_simd.h and the SIMD leaf below; without, stand-ins of
 // the same names that run the scalar kernels, so that no function body holds an #if (`simd` is a compile-time
 // constant after inlining, and the stand-ins are never reached where it is 0).
@@ -18,7 +19,7 @@
 enum { LEAVES_SPHERES, LEAVES_TRIANGLES, LEAVES_ANY };
 
 /// A packet of primitives tested one at a time (quads, triangles, instances), out of line so that the sphere path
-/// stays small enough to inline (bvh_traverse.c: it enters instances, hence the wide traversal). Takes and returns
+/// stays small enough to inline (bvh_wide.c: it enters instances, hence the wide traversal). Takes and returns
 /// the best hit by value: its address must not escape the traversal, or it could not stay in registers there.
 /// *hit_any says whether any was hit.
 hit bvh_packet_hit(const bvh *b, const bvh_index_packet *p, const ray *r, tri_cache *tc, hit best, uint32_t inst_id,
@@ -386,5 +387,55 @@ static inline __attribute__((always_inline)) int wide_step(const bvh *b, const r
     return STEP_DONE;
 }
 
+/// One ray through a wide BVH from its root, improving *best; true when anything was hit. With `leaves` not
+/// LEAVES_ANY, the code for other kinds, with its out-of-line calls (around which every vector register would
+/// have to be saved), is left out.
+static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const ray *r, hit *best, uint32_t inst_id,
+                                                           bool any, bool simd, int leaves) {
+    if (b->root == BVH_EMPTY && b->front == BVH_EMPTY) return false;
+    trav_ray tr;
+    simd_ray sr;
+    simd_tri stri;
+    if (simd) {
+        if (!simd_setup(r, &sr, leaves == LEAVES_TRIANGLES)) return false;
+    } else {
+        if (ray_is_nan(r)) return false;
+        tr = trav_setup(r);
+    }
+    tri_cache tc = {.ready = false};
+    // A triangle-only BVH tests triangles in nearly every leaf: their constants are made once, up front.
+    if (simd && leaves == LEAVES_TRIANGLES) {
+        tri_for(&tc, r);
+        simd_tri_setup(&tc.tr, r->tmin, r->tmax, &stri);
+    }
+    bool found = false;
+    // In a sphere-only BVH the huge spheres are one sphere packet. Its test does not depend on the tree's, so
+    // a closest-hit query makes it first, where the processor overlaps it with the first tree steps, and
+    // merges its hits after the tree (+1.3 to +1.6% on rtiow-final; docs/benchmarks.md).
+    bool front_first = simd && !any && leaves == LEAVES_SPHERES && b->front != BVH_EMPTY;
+    front_spheres front = {0};
+    if (front_first) front_spheres_test(b, &sr, &front);
+    if (b->root != BVH_EMPTY) {
+        stack_entry stack[WIDE_STACK];
+        walk w = {b->root, 0};
+        int st;
+        while ((st = wide_step(b, r, &tr, &sr, &stri, &tc, stack, &w, best, inst_id, &found, any, simd, leaves)) ==
+               STEP_MORE) {
+        }
+        if (st == STEP_FOUND) return true;
+    }
+    if (front_first) {
+        if (front_spheres_offer(&front, best, inst_id)) found = true;
+        return found;
+    }
+    // The huge spheres after the tree (bvh_split_front), against the tree's nearest hit.
+    if (b->front != BVH_EMPTY) {
+        bool h;
+        if (simd) h = leaf_simd(b, b->front, r, &sr, &stri, &tc, best, inst_id, any, leaves);
+        else h = leaf_scalar(b, b->front, r, &tc, best, inst_id, any, leaves);
+        found = found || h;
+    }
+    return found;
+}
 
 #endif

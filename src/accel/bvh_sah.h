@@ -1,11 +1,11 @@
-// bvh_build_internal.h — what the files of the BVH build share (private to bvh_build*.c, bvh_collapse.c,
-// bvh_packets.c, bvh_gather.c): the build's boxes, its per-primitive input, the binned-SAH state, and the steps
-// each file offers the others. The small box and bin pieces are static inline so that every file inlines them.
-#ifndef GLINT_BVH_BUILD_INTERNAL_H
-#define GLINT_BVH_BUILD_INTERNAL_H
+// bvh_sah.h — the bottom of the BVH build (private to the bvh_*.c files of the build): its boxes, its
+// per-primitive input, the binned-SAH state and the serial binned-SAH build (bvh_sah.c), which every other step
+// of the build uses and which uses none of them. The small box and bin pieces are static inline so that every file
+// inlines them.
+#ifndef GLINT_BVH_SAH_H
+#define GLINT_BVH_SAH_H
 
 #include "accel/bvh.h"
-#include "core/thread_pool.h"
 
 #include <math.h>
 #include <stdatomic.h>
@@ -28,10 +28,6 @@ enum { SAH_BINS = 32 };
 #define SAH_TRAVERSAL_COST 1.0f
 /// Cost of testing one leaf packet (wide) or one primitive (binary).
 #define SAH_INTERSECT_COST 1.0f
-
-/// A build over fewer than 2 * PARALLEL_MIN primitives runs on one thread (threads would cost more than they save);
-/// bvh_input.parallel_min replaces it in tests.
-enum { PARALLEL_MIN = 1 << 15 };
 
 /// Axis-aligned box; the fourth lanes are zero padding so that a box is two SSE registers.
 typedef struct box3 {
@@ -186,33 +182,7 @@ static inline void node_set_leaf(builder *bd, bvh2_node *node, size_t begin, siz
     bd->leaves++;
 }
 
-/// A binary leaf listed for the wide BVH: its references refs[offset, offset + count).
-typedef struct leaf_span {
-    uint32_t offset, count;
-    uint32_t slot; ///< the first slot of its packets in the arena
-} leaf_span;
-
-/// Slots of a packet of kind: quads are tested as two triangles in triangle packets; other kinds that are not
-/// spheres as indices.
-static inline size_t packet_slots(uint32_t kind) {
-    size_t bytes = kind == PRIM_SPHERE                            ? sizeof(bvh_sphere_packet)
-                   : kind == PRIM_TRIANGLE || kind == PRIM_QUAD ? sizeof(bvh_triangle_packet)
-                                                                  : sizeof(bvh_index_packet);
-    return bytes / sizeof(bvh_slot);
-}
-
-/// How many primitives of kind a packet holds (a quad takes two lanes).
-static inline size_t packet_capacity(uint32_t kind) { return kind == PRIM_QUAD ? BVH_PACKET / 2 : BVH_PACKET; }
-
-/// How many of the sorted refs[i, count) go into the packet that starts at i: one kind and one instance.
-static inline size_t packet_run(const prim_ref *refs, size_t i, size_t count) {
-    size_t n = 0, cap = packet_capacity(refs[i].kind);
-    while (i + n < count && n < cap && refs[i + n].kind == refs[i].kind && refs[i + n].instance == refs[i].instance)
-        n++;
-    return n;
-}
-
-// ---- bvh_build.c: the entry point and the serial binned SAH ----
+// ---- bvh_sah.c: the serial binned SAH and the build's traced steps ----
 
 /// Grows *bounds and *cbounds by the boxes and the centroids of prims[begin, end), in index order (the bits of one
 /// pass over the range when consecutive chunks' results are grown in their order).
@@ -230,36 +200,5 @@ uint32_t bvh_build_range(builder *bd, size_t begin, size_t end, uint64_t depth, 
 int64_t bvh_step_began(void);
 /// Records the build's step `name`, begun at `began`, on the calling thread's timeline (--trace).
 void bvh_step_traced(const char *name, int64_t began);
-
-// ---- bvh_build_parallel.c ----
-
-/// Builds the tree of bvh_build_range(bd, 0, n, 0, NULL) into bd->nodes on the pool's threads; false when out of
-/// memory.
-bool bvh_build_parallel(builder *bd, size_t n, thread_pool *pool, size_t parallel_min);
-
-// ---- bvh_gather.c: the build's input ----
-
-/// Gathers the primitives of in into prims (returning how many), their box in *all, and whether they are all
-/// triangles and quads in *triangles_only.
-size_t bvh_gather_prims(const bvh_input *in, build_prim *prims, thread_pool *pool, box3 *all, bool *triangles_only);
-/// Splits the long, slanted triangles among (*prims)[0, n) into pieces (tri_split.h); returns the new count.
-size_t bvh_presplit(const bvh_input *in, build_prim **prims, size_t n, thread_pool *pool);
-/// Moves the huge spheres to the end of prims[0, n) (tested after the wide tree); returns how many.
-size_t bvh_split_front(build_prim *prims, size_t n, const box3 *all);
-/// Turns the build input into the primitive references, in place and in order.
-prim_ref *bvh_refs_in_place(build_prim *prims, size_t n);
-
-// ---- bvh_collapse.c and bvh_packets.c: the wide BVH ----
-
-/// Collapses b's binary tree (`leaves` leaves over refs[0, tree), the huge spheres refs[tree, tree + front) after
-/// it) into the wide BVH with its leaf packets, and frees the binary tree and the references; false when out of
-/// memory (b is then for bvh_release).
-bool bvh_collapse_wide(bvh *b, thread_pool *pool, size_t leaves, size_t tree, size_t front);
-/// Sorts references by (kind, instance, index).
-void bvh_sort_refs(prim_ref *refs, size_t n);
-/// Sorts every binary leaf's references (groups them into packets) and drops repeats, on the pool when there is one.
-void bvh_sort_leaves(thread_pool *pool, bvh2_node *nodes, size_t count, prim_ref *refs);
-/// Writes the packets of the listed leaves into b's slot arena, on the pool when there is one.
-void bvh_emit_packets(thread_pool *pool, const bvh *b, const leaf_span *spans, size_t count);
 
 #endif
