@@ -76,6 +76,8 @@ static bool mesh_needs_blas(const accel *a, const accel_input *in, size_t i) {
     return false;
 }
 
+const char *const accel_kind_names[ACCEL_KIND_COUNT] = {"bvh", "bvh2", "none"};
+
 accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
     double t0 = clock_seconds();
     accel *a = calloc(1, sizeof *a);

@@ -17,6 +17,9 @@
 
 /// Which structure answers the queries: the 8-wide SIMD BVH, the binary BVH, or none (every primitive tested).
 typedef enum accel_kind { ACCEL_BVH, ACCEL_BVH2, ACCEL_NONE } accel_kind;
+enum { ACCEL_KIND_COUNT = ACCEL_NONE + 1 };
+/// Their names, in order ("bvh", "bvh2", "none"): scene files, --accel, checkpoints and traces say these.
+extern const char *const accel_kind_names[ACCEL_KIND_COUNT];
 
 /// The geometry a structure is built over, in world space except what instances place. The arrays must
 /// outlive the structure (it keeps pointers into them); unused arrays are NULL with count 0.

@@ -55,6 +55,8 @@ uint8_t film_encode(float v, output_transform encoding) {
     return (uint8_t)lrintf(v * 255.0f);
 }
 
+const char *const output_transform_names[TRANSFORM_COUNT] = {"linear", "gamma2", "srgb"};
+
 float film_decode(uint8_t byte, output_transform encoding) {
     double v = byte / 255.0, x = v;
     if (encoding == TRANSFORM_GAMMA2) x = v * v;

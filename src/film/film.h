@@ -16,6 +16,9 @@
 
 /// How linear radiance becomes an 8-bit value: none (clamp only), gamma 2 (square root), or sRGB.
 typedef enum output_transform { TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SRGB } output_transform;
+enum { TRANSFORM_COUNT = TRANSFORM_SRGB + 1 };
+/// Their names, in order ("linear", "gamma2", "srgb"): the scene's "output", --output-encoding, checkpoints.
+extern const char *const output_transform_names[TRANSFORM_COUNT];
 
 /// The AOVs a film can keep (the bits of glint_aov), in the order of glint_image.aov[].
 enum { FILM_AOV_ALBEDO, FILM_AOV_NORMAL, FILM_AOV_DEPTH, FILM_AOV_COUNT };

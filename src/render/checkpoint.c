@@ -4,6 +4,7 @@
 #include "render/checkpoint.h"
 #include "core/filepath.h"
 #include "core/hash.h"
+#include "core/names.h"
 #include "io/image_write.h"
 
 #include <errno.h>
@@ -175,15 +176,8 @@ glint_status checkpoint_write(const char *path, const checkpoint_identity *id, i
 
 // ---- reading ----
 
-static const char *const INTEGRATOR_NAMES[] = {"whitted", "path"};
-static const char *const MODE_NAMES[] = {"paper", "color"};
-static const char *const ACCEL_NAMES[] = {"bvh", "bvh2", "none"};
-static const char *const ENCODING_NAMES[] = {"linear", "gamma2", "srgb"};
-
-static const char *name_of(const char *const *names, size_t count, int32_t v) {
-    return v >= 0 && (size_t)v < count ? names[v] : "unknown";
-}
-#define NAME_OF(table, v) name_of(table, sizeof table / sizeof table[0], v)
+// The name of value v of an enum whose table is `names` ("unknown" for a damaged file's value).
+#define NAME_OF(names, v) names_get(names, sizeof names / sizeof names[0], v)
 
 // The first setting in which the file's header and this render differ, described for each ("seed 1" and
 // "seed 2"); false when they agree in every one.
@@ -203,16 +197,16 @@ static bool first_difference(const header *hd, const checkpoint_identity *id, ch
         snprintf(was, size, "depth %d", (int)hd->max_depth);
         snprintf(is, size, "depth %d", (int)id->max_depth);
     } else if (hd->integrator != id->integrator || hd->whitted_mode != id->whitted_mode) {
-        snprintf(was, size, "integrator %s (%s)", NAME_OF(INTEGRATOR_NAMES, hd->integrator),
-                 NAME_OF(MODE_NAMES, hd->whitted_mode));
-        snprintf(is, size, "integrator %s (%s)", NAME_OF(INTEGRATOR_NAMES, id->integrator),
-                 NAME_OF(MODE_NAMES, id->whitted_mode));
+        snprintf(was, size, "integrator %s (%s)", NAME_OF(integrator_kind_names, hd->integrator),
+                 NAME_OF(whitted_mode_names, hd->whitted_mode));
+        snprintf(is, size, "integrator %s (%s)", NAME_OF(integrator_kind_names, id->integrator),
+                 NAME_OF(whitted_mode_names, id->whitted_mode));
     } else if (hd->accel != id->accel) {
-        snprintf(was, size, "accel %s", NAME_OF(ACCEL_NAMES, hd->accel));
-        snprintf(is, size, "accel %s", NAME_OF(ACCEL_NAMES, id->accel));
+        snprintf(was, size, "accel %s", NAME_OF(accel_kind_names, hd->accel));
+        snprintf(is, size, "accel %s", NAME_OF(accel_kind_names, id->accel));
     } else if (hd->encoding != id->encoding) {
-        snprintf(was, size, "output encoding %s", NAME_OF(ENCODING_NAMES, hd->encoding));
-        snprintf(is, size, "output encoding %s", NAME_OF(ENCODING_NAMES, id->encoding));
+        snprintf(was, size, "output encoding %s", NAME_OF(output_transform_names, hd->encoding));
+        snprintf(is, size, "output encoding %s", NAME_OF(output_transform_names, id->encoding));
     } else if (hd->light_sampling != id->light_sampling) {
         snprintf(was, size, "light sampling %s", hd->light_sampling ? "on" : "off");
         snprintf(is, size, "light sampling %s", id->light_sampling ? "on" : "off");

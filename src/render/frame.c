@@ -8,12 +8,11 @@
 
 // "BVH build" on the trace: what was built over how much.
 static void trace_accel_build(trace_lane *lane, const glint_scene *s, int64_t began) {
-    static const char *const kinds[] = {"bvh", "bvh2", "none"};
     size_t triangles = 0;
     for (size_t i = 0; i < s->mesh_count; i++) triangles += s->meshes[i].geometry.triangle_count;
     accel_kind k = s->settings.accel;
     trace_add(lane, &(trace_event){k == ACCEL_NONE ? "accel build" : "BVH build", "render", began, trace_clock(), 6,
-                                   {{"accel", 0, kinds[k]},
+                                   {{"accel", 0, accel_kind_names[k]},
                                     {"spheres", (int64_t)(s->sphere_count + s->moving_sphere_count), NULL},
                                     {"quads", (int64_t)s->quad_count, NULL},
                                     {"meshes", (int64_t)s->mesh_count, NULL},

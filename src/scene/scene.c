@@ -1,6 +1,7 @@
 // scene.c — building, overriding and freeing a scene (plain data: nothing here is built for rendering).
 #include "scene/scene.h"
 #include "core/array.h"
+#include "core/names.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -13,6 +14,9 @@ static char *dup_string(const char *s) {
     if (d) memcpy(d, s, n);
     return d;
 }
+
+const char *const integrator_kind_names[INTEGRATOR_KIND_COUNT] = {"whitted", "path"};
+const char *const whitted_mode_names[WHITTED_MODE_COUNT] = {"paper", "color"};
 
 glint_scene *scene_new(const char *path) {
     glint_scene *s = calloc(1, sizeof *s);
@@ -207,35 +211,26 @@ glint_status scene_override(glint_scene *s, const scene_overrides *o, glint_erro
     if (o->spp >= 0 && !override_in_range("--spp", o->spp, 1, SCENE_MAX_SPP, err)) return GLINT_ERR_INPUT;
     if (o->max_depth >= 0 && !override_in_range("--depth", o->max_depth, 0, SCENE_MAX_DEPTH, err))
         return GLINT_ERR_INPUT;
-    accel_kind kind = rs->accel;
-    if (o->accel) {
-        if (strcmp(o->accel, "bvh") == 0) kind = ACCEL_BVH;
-        else if (strcmp(o->accel, "bvh2") == 0) kind = ACCEL_BVH2;
-        else if (strcmp(o->accel, "none") == 0) kind = ACCEL_NONE;
-        else {
-            snprintf(err->message, sizeof err->message, "--accel: unknown structure '%s', expected bvh, bvh2 or none",
-                     o->accel);
-            return GLINT_ERR_INPUT;
-        }
+    int kind = o->accel ? names_find(accel_kind_names, ACCEL_KIND_COUNT, o->accel) : (int)rs->accel;
+    if (kind < 0) {
+        snprintf(err->message, sizeof err->message, "--accel: unknown structure '%s', expected bvh, bvh2 or none",
+                 o->accel);
+        return GLINT_ERR_INPUT;
     }
-    output_transform encoding = rs->transform;
-    if (o->output_encoding) {
-        if (strcmp(o->output_encoding, "linear") == 0) encoding = TRANSFORM_LINEAR;
-        else if (strcmp(o->output_encoding, "gamma2") == 0) encoding = TRANSFORM_GAMMA2;
-        else if (strcmp(o->output_encoding, "srgb") == 0) encoding = TRANSFORM_SRGB;
-        else {
-            snprintf(err->message, sizeof err->message,
-                     "--output-encoding: unknown encoding '%s', expected linear, gamma2 or srgb", o->output_encoding);
-            return GLINT_ERR_INPUT;
-        }
+    int encoding = o->output_encoding ? names_find(output_transform_names, TRANSFORM_COUNT, o->output_encoding)
+                                      : (int)rs->transform;
+    if (encoding < 0) {
+        snprintf(err->message, sizeof err->message,
+                 "--output-encoding: unknown encoding '%s', expected linear, gamma2 or srgb", o->output_encoding);
+        return GLINT_ERR_INPUT;
     }
-    rs->transform = encoding;
+    rs->transform = (output_transform)encoding;
     if (o->width >= 0) rs->width = (int)o->width;
     if (o->height >= 0) rs->height = (int)o->height;
     if (o->spp >= 0) rs->spp = (int)o->spp;
     if (o->max_depth >= 0) rs->max_depth = (int)o->max_depth;
     if (o->seed >= 0) rs->seed = (uint64_t)o->seed;
-    rs->accel = kind;
+    rs->accel = (accel_kind)kind;
     return warn_brute_force(s, o->accel != NULL, err);
 }
 

@@ -26,6 +26,10 @@
 
 typedef enum integrator_kind { INTEGRATOR_WHITTED, INTEGRATOR_PATH } integrator_kind;
 typedef enum whitted_mode { WHITTED_PAPER, WHITTED_COLOR } whitted_mode;
+enum { INTEGRATOR_KIND_COUNT = INTEGRATOR_PATH + 1, WHITTED_MODE_COUNT = WHITTED_COLOR + 1 };
+/// Their names, in order ("whitted", "path"; "paper", "color"), as scene files and checkpoints say them.
+extern const char *const integrator_kind_names[INTEGRATOR_KIND_COUNT];
+extern const char *const whitted_mode_names[WHITTED_MODE_COUNT];
 typedef enum background_kind { BACKGROUND_CONSTANT, BACKGROUND_SKY, BACKGROUND_ENVMAP } background_kind;
 
 /// The "render" object of a scene file.
