@@ -7,6 +7,7 @@
 #include "core/rng.h"
 #include "io/mtl.h"
 #include "io/obj.h"
+#include "io/obj_parser.h" // the OBJ_MAX_* limits
 #include "obj_same.h"
 #include "scene/scene_file.h"
 

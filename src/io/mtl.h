@@ -15,8 +15,8 @@
 // Errors ("file:line: what is wrong, expected what"): a key other than `newmtl` before the first `newmtl`, a
 // `newmtl` or `map_Kd` without a name, malformed or non-finite numbers, too few or too many numbers, values out
 // of range. Warnings: a name defined again (the first definition is kept), a texture that cannot be found
-// (map_kd NULL), unsupported statements. Lines are limited to OBJ_MAX_LINE_BYTES (obj.h); the OBJ reader reads
-// MTL files of up to MTL_MAX_FILE_BYTES.
+// (map_kd NULL), unsupported statements. Lines are limited to OBJ_MAX_LINE_BYTES (obj_text.h); the OBJ reader
+// reads MTL files of up to MTL_MAX_FILE_BYTES.
 #ifndef GLINT_MTL_H
 #define GLINT_MTL_H
 

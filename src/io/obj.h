@@ -19,8 +19,9 @@
 // malformed face corners, statements missing their argument, MTL values out of range, more than 2^31 - 1
 // elements. Limits (errors too; they bound memory by the file, not by what it declares): OBJ files up to
 // OBJ_MAX_FILE_BYTES (2 GiB), MTL files up to MTL_MAX_FILE_BYTES (64 MiB), lines up to OBJ_MAX_LINE_BYTES
-// (32 MiB), faces up to OBJ_MAX_FACE_CORNERS (2^20) corners. Running out of memory fails the load with
-// GLINT_ERR_RENDER and "out of memory" in the message; every other failure is GLINT_ERR_INPUT.
+// (32 MiB), faces up to OBJ_MAX_FACE_CORNERS (2^20) corners; the OBJ_MAX_* limits are defined in the reader's
+// private headers (obj_parser.h, obj_text.h). Running out of memory fails the load with GLINT_ERR_RENDER and
+// "out of memory" in the message; every other failure is GLINT_ERR_INPUT.
 // Warnings (reported through the callback, counted; the load goes on):
 //   - a face of zero area (collinear or repeated corners): skipped;
 //   - a material library that cannot be opened (missing, a directory, or not a regular file such as a
@@ -43,16 +44,6 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
-
-/// Concave faces with more corners than this are fan-triangulated (ear clipping is quadratic).
-#define OBJ_MAX_EAR_CLIP 256
-/// Largest OBJ file read, in bytes (2 GiB): a mesh takes memory in proportion to its file.
-#define OBJ_MAX_FILE_BYTES ((size_t)1 << 31)
-/// Longest line of an OBJ or MTL file, in bytes (32 MiB): a face of OBJ_MAX_FACE_CORNERS corners written
-/// v/vt/vn with 8-digit indices fits.
-#define OBJ_MAX_LINE_BYTES ((size_t)32 << 20)
-/// Most corners of one face (2^20): triangulating a face takes 36 bytes of scratch memory per corner.
-#define OBJ_MAX_FACE_CORNERS (1 << 20)
 
 /// One material slot of a mesh, in the order of first `usemtl`; mesh_triangle.material indexes these.
 typedef struct obj_material {

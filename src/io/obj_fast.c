@@ -1,9 +1,7 @@
 // obj_fast.c — the OBJ reader's fast paths and its readers of a file: plain v, vn, vt and f lines read in one pass
-// over their bytes (anything else goes to the statements of obj.c), a file read block by block, and a large file
-// pre-scanned on several threads while one stores what they read, in the file's order.
-#include "io/obj.h"
+// over their bytes (anything else goes to the statements of obj_statements.c), a file read block by block, and a
+// large file pre-scanned on several threads while one stores what they read, in the file's order.
 #include "core/array.h"
-#include "core/filepath.h"
 #include "core/prefetch.h"
 #include "core/thread_pool.h"
 #include "io/decimal.h"
@@ -21,7 +19,7 @@ enum { OBJ_READ_BLOCK = 256 << 10 };
 // Fast paths: the plain lines that make up nearly all of a large file (`v`, `vn`, `vt` with numbers, `f`
 // with corners v, v/vt, v//vn or v/vt/vn) read in one pass over their bytes, without cutting the line into
 // tokens first. Whatever else a line holds (a comment, an unusual number, an index out of range, too many
-// numbers, any error) sends it, untouched, to the statements (obj.c), which read it again and say what is
+// numbers, any error) sends it, untouched, to the statements (obj_statements.c), which read it again and say what is
 // wrong: a fast path only ever accepts what they accept, and stores it through the same functions.
 
 typedef enum fast_result {
@@ -532,27 +530,8 @@ static bool obj_read_parallel(obj_parser *ps, FILE *f, thread_pool *pool, size_t
     return ok;
 }
 
-// The message of a file that cannot be read.
-static glint_status obj_file_failure(const char *path, int e, glint_error *err) {
-    glint_status st = e == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
-    if (!err) return st;
-    if (e == ENOMEM) snprintf(err->message, sizeof err->message, "%s: out of memory reading the file", path);
-    else if (e == EFBIG)
-        snprintf(err->message, sizeof err->message, "%s: the OBJ file is larger than %zu bytes (%zu GiB)", path,
-                 (size_t)OBJ_MAX_FILE_BYTES, (size_t)OBJ_MAX_FILE_BYTES >> 30);
-    else snprintf(err->message, sizeof err->message, "%s: cannot open: %s", path, filepath_problem_text(e));
-    return st;
-}
-
-glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, glint_error *err) {
-    memset(out, 0, sizeof *out);
-    out->mesh.bounds = bounds3_empty();
-    size_t size;
-    int e;
-    FILE *f = obj_open_file(path, OBJ_MAX_FILE_BYTES, &size, &e);
-    if (!f) return obj_file_failure(path, e, err);
-    obj_parser ps;
-    obj_begin(&ps, path, opt, out, err);
+bool obj_read_open_file(obj_parser *ps, FILE *f, size_t size, int *errnum) {
+    const obj_options *opt = ps->opt;
     // A large file on several threads (fast paths only: statements_only reads every line as a statement).
     int threads = opt && opt->threads ? opt->threads : 1;
     if (threads < 0) threads = thread_pool_online_cpus();
@@ -560,10 +539,8 @@ glint_status obj_load(const char *path, const obj_options *opt, obj_model *out, 
     size_t min = opt && opt->parallel_min ? opt->parallel_min : OBJ_PARALLEL_MIN;
     size_t block = opt && opt->parallel_min ? (opt->parallel_min > 16 ? opt->parallel_min : 16) : OBJ_PARALLEL_BLOCK;
     thread_pool *pool = threads > 1 && size >= min && !opt->statements_only ? thread_pool_start(threads) : NULL;
-    bool ok = pool && thread_pool_size(pool) > 1 ? obj_read_parallel(&ps, f, pool, block, &e)
-                                                 : obj_read_stream(&ps, f, &e);
+    bool ok = pool && thread_pool_size(pool) > 1 ? obj_read_parallel(ps, f, pool, block, errnum)
+                                                 : obj_read_stream(ps, f, errnum);
     thread_pool_stop(pool);
-    fclose(f);
-    glint_status st = obj_end(&ps, ok);
-    return ok || !e ? st : obj_file_failure(path, e, err);
+    return ok;
 }

@@ -1,6 +1,7 @@
-// obj_parser.h — private to the OBJ reader (obj.c, obj_fast.c, obj_polygon.c): the state of one file being read,
-// and the steps its three readers of a line (statements, fast paths, the parallel pre-scan) share, so that they
-// store exactly the same mesh from the same text.
+// obj_parser.h — private to the OBJ reader (obj.c, obj_fast.c, obj_statements.c, obj_polygon.c, obj_model.c): its
+// limits, the state of one file being read, and the steps its three readers of a line (statements, fast paths, the
+// parallel pre-scan) share, so that they store exactly the same mesh from the same text. Calls run one way:
+// obj.c -> obj_fast.c -> obj_statements.c -> obj_polygon.c -> obj_model.c, each calling only files to its right.
 #ifndef GLINT_OBJ_PARSER_H
 #define GLINT_OBJ_PARSER_H
 
@@ -11,6 +12,14 @@
 #include <stdbool.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
+
+/// Concave faces with more corners than this are fan-triangulated (ear clipping is quadratic).
+#define OBJ_MAX_EAR_CLIP 256
+/// Largest OBJ file read, in bytes (2 GiB): a mesh takes memory in proportion to its file.
+#define OBJ_MAX_FILE_BYTES ((size_t)1 << 31)
+/// Most corners of one face (2^20): triangulating a face takes 36 bytes of scratch memory per corner.
+#define OBJ_MAX_FACE_CORNERS (1 << 20)
 
 /// One face corner: indices (0-based) of its position, texture coordinate and normal; -1 when absent.
 typedef struct obj_corner {
@@ -54,23 +63,20 @@ typedef struct obj_parser {
     int queue_head, queue_count;
 } obj_parser;
 
-// obj.c: statements, material slots and libraries, the start and end of a file
+// obj_fast.c: the readers of a file and of its lines
 
-/// Readies the parser for the first line of file `name`.
-void obj_begin(obj_parser *ps, const char *name, const obj_options *opt, obj_model *out, glint_error *err);
-/// After the last line (ok) or a failure (!ok): gives the materials their definitions, says what is left to
-/// say, frees the parser's scratch, and on failure the model too.
-glint_status obj_end(obj_parser *ps, bool ok);
+/// The open OBJ file f, of `size` bytes, read line by line (on several threads when it is large and the options
+/// allow it). False on a parse failure (message set, *errnum 0) or a read failure (*errnum: the read's errno,
+/// EFBIG past OBJ_MAX_FILE_BYTES, ENOMEM).
+bool obj_read_open_file(obj_parser *ps, FILE *f, size_t size, int *errnum);
+/// Every line of (a part of) an OBJ text, counting on from ps->rep.line: by a fast path when it takes the
+/// line, else as a statement.
+bool obj_lines(obj_parser *ps, const char *text, size_t length);
+
+// obj_statements.c: the general reader of a line
+
 /// One line read as a statement (the general reader: every form the format allows, every message).
 bool obj_statement(obj_parser *ps, obj_cursor *c);
-/// "too many <what>, expected at most ..."; always false.
-bool obj_too_many(obj_reporter *r, const char *what);
-/// Stores a position: the last step of both the statements and the fast paths.
-bool obj_add_position(obj_parser *ps, const float *v);
-/// Stores a normal.
-bool obj_add_normal(obj_parser *ps, const float *v);
-/// Stores a texture coordinate of `count` numbers (v = 0 when only u is given).
-bool obj_add_texcoord(obj_parser *ps, const float *v, int count);
 
 // obj_polygon.c: faces into triangles
 
@@ -79,10 +85,19 @@ bool obj_triangulate(obj_parser *ps, size_t n);
 /// A face of three corners: skipped, with a warning, when it has no area.
 bool obj_triangle_face(obj_parser *ps, const obj_corner *k);
 
-// obj_fast.c: fast paths and the file readers
+// obj_model.c: the model as it is built
 
-/// Every line of (a part of) an OBJ text, counting on from ps->rep.line: by a fast path when it takes the
-/// line, else as a statement.
-bool obj_lines(obj_parser *ps, const char *text, size_t length);
+/// "too many <what>, expected at most ..."; always false.
+bool obj_too_many(obj_reporter *r, const char *what);
+/// Stores a position: the last step of both the statements and the fast paths.
+bool obj_add_position(obj_parser *ps, const float *v);
+/// Stores a normal.
+bool obj_add_normal(obj_parser *ps, const float *v);
+/// Stores a texture coordinate of `count` numbers (v = 0 when only u is given).
+bool obj_add_texcoord(obj_parser *ps, const float *v, int count);
+/// Makes material name[0, n) the current one (`usemtl`), opening a slot for it at its first use.
+bool obj_use_material(obj_parser *ps, const char *name, size_t n);
+/// Gives each slot its definition from the libraries read, or warns and leaves it undefined.
+bool obj_resolve_materials(obj_parser *ps);
 
 #endif

@@ -17,6 +17,9 @@
 #define OBJ_PRINTF(f, a)
 #endif
 
+/// Longest line of an OBJ or MTL file, in bytes (32 MiB): a face of OBJ_MAX_FACE_CORNERS (obj_parser.h) corners
+/// written v/vt/vn with 8-digit indices fits.
+#define OBJ_MAX_LINE_BYTES ((size_t)32 << 20)
 /// Most elements of one kind (vertices, triangles, materials, ...) a file may define.
 enum { OBJ_MAX_ELEMENTS = INT32_MAX };
 /// Characters of a token quoted in a message; distinct unsupported keywords reported per file.
