@@ -8,7 +8,7 @@
 #include "io/mtl.h"
 #include "io/obj.h"
 #include "obj_same.h"
-#include "scene/scene_file.h"
+#include "scene/scene_file_common.h"
 
 #include <stdio.h>
 #include <stdlib.h>
