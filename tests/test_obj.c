@@ -9,7 +9,7 @@
 #include "io/obj.h"
 #include "io/obj_parser.h" // the OBJ_MAX_* limits
 #include "obj_same.h"
-#include "scene/scene_file.h"
+#include "scene/scene_file_common.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -1,60 +1,24 @@
 // scene_file.c — the strict JSON scene reader's entry points (scene_file_parse, scene_file_load), the
-// scene's top level, its "render" and "camera" sections, and what every section shares: messages, names,
-// files. A scene file becomes a glint_scene, or one message "file:line:col: what is wrong, what was
-// expected" (docs/scene-format.md documents every key).
-#include "scene/scene_file.h"
+// scene's top level and its "render" and "camera" sections; the other sections are read by the other
+// scene_file_*.c files, over the helpers of scene_file_common.c. A scene file becomes a glint_scene, or one
+// message "file:line:col: what is wrong, what was expected" (docs/scene-format.md documents every key).
+#include "scene/scene_file_common.h"
 #include "core/array.h"
 #include "core/file_read.h"
 #include "core/hash.h"
 #include "core/trace.h"
-#include "core/filepath.h"
 #include "io/map_read.h"
 #include "io/json_scan.h"
 
 #include <cjson/cJSON.h>
 #include <errno.h>
 #include <math.h>
-#include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 // ---------------------------------------------------------------------------------------------
-// Messages
-
-bool sf_fail_oom(sf_loader *ld) {
-    snprintf(ld->r.err->message, sizeof ld->r.err->message, "%s: out of memory while reading the scene", ld->r.name);
-    ld->r.status = GLINT_ERR_RENDER;
-    return false;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Warnings: collected in the scene (the library prints nothing); the command line shows them
-
-void sf_add_warning(sf_loader *ld, const char *message) {
-    if (ld->scene->warning_count >= SF_MAX_WARNINGS) {
-        ld->warnings_dropped++;
-        return;
-    }
-    if (!scene_add_warning(ld->scene, message)) ld->warning_oom = true;
-}
-
-void sf_warn_at(sf_loader *ld, size_t offset, const char *fmt, ...) {
-    char msg[1024];
-    va_list ap;
-    va_start(ap, fmt);
-    jr_vformat(&ld->r, msg, sizeof msg, offset, "warning: ", fmt, ap);
-    va_end(ap);
-    sf_add_warning(ld, msg);
-}
-
-// ---------------------------------------------------------------------------------------------
-// The material name table
-
-const sf_name *sf_names_find(const sf_names *t, const char *name) {
-    size_t i;
-    return strmap_get(&t->map, name, strlen(name), &i) ? &t->list[i] : NULL;
-}
+// The material and texture name tables, filled as their collections are read
 
 static bool names_add(sf_names *t, const char *name, uint32_t index, uint32_t tok) {
     if (!array_reserve((void **)&t->list, &t->cap, t->count + 1, sizeof *t->list) ||
@@ -87,76 +51,6 @@ static bool check_new_name(sf_loader *ld, const sf_names *map, uint32_t kt, cons
         return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "duplicate %s name \"%s\" (first defined at %zu:%zu)", kind, name, line,
                           col);
     }
-    return true;
-}
-
-/// "material "blu" is not defined (defined: red, green)": lists the first few names in definition order.
-bool sf_fail_undefined(sf_loader *ld, jr_val v, const sf_names *map, const char *kind) {
-    char names[512], got[96];
-    size_t n = 0, listed = 0;
-    names[0] = '\0';
-    for (size_t i = 0; i < map->count && listed < SF_LIST_NAMES; i++) {
-        int w = snprintf(names + n, sizeof names - n, "%s%s", listed ? ", " : "", map->list[i].name);
-        if (w < 0 || (size_t)w >= sizeof names - n) break;
-        n += (size_t)w;
-        listed++;
-    }
-    const char *what = jr_describe(&ld->r, v, got, sizeof got);
-    if (map->count == 0)
-        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (no named %ss are defined)", kind, what, kind);
-    if (listed < map->count)
-        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (defined: %s and %zu more)", kind, what, names,
-                          map->count - listed);
-    return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (defined: %s)", kind, what, names);
-}
-
-// ---------------------------------------------------------------------------------------------
-// Files the scene refers to (meshes, images): paths relative to the scene file's directory
-
-/// `file` as a path usable from the current directory: absolute paths as they are, others joined to the
-/// scene file's directory. NULL when out of memory.
-static char *resolve_path(const sf_loader *ld, const char *file) {
-    return filepath_join(ld->r.name, filepath_dir_length(ld->r.name), file, strlen(file));
-}
-
-// " (resolved/path)" when the path opened differs from the one written, else "".
-const char *sf_resolved_note(const char *written, const char *path, char *buf, size_t size) {
-    if (strcmp(written, path) == 0) return "";
-    char tail[404];
-    snprintf(buf, size, " (%s)", filepath_tail(path, 400, tail, sizeof tail));
-    return buf;
-}
-
-/// Reads the required path `key` of o, resolves it (*path, malloc'd) and checks that it names a regular
-/// file (*id). `kind` ("mesh", "image") names the file in messages: `image file "a.png": cannot open: reason`.
-bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const char *kind, char **path, sf_file_id *id,
-                           jr_val *where) {
-    const jr_member *m;
-    char got[96], note[420];
-    *path = NULL;
-    if (!jr_lookup(&ld->r, o, key, true, &m)) return false;
-    jr_val v = *where = m->val;
-    if (!cJSON_IsString(v.item) || v.item->valuestring[0] == '\0')
-        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
-                          "\"%s\" must be a non-empty string (a path relative to the scene file), got %s", key,
-                          jr_describe(&ld->r, v, got, sizeof got));
-    const char *written = v.item->valuestring;
-    char *p = resolve_path(ld, written);
-    if (!p) return sf_fail_oom(ld);
-    struct stat st;
-    int e = filepath_problem(p, &st);
-    if (e != 0) {
-        jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s file %s%s: cannot open: %s", kind, jr_describe_path(&ld->r, v, got, sizeof got),
-                   sf_resolved_note(written, p, note, sizeof note), filepath_problem_text(e));
-        free(p);
-        return false;
-    }
-    if (!scene_add_input(ld->scene, (uint64_t)st.st_dev, (uint64_t)st.st_ino, p)) {
-        free(p);
-        return sf_fail_oom(ld);
-    }
-    *path = p;
-    *id = (sf_file_id){st.st_dev, st.st_ino};
     return true;
 }
 
@@ -242,18 +136,6 @@ static const struct camera_type {
     {"viewport", CAMERA_VIEWPORT, viewport_keys},
     {"lookat", CAMERA_LOOKAT, lookat_keys},
 };
-
-bool sf_check_extent(sf_loader *ld, size_t offset, const char *what, bounds3 b) {
-    for (int k = 0; k < 3; k++) {
-        float lo = v3_comp(b.lo, k), hi = v3_comp(b.hi, k), far = fabsf(lo) > fabsf(hi) ? lo : hi;
-        if (fabsf(lo) <= (float)SF_MAX_EXTENT && fabsf(hi) <= (float)SF_MAX_EXTENT) continue;
-        return jr_fail_at(&ld->r, offset,
-                          "%s reaches %g on the %c axis; glint renders within [-1e9, 1e9] on every axis (beyond, "
-                          "squared distances overflow single precision and samples would be NaN)",
-                          what, (double)far, "xyz"[k]);
-    }
-    return true;
-}
 
 // The camera's film for the widest and the tallest image allowed must lie within the extent (a huge focus
 // distance or a field of view near 180 degrees put it far away, and its rays' squared lengths overflow).

@@ -1,6 +1,6 @@
 // scene_file_materials.c — the scene file's "textures" and "materials": every texture and material kind,
 // colour parameters given as numbers or textures, and the cache of image files decoded into textures.
-#include "scene/scene_file.h"
+#include "scene/scene_file_common.h"
 #include "core/array.h"
 #include "core/filepath.h"
 #include "core/trace.h"

@@ -1,7 +1,7 @@
 // scene_file_media.c — the scene file's participating media: objects of type "constant_medium" (book 2's:
 // a density and an albedo) and "homogeneous_medium" (sigma_a, sigma_s), each inside a "boundary" (a sphere or
 // a box, with an optional transform), with a Henyey–Greenstein "g".
-#include "scene/scene_file.h"
+#include "scene/scene_file_common.h"
 
 #include <math.h>
 #include <stdio.h>

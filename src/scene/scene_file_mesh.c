@@ -2,7 +2,7 @@
 // materials by the MTL -> glint policy below ("file:name", map_Kd as an image texture, a grey fallback for faces
 // without one; the MTL keys it does not use named in one warning per file), and every object that names the file
 // places an instance of it.
-#include "scene/scene_file.h"
+#include "scene/scene_file_common.h"
 #include "core/array.h"
 #include "core/filepath.h"
 #include "core/trace.h"

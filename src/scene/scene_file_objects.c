@@ -1,6 +1,6 @@
 // scene_file_objects.c — the scene file's "objects" (spheres, quads, boxes; meshes in scene_file_mesh.c, media
 // in scene_file_media.c), their "transform" operations, and its "lights".
-#include "scene/scene_file.h"
+#include "scene/scene_file_common.h"
 
 #include <float.h>
 #include <math.h>

@@ -1,6 +1,6 @@
 // scene_file_warnings.c — warnings about what a loaded scene will not show: no light at all, what paper mode
 // drops, media under the Whitted integrator.
-#include "scene/scene_file.h"
+#include "scene/scene_file_common.h"
 
 #include <stdio.h>
 

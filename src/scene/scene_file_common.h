@@ -1,10 +1,12 @@
-// scene_file.h — private to the scene-file reader (scene_file*.c): the reader's state and the helpers its
-// sections share. Prefix sf_ ("scene file"). The entry points, scene_file_parse/_load, are in scene.h.
+// scene_file_common.h — private to the scene-file reader (scene_file*.c): the reader's state, the helpers its
+// sections share (scene_file_common.c) and the readers of its sections. Prefix sf_ ("scene file"). The entry
+// points, scene_file_parse/_load (scene_file.c), are in scene.h. Calls run one way: scene_file.c -> the other
+// scene_file_*.c -> scene_file_common.c.
 //
 // The reader embeds io/json_read's json_reader (positions, messages, typed values) and adds what only a
 // scene has: the scene being built, the material and texture names, and the caches of files already read.
-#ifndef GLINT_SCENE_FILE_H
-#define GLINT_SCENE_FILE_H
+#ifndef GLINT_SCENE_FILE_COMMON_H
+#define GLINT_SCENE_FILE_COMMON_H
 
 #include "core/strmap.h"
 #include "io/image_read.h"
@@ -93,7 +95,7 @@ typedef struct sf_loader {
     size_t object_counts[SF_OBJECT_KINDS]; ///< objects read, by type (for the warnings of sf_warn_unseen)
 } sf_loader;
 
-// scene_file.c: messages, names, files
+// scene_file_common.c: messages, names, files, the extent
 
 /// "name: out of memory while reading the scene", status GLINT_ERR_RENDER; false.
 bool sf_fail_oom(sf_loader *ld);
@@ -101,9 +103,6 @@ bool sf_fail_oom(sf_loader *ld);
 void sf_add_warning(sf_loader *ld, const char *message);
 /// Keeps the warning "name:line:col: warning: message" for the byte at `offset`.
 JR_PRINTF(3, 4) void sf_warn_at(sf_loader *ld, size_t offset, const char *fmt, ...);
-/// Warns about what the loaded scene will not show: no light at all, and what paper mode drops
-/// (scene_file_warnings.c).
-void sf_warn_unseen(sf_loader *ld);
 /// The entry of a defined name, or NULL.
 const sf_name *sf_names_find(const sf_names *t, const char *name);
 /// "material "blu" is not defined (defined: red, green)", pointing at v; false.
@@ -119,6 +118,11 @@ bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const ch
 /// ray-sphere discriminant or edge function of the intersection tests can overflow single precision (which
 /// would make samples NaN); otherwise writes "<what> reaches <x> on the <axis> axis; ..." at `offset`.
 bool sf_check_extent(sf_loader *ld, size_t offset, const char *what, bounds3 b);
+
+// scene_file_warnings.c: what a loaded scene will not show
+
+/// Warns about what the loaded scene will not show: no light at all, and what paper mode drops.
+void sf_warn_unseen(sf_loader *ld);
 
 // scene_file_materials.c: textures, images, materials
 
