@@ -16,6 +16,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 
 // ---------------------------------------------------------------------------------------------
 // The material and texture name tables, filled as their collections are read
@@ -348,17 +349,13 @@ static bool read_render(sf_loader *ld, jr_val v) {
     if (m && !read_integrator(ld, m->val, rs)) return false;
     m = jr_get(&o, "background");
     if (m && !read_background(ld, m->val, rs)) return false;
-    static const char *const transforms[] = {"linear", "gamma2", "srgb"};
-    static const output_transform transform_kinds[] = {TRANSFORM_LINEAR, TRANSFORM_GAMMA2, TRANSFORM_SRGB};
-    static const char *const accels[] = {"bvh", "bvh2", "none"};
-    static const accel_kind accel_kinds[] = {ACCEL_BVH, ACCEL_BVH2, ACCEL_NONE};
     int output = -1, structure = -1;
-    if (!jr_read_enum(&ld->r, &o, "output", transforms, 3, &output) ||
-        !jr_read_enum(&ld->r, &o, "accel", accels, 3, &structure))
+    if (!jr_read_enum(&ld->r, &o, "output", output_transform_names, TRANSFORM_COUNT, &output) ||
+        !jr_read_enum(&ld->r, &o, "accel", accel_kind_names, ACCEL_KIND_COUNT, &structure))
         return false;
-    if (output >= 0) rs->transform = transform_kinds[output];
+    if (output >= 0) rs->transform = (output_transform)output;
     ld->output_given = output >= 0;
-    if (structure >= 0) rs->accel = accel_kinds[structure];
+    if (structure >= 0) rs->accel = (accel_kind)structure;
     bool presplit = !rs->no_presplit;
     if (!jr_read_bool(&ld->r, &o, "presplit", &presplit)) return false;
     rs->no_presplit = !presplit;
@@ -485,6 +482,23 @@ static glint_status out_of_memory_reading(const char *path, glint_error *err) {
     return GLINT_ERR_RENDER;
 }
 
+// A mesh or model file given where a scene belongs (glint bunny.obj): GLINT_ERR_INPUT saying what a scene is and
+// how to place the mesh in one, rather than a JSON syntax error at its first byte. GLINT_OK for anything else.
+static glint_status model_file_given(const char *path, const char *text, size_t n, glint_error *err) {
+    static const char *const models[] = {".obj", ".ply", ".gltf", ".glb", ".stl", ".fbx", ".dae", ".3ds", ".off"};
+    const char *dot = strrchr(path, '.');
+    size_t i = 0;
+    while (i < n && (text[i] == ' ' || text[i] == '\t' || text[i] == '\r' || text[i] == '\n')) i++;
+    if (!dot || strchr(dot, '/') || (i < n && text[i] == '{' && strcmp(dot, ".gltf") != 0)) return GLINT_OK;
+    size_t k = 0;
+    while (k < sizeof models / sizeof models[0] && strcasecmp(dot, models[k]) != 0) k++;
+    if (k == sizeof models / sizeof models[0]) return GLINT_OK;
+    snprintf(err->message, sizeof err->message, "%s: a mesh or model file, not a scene: glint renders JSON scene files "
+             "(docs/scene-format.md); place the mesh in one with {\"objects\": [{\"type\": \"mesh\", \"file\": "
+             "\"%.200s\"}]} (Wavefront OBJ; glTF and PLY are not read yet)", path, path);
+    return GLINT_ERR_INPUT;
+}
+
 glint_status scene_file_load(const char *path, int threads, glint_scene **out, glint_error *err) {
     *out = NULL;
     FILE *f = fopen(path, "rb");
@@ -520,6 +534,7 @@ glint_status scene_file_load(const char *path, int threads, glint_scene **out, g
         snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, strerror(e));
         status = GLINT_ERR_INPUT;
     }
+    if (status == GLINT_OK) status = model_file_given(path, buf, n, err);
     if (status == GLINT_OK) status = scene_file_parse(path, buf, n, threads, out, err);
     free(buf);
     // The scene file is an input too: nothing should overwrite it.

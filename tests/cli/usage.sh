@@ -146,4 +146,10 @@ check "--accel none on meshes: silenced by --quiet" test ! -s "$TMP/err"
 run --accel none -o "$TMP/brute.ppm" "$DATA/tiny.json"
 check "--accel none without meshes: no warning" test "$(grep -c warning "$TMP/err")" -eq 0
 
+# A mesh or model given as the scene: what a scene is and how to place the mesh, not a JSON syntax error.
+printf 'ply\nformat ascii 1.0\nelement vertex 0\nend_header\n' >"$TMP/model.ply"
+printf '{"asset": {"version": "2.0"}}' >"$TMP/model.gltf"
+for model in model.ply model.gltf; do
+    expect 2 "glint: $TMP/$model: a mesh or model file, not a scene: glint renders JSON scene files (docs/scene-format.md); place the mesh in one with {\"objects\": [{\"type\": \"mesh\", \"file\": \"$TMP/$model\"}]} (Wavefront OBJ; glTF and PLY are not read yet)" "$TMP/$model" -o "$TMP/model.png"
+done
 summary
