@@ -42,7 +42,29 @@ static void check_pool(int threads) {
     thread_pool_stop(p);
 }
 
+// A posted job runs on the pool's threads alone while the caller goes on; wait returns once all items returned.
+static atomic_int posted_sum;
+static void add_item(void *ctx, size_t item) {
+    (void)ctx;
+    atomic_fetch_add(&posted_sum, (int)item + 1);
+}
+
+static void test_post(void) {
+    thread_pool *p = thread_pool_start(3);
+    CHECK(p != NULL);
+    if (!p) return;
+    atomic_store(&posted_sum, 0);
+    thread_pool_post(p, 100, add_item, NULL);
+    thread_pool_wait(p);
+    CHECK(atomic_load(&posted_sum) == 5050);
+    thread_pool_wait(p); // nothing posted: returns at once
+    thread_pool_run(p, 10, add_item, NULL); // the pool still runs ordinary jobs
+    CHECK(atomic_load(&posted_sum) == 5050 + 55);
+    thread_pool_stop(p);
+}
+
 int main(void) {
+    test_post();
     CHECK(thread_pool_online_cpus() >= 1);
     thread_pool_stop(NULL);
     const int sizes[] = {0, 1, 2, 3, 8};

@@ -92,6 +92,23 @@ void thread_pool_run(thread_pool *p, size_t count, thread_pool_fn fn, void *ctx)
     pthread_mutex_unlock(&p->lock);
 }
 
+void thread_pool_post(thread_pool *p, size_t count, thread_pool_fn fn, void *ctx) {
+    pthread_mutex_lock(&p->lock);
+    p->fn = fn;
+    p->ctx = ctx;
+    p->count = count;
+    p->next = p->finished = 0;
+    pthread_cond_broadcast(&p->wake);
+    pthread_mutex_unlock(&p->lock);
+}
+
+void thread_pool_wait(thread_pool *p) {
+    pthread_mutex_lock(&p->lock);
+    while (p->finished < p->count) pthread_cond_wait(&p->done, &p->lock);
+    p->count = p->next = p->finished = 0;
+    pthread_mutex_unlock(&p->lock);
+}
+
 void thread_pool_stop(thread_pool *p) {
     if (!p) return;
     pthread_mutex_lock(&p->lock);

@@ -5,6 +5,7 @@
 //     thread_pool *p = thread_pool_start(threads);   // NULL: out of memory (run the items serially instead)
 //     thread_pool_run(p, count, fn, ctx);            // fn(ctx, 0) ... fn(ctx, count - 1), returns when all are done
 //     thread_pool_stop(p);
+// or, for a job the pool's threads run while the caller does other work: thread_pool_post, then thread_pool_wait.
 // Items are handed out in index order, each to whichever thread asks first; what an item computes must not
 // depend on which thread runs it. Idle threads sleep on a condition variable, never spin.
 #ifndef GLINT_THREAD_POOL_H
@@ -29,6 +30,11 @@ int thread_pool_size(const thread_pool *p);
 /// Runs fn(ctx, i) for every i in [0, count) on the pool's threads and the caller, and returns once all have
 /// returned. Called by one thread at a time (the pool's owner), never from inside an item.
 void thread_pool_run(thread_pool *p, size_t count, thread_pool_fn fn, void *ctx);
+/// Posts a job that the pool's threads alone run (the caller goes on: glint-mpi's crew talks to other processes
+/// meanwhile); thread_pool_wait returns once every item has returned. One job at a time.
+void thread_pool_post(thread_pool *p, size_t count, thread_pool_fn fn, void *ctx);
+/// Waits for the job thread_pool_post posted (at once when none was).
+void thread_pool_wait(thread_pool *p);
 /// Ends the pool's threads and frees it (NULL is allowed).
 void thread_pool_stop(thread_pool *p);
 

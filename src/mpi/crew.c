@@ -6,15 +6,16 @@
 #include <string.h>
 #include <time.h>
 
-static void *crew_main(void *arg) {
-    crew_thread *self = arg;
-    crew *c = self->crew;
+// One of the crew's threads (an item of its pool's job): takes units from the inbox until the crew closes.
+static void crew_main(void *arg, size_t index) {
+    crew *c = arg;
+    crew_thread *self = &c->threads[index];
     for (;;) {
         pthread_mutex_lock(&c->lock);
         while (!c->inbox && !c->closing) pthread_cond_wait(&c->work, &c->lock);
         if (c->closing) { // the end of the render, or a stop: what is still queued is not wanted
             pthread_mutex_unlock(&c->lock);
-            return NULL;
+            return;
         }
         unit *u = c->inbox;
         c->inbox = u->next;
@@ -51,13 +52,14 @@ bool crew_start(crew *c, const tiles *grid, const integrator *it, const atomic_i
     pthread_condattr_setclock(&attr, CLOCK_MONOTONIC); // crew_take's timeouts follow the monotonic clock
     pthread_cond_init(&c->finished, &attr);
     pthread_condattr_destroy(&attr);
-    for (int i = 0; i < threads; i++) {
-        c->threads[i].crew = c;
-        atomic_init(&c->threads[i].samples, 0);
-        if (pthread_create(&c->threads[i].thread, NULL, crew_main, &c->threads[i]) != 0) break;
-        c->thread_count = i + 1;
+    for (int i = 0; i < threads; i++) atomic_init(&c->threads[i].samples, 0);
+    // A pool of `threads` threads besides this one, which talks to the other ranks meanwhile.
+    c->pool = thread_pool_start(threads + 1);
+    c->thread_count = c->pool ? thread_pool_size(c->pool) - 1 : 0;
+    if (c->thread_count > 0) {
+        thread_pool_post(c->pool, (size_t)c->thread_count, crew_main, c);
+        return true;
     }
-    if (c->thread_count > 0) return true;
     crew_close(c);
     return false;
 }
@@ -111,7 +113,9 @@ void crew_close(crew *c) {
     c->closing = true;
     pthread_cond_broadcast(&c->work);
     pthread_mutex_unlock(&c->lock);
-    for (int i = 0; i < c->thread_count; i++) pthread_join(c->threads[i].thread, NULL);
+    if (c->pool && c->thread_count > 0) thread_pool_wait(c->pool);
+    thread_pool_stop(c->pool);
+    c->pool = NULL;
     free_units(c->inbox);
     free_units(c->outbox);
     c->inbox = c->inbox_tail = c->outbox = NULL;

@@ -5,6 +5,7 @@
 #define GLINT_MPI_CREW_H
 
 #include "core/stats.h"
+#include "core/thread_pool.h"
 #include "integrator/integrator.h"
 #include "render/tiles.h"
 
@@ -29,8 +30,6 @@ typedef struct unit {
 /// A render thread's state, on cache lines of its own.
 typedef struct crew_thread {
     _Alignas(64) _Atomic uint64_t samples; ///< film_tile_add's progress counter (nobody reads it here)
-    struct crew *crew;
-    pthread_t thread;
 } crew_thread;
 
 typedef struct crew {
@@ -44,6 +43,7 @@ typedef struct crew {
     int queued;              ///< units given and not yet taken back (inbox, rendering, outbox)
     bool closing;
     crew_thread *threads;
+    thread_pool *pool;       ///< the crew's threads: one long item each (core/thread_pool)
     int thread_count;
 } crew;
 

@@ -70,7 +70,6 @@ typedef struct worker {
     _Alignas(64) _Atomic uint64_t samples_done;   ///< read by the progress thread while the worker runs
     render_job *job;
     trace_lane *lane;                             ///< the worker's row of the trace; NULL: not traced
-    pthread_t thread;
 } worker;
 
 // The progress reporter: a helper thread that wakes a few times a second and sums the workers' counters,
@@ -284,12 +283,14 @@ static void trace_tile(render_job *job, trace_lane *lane, int tile, int pass, in
     atomic_bound(&job->pass_ended[pass], ended, false);
 }
 
-static void *worker_main(void *arg) {
-    worker *w = arg;
+// Worker `index` of the render: one item of the pool's job (core/thread_pool), whichever thread runs it.
+static void worker_main(void *arg, size_t index) {
+    worker *w = &((worker *)arg)[index];
     render_job *job = w->job;
     thread_stats local = {0}; // on this thread's stack: the hot counters are never shared
     int items = job->grid.pass_count * job->grid.tile_count;
-    trace_set_current(w->lane); // for what records deeper down: checkpoints, waits
+    trace_lane *own = trace_current(); // the row of the thread that runs this worker, given back at the end
+    trace_set_current(w->lane);        // for what records deeper down: checkpoints, waits
     for (;;) {
         if (job_stopping(job)) break;
         int item = atomic_fetch_add(&job->next_item, 1);
@@ -314,7 +315,7 @@ static void *worker_main(void *arg) {
         pthread_mutex_unlock(&job->lock);
     }
     w->stats = local;
-    return NULL;
+    trace_set_current(own);
 }
 
 static uint64_t samples_so_far(const progress_state *p) {
@@ -610,18 +611,19 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
     pthread_t prog_thread;
     bool prog_running = (progress || live_image) && progress_start(&prog, &prog_thread);
 
-    int started = 0; // worker threads 1..started run; the calling thread is worker 0
-    for (int i = 1; i < threads; i++) {
-        if (pthread_create(&workers[i].thread, NULL, worker_main, &workers[i]) != 0) break;
-        started = i;
-    }
-    worker_main(&workers[0]);
-    for (int i = 1; i <= started; i++) pthread_join(workers[i].thread, NULL);
+    // The workers are the items of one job of a pool; the calling thread is one of its threads. Without a pool (no
+    // memory for it) the calling thread runs them one after the other: slower, the same image.
+    thread_pool *pool = thread_pool_start(threads);
+    if (pool) thread_pool_run(pool, (size_t)threads, worker_main, workers);
+    else
+        for (int i = 0; i < threads; i++) worker_main(workers, (size_t)i);
+    int ran_on = pool ? thread_pool_size(pool) : 1;
+    thread_pool_stop(pool);
     if (prog_running) progress_stop(&prog, prog_thread);
     if (passes_lane) trace_passes(&job, passes_lane);
 
     thread_stats total = {0};
-    for (int i = 0; i <= started; i++) {
+    for (int i = 0; i < threads; i++) {
         total.rays += workers[i].stats.rays;
         total.shadow_rays += workers[i].stats.shadow_rays;
         total.discarded_samples += workers[i].stats.discarded_samples;
@@ -647,7 +649,7 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
         double t_end = clock_seconds();
         stats->wall_seconds = t_end - t0;
         stats->render_seconds = t_end - t_built;
-        stats->threads = started + 1;
+        stats->threads = ran_on;
     }
     // A time limit ends the render after a whole pass: every pixel has the samples of the passes that ran.
     int passes_run = job.grid.pass_count;
