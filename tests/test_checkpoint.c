@@ -258,6 +258,7 @@ static void test_stopped_and_resumed(bool streams) {
         // Stopped again part-way through the resume (two threads), then resumed on three: still the same.
         run b = render_stopped(s, 2, ckp, ckp, NULL, 0.5 * fractions[i] * full);
         CHECK(b.status == GLINT_ERR_INTERRUPTED || b.status == GLINT_OK);
+        if (b.status != GLINT_ERR_INTERRUPTED && b.status != GLINT_OK) fprintf(stderr, "  resume: %s\n", b.err.message);
         run c = render(s, 3, NULL, ckp, NULL);
         CHECK(c.status == GLINT_OK && same_image(c.image, ref.image));
         CHECK(c.stats.samples + c.stats.samples_resumed == (uint64_t)W * H * SPP);

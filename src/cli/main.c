@@ -65,18 +65,16 @@ static const char *clobbers(const char *path, const cli_options *opt, const char
     return NULL;
 }
 
-// Everything after the command line: load, render, write the image and the trace (NULL: none); the exit status.
-static int run(const cli_options *opt, glint_trace *trace, glint_cancel *cancel) {
+// Every file the render will write (the image, the AOV files beside a PFM, the checkpoint, the trace) checked
+// before the render, not after it: a typo in -o must not cost a long render. Fills outputs (the image and AOV
+// files, *count of them); -1 when all is well, else the exit status, the message printed.
+static int check_outputs(const cli_options *opt, glint_format format, const char **outputs, int *count) {
     glint_error err;
-    glint_format format = opt->ascii_ppm ? GLINT_FORMAT_PPM_ASCII
-                          : opt->half    ? GLINT_FORMAT_EXR_HALF
-                                         : GLINT_FORMAT_AUTO;
-    // Before the render, not after it: a typo in -o must not cost a long render.
-    // Every file the render will write: the image, and the AOV files beside a PFM.
-    const char *outputs[1 + CLI_AOV_COUNT] = {opt->output};
-    int output_count = 1;
+    int output_count = 0;
+    outputs[output_count++] = opt->output;
     for (int i = 0; i < CLI_AOV_COUNT; i++)
         if (opt->aov_output[i][0]) outputs[output_count++] = opt->aov_output[i];
+    *count = output_count;
     for (int i = 0; i < output_count; i++) {
         glint_status st = glint_image_check_path(outputs[i], i == 0 ? format : GLINT_FORMAT_PFM, &err);
         if (st != GLINT_OK) {
@@ -108,11 +106,17 @@ static int run(const cli_options *opt, glint_trace *trace, glint_cancel *cancel)
             return exit_code(GLINT_ERR_INPUT);
         }
     }
-    glint_status st;
+    return -1;
+}
 
+// The scene, read and overridden, that writes none of the files it reads; -1 when all is well (*out holds it),
+// else the exit status, the message printed.
+static int load_scene(const cli_options *opt, glint_cancel *cancel, const char *const *outputs, int output_count,
+                      glint_scene **out) {
+    glint_error err;
     cli_signals_install("glint", opt->quiet, cancel, NULL);
     glint_scene *scene = NULL;
-    st = cli_load_scene(opt->scene_path, opt->threads, &scene, &err);
+    glint_status st = cli_load_scene(opt->scene_path, opt->threads, &scene, &err);
     cli_signals_loaded();
     if (st == GLINT_OK) st = glint_scene_override(scene, &opt->overrides, &err);
     if (st != GLINT_OK) {
@@ -145,6 +149,24 @@ static int run(const cli_options *opt, glint_trace *trace, glint_cancel *cancel)
         if (!opt->quiet) fprintf(stderr, "%s", NOTHING_RENDERED);
         return cli_signals_status();
     }
+    *out = scene;
+    return -1;
+}
+
+// Everything after the command line: load, render, write the image and the trace (NULL: none); the exit status.
+static int run(const cli_options *opt, glint_trace *trace, glint_cancel *cancel) {
+    glint_error err;
+    glint_format format = opt->ascii_ppm ? GLINT_FORMAT_PPM_ASCII
+                          : opt->half    ? GLINT_FORMAT_EXR_HALF
+                                         : GLINT_FORMAT_AUTO;
+    const char *outputs[1 + CLI_AOV_COUNT];
+    int output_count = 0;
+    int code = check_outputs(opt, format, outputs, &output_count);
+    if (code >= 0) return code;
+    glint_scene *scene = NULL;
+    code = load_scene(opt, cancel, outputs, output_count, &scene);
+    if (code >= 0) return code;
+    glint_status st;
 
     cli_progress bar = {.start = cli_now(), .drawn = false};
     bool show_progress = !opt->quiet && isatty(STDERR_FILENO);

@@ -263,6 +263,54 @@ static const char *plane_values_bad(const checkpoint_plane *p, size_t pixels, in
     return NULL;
 }
 
+// A read that failed part-way: an I/O error, or a file cut short while it was read.
+static glint_status io_failed(const reader *r) {
+    snprintf(r->err->message, sizeof r->err->message, "%s: cannot read the checkpoint: %s", r->path,
+             ferror(r->f) ? strerror(errno ? errno : EIO) : "the file was cut short while it was read");
+    return GLINT_ERR_INPUT;
+}
+
+// The planes' data after a checked header and table: each plane the caller names into its buffer (the others
+// skipped), the data's checksum, then the values themselves.
+static glint_status read_planes(reader *r, const header *hd, const plane_entry *entries, checkpoint_plane *planes,
+                                size_t plane_count) {
+    uint64_t pixels = region_pixels(hd->region);
+    // Each plane the caller names is one entry of the table (names are unique), of the same type and size.
+    checkpoint_plane *dest_of[MAX_PLANES] = {NULL};
+    for (size_t i = 0; i < plane_count; i++) {
+        uint32_t j = 0;
+        while (j < hd->plane_count && strcmp(entries[j].name, planes[i].name) != 0) j++;
+        if (j == hd->plane_count || entries[j].type != (uint32_t)planes[i].type ||
+            entries[j].components != planes[i].components) {
+            snprintf(r->err->message, sizeof r->err->message, "%s: the checkpoint has no plane \"%s\" of %u %s "
+                     "values a pixel, which this render needs", r->path, planes[i].name, planes[i].components,
+                     planes[i].type == CHECKPOINT_U32 ? "integer" : "floating-point");
+            return GLINT_ERR_INPUT;
+        }
+        dest_of[j] = &planes[i];
+    }
+
+    // The data, each plane into the caller's buffer or skipped, and its checksum.
+    r->hash = HASH_START;
+    for (uint32_t j = 0; j < hd->plane_count; j++) {
+        size_t bytes = (size_t)(pixels * entries[j].components * type_size(entries[j].type));
+        if (!(dest_of[j] ? take(r, dest_of[j]->data, bytes) : skip(r, bytes))) return io_failed(r);
+    }
+    uint64_t data_hash, expected_data_hash = r->hash;
+    if (fread(&data_hash, 1, sizeof data_hash, r->f) != sizeof data_hash) return io_failed(r);
+    if (data_hash != expected_data_hash) return corrupt(r, "data checksum mismatch");
+    // The checksums are no seal (anyone can recompute them): the values must be what a render can have made.
+    for (size_t i = 0; i < plane_count; i++) {
+        const char *bad = plane_values_bad(&planes[i], (size_t)pixels, hd->spp);
+        if (bad) {
+            snprintf(r->err->message, sizeof r->err->message, "%s: corrupt checkpoint (plane \"%s\": %s), expected a "
+                     "file written by glint's --checkpoint", r->path, planes[i].name, bad);
+            return GLINT_ERR_INPUT;
+        }
+    }
+    return GLINT_OK;
+}
+
 static glint_status read_checkpoint(reader *r, const checkpoint_identity *id, checkpoint_plane *planes,
                                     size_t plane_count, int *spp, uint64_t file_size) {
     header hd;
@@ -330,46 +378,12 @@ static glint_status read_checkpoint(reader *r, const checkpoint_identity *id, ch
                  "is not the same", r->path, name, id->scene_name);
         return GLINT_ERR_INPUT;
     }
-    // Each plane the caller names is one entry of the table (names are unique), of the same type and size.
-    checkpoint_plane *dest_of[MAX_PLANES] = {NULL};
-    for (size_t i = 0; i < plane_count; i++) {
-        uint32_t j = 0;
-        while (j < hd.plane_count && strcmp(entries[j].name, planes[i].name) != 0) j++;
-        if (j == hd.plane_count || entries[j].type != (uint32_t)planes[i].type ||
-            entries[j].components != planes[i].components) {
-            snprintf(r->err->message, sizeof r->err->message, "%s: the checkpoint has no plane \"%s\" of %u %s "
-                     "values a pixel, which this render needs", r->path, planes[i].name, planes[i].components,
-                     planes[i].type == CHECKPOINT_U32 ? "integer" : "floating-point");
-            return GLINT_ERR_INPUT;
-        }
-        dest_of[j] = &planes[i];
-    }
-
-    // The data, each plane into the caller's buffer or skipped, and its checksum.
-    r->hash = HASH_START;
-    for (uint32_t j = 0; j < hd.plane_count; j++) {
-        size_t bytes = (size_t)(pixels * entries[j].components * type_size(entries[j].type));
-        if (!(dest_of[j] ? take(r, dest_of[j]->data, bytes) : skip(r, bytes))) goto io_error;
-    }
-    uint64_t data_hash, expected_data_hash = r->hash;
-    if (fread(&data_hash, 1, sizeof data_hash, r->f) != sizeof data_hash) goto io_error;
-    if (data_hash != expected_data_hash) return corrupt(r, "data checksum mismatch");
-    // The checksums are no seal (anyone can recompute them): the values must be what a render can have made.
-    for (size_t i = 0; i < plane_count; i++) {
-        const char *bad = plane_values_bad(&planes[i], (size_t)pixels, hd.spp);
-        if (bad) {
-            snprintf(r->err->message, sizeof r->err->message, "%s: corrupt checkpoint (plane \"%s\": %s), expected a "
-                     "file written by glint's --checkpoint", r->path, planes[i].name, bad);
-            return GLINT_ERR_INPUT;
-        }
-    }
-    *spp = hd.spp;
-    return GLINT_OK;
+    glint_status status = read_planes(r, &hd, entries, planes, plane_count);
+    if (status == GLINT_OK) *spp = hd.spp;
+    return status;
 
 io_error:
-    snprintf(r->err->message, sizeof r->err->message, "%s: cannot read the checkpoint: %s", r->path,
-             ferror(r->f) ? strerror(errno ? errno : EIO) : "the file was cut short while it was read");
-    return GLINT_ERR_INPUT;
+    return io_failed(r);
 }
 
 // The checkpoint at path opened for reading; NULL with the message written when it cannot be.

@@ -529,6 +529,86 @@ glint_status render_scene(const glint_scene *s, const render_options *opt, rende
     return st;
 }
 
+// Runs the render's workers as the items of one job of a thread pool (the calling thread is one of its threads;
+// without a pool, no memory for one, it runs them one after the other: slower, the same image), with the progress
+// reporter beside them; their counters summed into *total. The threads that ran them; 0 when out of memory.
+static int run_workers(render_job *job, int threads, const render_options *opt, render_progress_fn progress,
+                       void *user, thread_stats *total) {
+    worker *workers = aligned_alloc(64, sizeof(worker) * (size_t)threads);
+    if (!workers) return 0;
+    memset(workers, 0, sizeof(worker) * (size_t)threads);
+    for (int i = 0; i < threads; i++) {
+        workers[i].job = job;
+        atomic_init(&workers[i].samples_done, 0);
+    }
+    trace_lane *passes_lane = trace_open_lanes(workers, threads);
+    render_live_fn live_image = opt ? opt->live_image : NULL;
+    progress_state prog = {.job = job, .workers = workers, .worker_count = threads, .fn = progress, .user = user,
+                           .live_image = live_image, .live_user = opt ? opt->live_user : NULL};
+    pthread_t prog_thread;
+    bool prog_running = (progress || live_image) && progress_start(&prog, &prog_thread);
+    thread_pool *pool = thread_pool_start(threads);
+    if (pool) thread_pool_run(pool, (size_t)threads, worker_main, workers);
+    else
+        for (int i = 0; i < threads; i++) worker_main(workers, (size_t)i);
+    int ran_on = pool ? thread_pool_size(pool) : 1;
+    thread_pool_stop(pool);
+    if (prog_running) progress_stop(&prog, prog_thread);
+    if (passes_lane) trace_passes(job, passes_lane);
+    for (int i = 0; i < threads; i++) {
+        total->rays += workers[i].stats.rays;
+        total->shadow_rays += workers[i].stats.shadow_rays;
+        total->discarded_samples += workers[i].stats.discarded_samples;
+        total->samples += workers[i].stats.samples;
+    }
+    free(workers);
+    return ran_on;
+}
+
+// The counters of a finished (or stopped) render.
+static void fill_stats(render_stats *stats, const thread_stats *total, const render_job *job, const accel *a,
+                       double t0, double t_built, int ran_on) {
+    memset(stats, 0, sizeof *stats);
+    stats->rays = total->rays;
+    stats->shadow_rays = total->shadow_rays;
+    stats->discarded_samples = total->discarded_samples;
+    stats->samples = total->samples;
+    stats->samples_resumed = job->resumed_samples;
+    accel_stats as;
+    accel_get_stats(a, &as);
+    stats->bvh_nodes = as.nodes;
+    stats->bvh_leaves = as.leaves;
+    stats->bvh_depth = as.depth;
+    stats->build_seconds = as.build_seconds > 0 ? as.build_seconds : t_built - t0;
+    double t_end = clock_seconds();
+    stats->wall_seconds = t_end - t0;
+    stats->render_seconds = t_end - t_built;
+    stats->threads = ran_on;
+}
+
+// The samples per pixel every pixel has once the workers stopped (`done` samples in all, resumed ones included):
+// spp when all were taken; under a time limit, which ends the render after a whole pass, the count every pixel
+// reached (*timed_out); 0 when a stop left pixels at different counts.
+static int spp_reached(const render_job *job, int spp, uint64_t done, bool *timed_out) {
+    int passes_run = job->grid.pass_count;
+    for (int p = 1; job->deadline > 0.0 && p < job->grid.pass_count; p++)
+        if (atomic_load(&job->pass_decision[p]) == PASS_SKIP) {
+            passes_run = p;
+            break;
+        }
+    uint64_t pixels = job->total_samples / (uint64_t)spp; // of the region rendered
+    // Every pixel at the same count: with counts kept (a resumed render may start from any), that count.
+    int uniform = job->grid.pass_start[passes_run];
+    bool same = done == pixels * (uint64_t)uniform;
+    if (job->counts) {
+        same = true;
+        for (uint64_t i = 1; i < pixels && same; i++) same = job->counts[i] == job->counts[0];
+        uniform = (int)job->counts[0];
+    }
+    *timed_out = passes_run < job->grid.pass_count && same;
+    return done == job->total_samples ? spp : *timed_out ? uniform : 0;
+}
+
 static glint_status render_run(const glint_scene *s, const render_options *opt, render_progress_fn progress,
                                void *user, glint_image **out, render_stats *stats, glint_error *err) {
     *out = NULL;
@@ -590,88 +670,26 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
         job.deadline = t_built + opt->time_limit;
         job.gated = true;
     }
-    worker *workers = aligned_alloc(64, sizeof(worker) * (size_t)threads);
-    if (!workers) {
+    thread_stats total = {0};
+    int ran_on = run_workers(&job, threads, opt, progress, user, &total);
+    if (ran_on == 0) {
         job_free(&job);
         frame_release(&frame);
         snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image on %d threads",
                  region[2] - region[0], region[3] - region[1], threads);
         return GLINT_ERR_RENDER;
     }
-    memset(workers, 0, sizeof(worker) * (size_t)threads);
-    for (int i = 0; i < threads; i++) {
-        workers[i].job = &job;
-        atomic_init(&workers[i].samples_done, 0);
-    }
-    trace_lane *passes_lane = trace_open_lanes(workers, threads);
-
     render_live_fn live_image = opt ? opt->live_image : NULL;
-    progress_state prog = {.job = &job, .workers = workers, .worker_count = threads, .fn = progress, .user = user,
-                           .live_image = live_image, .live_user = opt ? opt->live_user : NULL};
-    pthread_t prog_thread;
-    bool prog_running = (progress || live_image) && progress_start(&prog, &prog_thread);
-
-    // The workers are the items of one job of a pool; the calling thread is one of its threads. Without a pool (no
-    // memory for it) the calling thread runs them one after the other: slower, the same image.
-    thread_pool *pool = thread_pool_start(threads);
-    if (pool) thread_pool_run(pool, (size_t)threads, worker_main, workers);
-    else
-        for (int i = 0; i < threads; i++) worker_main(workers, (size_t)i);
-    int ran_on = pool ? thread_pool_size(pool) : 1;
-    thread_pool_stop(pool);
-    if (prog_running) progress_stop(&prog, prog_thread);
-    if (passes_lane) trace_passes(&job, passes_lane);
-
-    thread_stats total = {0};
-    for (int i = 0; i < threads; i++) {
-        total.rays += workers[i].stats.rays;
-        total.shadow_rays += workers[i].stats.shadow_rays;
-        total.discarded_samples += workers[i].stats.discarded_samples;
-        total.samples += workers[i].stats.samples;
-    }
     double fraction = fraction_done(&job, total.samples);
     if (progress) progress(fraction, user);
     // Every worker has stopped: this call sees the image as it will be returned.
     if (live_image) live_image(job.film.image, spp_completed(&job), fraction, opt->live_user);
-    if (stats) {
-        memset(stats, 0, sizeof *stats);
-        stats->rays = total.rays;
-        stats->shadow_rays = total.shadow_rays;
-        stats->discarded_samples = total.discarded_samples;
-        stats->samples = total.samples;
-        stats->samples_resumed = job.resumed_samples;
-        accel_stats as;
-        accel_get_stats(frame.accel, &as);
-        stats->bvh_nodes = as.nodes;
-        stats->bvh_leaves = as.leaves;
-        stats->bvh_depth = as.depth;
-        stats->build_seconds = as.build_seconds > 0 ? as.build_seconds : t_built - t0;
-        double t_end = clock_seconds();
-        stats->wall_seconds = t_end - t0;
-        stats->render_seconds = t_end - t_built;
-        stats->threads = ran_on;
-    }
-    // A time limit ends the render after a whole pass: every pixel has the samples of the passes that ran.
-    int passes_run = job.grid.pass_count;
-    for (int p = 1; job.deadline > 0.0 && p < job.grid.pass_count; p++)
-        if (atomic_load(&job.pass_decision[p]) == PASS_SKIP) {
-            passes_run = p;
-            break;
-        }
-    uint64_t pixels = job.total_samples / (uint64_t)s->settings.spp; // of the region rendered
+    if (stats) fill_stats(stats, &total, &job, frame.accel, t0, t_built, ran_on);
     uint64_t done = job.resumed_samples + total.samples;
-    // Every pixel at the same count: with counts kept (a resumed render may start from any), that count.
-    int uniform = job.grid.pass_start[passes_run];
-    bool same = done == pixels * (uint64_t)uniform;
-    if (job.counts) {
-        same = true;
-        for (uint64_t i = 1; i < pixels && same; i++) same = job.counts[i] == job.counts[0];
-        uniform = (int)job.counts[0];
-    }
-    bool timed_out = passes_run < job.grid.pass_count && same;
+    bool timed_out = false;
+    int spp_done = spp_reached(&job, s->settings.spp, done, &timed_out);
     if (stats) stats->spp = s->settings.spp;
-    if (stats) stats->spp_done = done == job.total_samples ? s->settings.spp : timed_out ? uniform : 0;
-    free(workers);
+    if (stats) stats->spp_done = spp_done;
     frame_release(&frame);
     // The last checkpoint, whatever ended the render; none after a failed one (its message is the error).
     if (job.checkpoint && !atomic_load(&job.failed)) job_write_checkpoint(&job);
