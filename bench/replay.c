@@ -182,7 +182,7 @@ int main(int argc, char **argv) {
         fprintf(stderr, "replay: %s\n", err.message);
         return 1;
     }
-    accel *a = frame_accel_build(s, 1, NULL, &err);
+    accel *a = frame_accel_build(s, &(accel_build_options){.threads = 1}, &err);
     recorded *rec = a ? malloc(n * sizeof *rec) : NULL;
     if (!rec) {
         fprintf(stderr, "replay: %s\n", a ? "out of memory" : err.message);

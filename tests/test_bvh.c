@@ -129,13 +129,13 @@ static void check_scene(uint64_t seed, size_t n) {
     for (int k = 0; k < 3; k++) {
         rng g = rng_for_sample(seed, n, 0); // the same spheres for every kind
         sc[k] = random_scene(&g, n, kinds[k]);
-        ac[k] = frame_accel_build(sc[k], 0, NULL, &err);
+        ac[k] = frame_accel_build(sc[k], NULL, &err);
         CHECK(ac[k] != NULL);
         if (!ac[k]) return;
     }
     bvh wide;
-    bvh_input in = {.spheres = sc[0]->spheres, .sphere_count = sc[0]->sphere_count};
-    CHECK(bvh_build(&wide, &in, true));
+    geometry_arrays spheres = {.spheres = sc[0]->spheres, .sphere_count = sc[0]->sphere_count};
+    CHECK(bvh_build(&wide, &(bvh_input){.geometry = &spheres}, NULL, true));
     accel_stats st;
     accel_get_stats(ac[1], &st);
     CHECK(n == 0 || (st.leaves >= 1 && st.depth >= 1 && st.leaves <= n));
@@ -193,7 +193,7 @@ static void check_coincident(void) {
         sc[k] = scene_new("coincident");
         sc[k]->settings.accel = kinds[k];
         for (int i = 0; i < 300; i++) scene_add_sphere(sc[k], (sphere){v3(1, 2, 3), i % 3 == 0 ? 1.0f : 0.5f * (float)(1 + i % 5), 0});
-        ac[k] = frame_accel_build(sc[k], 0, NULL, &err);
+        ac[k] = frame_accel_build(sc[k], NULL, &err);
         CHECK(ac[k] != NULL);
     }
     accel_stats st;
@@ -233,7 +233,7 @@ static void check_empty(void) {
     for (int k = 0; k < 3; k++) {
         glint_scene *s = scene_new("empty");
         s->settings.accel = kinds[k];
-        accel *a = frame_accel_build(s, 0, NULL, &err);
+        accel *a = frame_accel_build(s, NULL, &err);
         CHECK(a != NULL);
         ray r = {v3(0, 0, 0), v3(0, 0, 1), 0.0f, INFINITY, 0.0f};
         hit h;
@@ -254,7 +254,7 @@ static void check_known(void) {
     scene_add_sphere(s, (sphere){v3(0, -1000, 0), 1000.0f, 0});
     scene_add_sphere(s, (sphere){v3(0, 1, 0), 1.0f, 0});
     scene_add_sphere(s, (sphere){v3(0, 1, 0), -0.9f, 0});
-    accel *a = frame_accel_build(s, 0, NULL, &err);
+    accel *a = frame_accel_build(s, NULL, &err);
     CHECK(a != NULL);
     if (!a) return;
     ray r = {v3(0, 1, -5), v3(0, 0, 1), 0.001f, INFINITY, 0.0f};
@@ -350,27 +350,21 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
     bvh blas_w[4], blas_b[4], world_w, world_b;
     for (size_t i = 0; i < meshes; i++) {
         bvh_input mi = {.mesh = &s->meshes[i].geometry};
-        CHECK(bvh_build(&blas_w[i], &mi, true));
-        CHECK(bvh_build(&blas_b[i], &mi, false));
+        CHECK(bvh_build(&blas_w[i], &mi, NULL, true));
+        CHECK(bvh_build(&blas_b[i], &mi, NULL, false));
     }
-    bvh_input in = {.spheres = s->spheres, .sphere_count = s->sphere_count, .quads = s->quads,
-                    .quad_count = s->quad_count, .instances = s->instances, .instance_count = s->instance_count,
-                    .blas = blas_w, .instance_spheres = s->instance_spheres};
-    CHECK(bvh_build(&world_w, &in, true));
-    in.blas = blas_b;
-    CHECK(bvh_build(&world_b, &in, false));
     const mesh *mesh_list[4];
-    for (size_t i = 0; i < meshes; i++) mesh_list[i] = &s->meshes[i].geometry;
-    accel_input all = {.spheres = s->spheres, .sphere_count = s->sphere_count, .quads = s->quads,
-                       .quad_count = s->quad_count, .meshes = mesh_list, .mesh_count = meshes,
-                       .instance_spheres = s->instance_spheres, .instances = s->instances,
-                       .instance_count = s->instance_count};
+    geometry_arrays all = scene_geometry(s, mesh_list);
+    bvh_input in = {.geometry = &all, .blas = blas_w};
+    CHECK(bvh_build(&world_w, &in, NULL, true));
+    in.blas = blas_b;
+    CHECK(bvh_build(&world_b, &in, NULL, false));
 
     // The same primitives through accel_build, which places every mesh used once in the world BVH (flattened: in
     // world space, so its hits may differ from the others' in the last bits of t; its streams are checked against
     // its own one-ray queries).
     glint_error err;
-    accel *acc = accel_build(&all, ACCEL_BVH, &err);
+    accel *acc = accel_build(&all, ACCEL_BVH, NULL, &err);
     CHECK(acc != NULL);
     stream_batch sb_world = {0}, sb_accel = {0};
     int stream_bad = 0;

@@ -93,23 +93,25 @@ static bool same_bvh(const bvh *a, const bvh *b) {
            (!a->slot_count || memcmp(a->slots, b->slots, a->slot_count * sizeof *a->slots) == 0);
 }
 
-// Builds `in` on every thread count (wide and binary) and checks that each tree is the one thread's.
-static void check_same_trees(const char *what, bvh_input in) {
+// Builds `in` on every thread count (wide and binary, with parallel_min: 0 the default) and checks that each tree
+// is the one thread's.
+static void check_same_trees(const char *what, bvh_input in, size_t parallel_min) {
+    accel_build_options opt = {.parallel_min = parallel_min};
     for (int wide = 0; wide <= 1; wide++) {
         bvh one;
-        in.threads = 1;
-        CHECK(bvh_build(&one, &in, wide));
+        opt.threads = 1;
+        CHECK(bvh_build(&one, &in, &opt, wide));
         // A wide build keeps only what the wide traversal reads; the binary one keeps its nodes and references.
         CHECK(wide ? !one.nodes2 && !one.refs && one.slots : one.nodes2 && one.refs && !one.slots);
         for (int t = 1; t < THREAD_COUNT_N; t++) {
             bvh many;
-            in.threads = THREAD_COUNTS[t];
-            CHECK(bvh_build(&many, &in, wide));
+            opt.threads = THREAD_COUNTS[t];
+            CHECK(bvh_build(&many, &in, &opt, wide));
             bool same = same_bvh(&one, &many);
             CHECK(same);
             if (!same)
                 fprintf(stderr, "%s (%s, parallel_min %zu): %d threads build another tree than 1\n", what,
-                        wide ? "wide" : "binary", in.parallel_min, THREAD_COUNTS[t]);
+                        wide ? "wide" : "binary", parallel_min, THREAD_COUNTS[t]);
             bvh_release(&many);
         }
         bvh_release(&one);
@@ -138,13 +140,12 @@ static ray random_ray(rng *g, const mesh *m, const sphere *spheres, size_t spher
 }
 
 // The accel built on `threads` threads against brute force, closest and any hit, on `rays` random rays.
-static void check_queries(const char *what, const accel_input *in, int threads, int rays, uint64_t seed) {
+static void check_queries(const char *what, const geometry_arrays *in, int threads, int rays, uint64_t seed) {
     glint_error err;
-    accel_input with = *in;
-    with.threads = threads;
-    accel *a = accel_build(&with, ACCEL_BVH, &err);
-    accel *a2 = accel_build(&with, ACCEL_BVH2, &err);
-    accel *an = accel_build(&with, ACCEL_NONE, &err); // brute force, flattening what the BVHs flatten
+    accel_build_options opt = {.threads = threads};
+    accel *a = accel_build(in, ACCEL_BVH, &opt, &err);
+    accel *a2 = accel_build(in, ACCEL_BVH2, &opt, &err);
+    accel *an = accel_build(in, ACCEL_NONE, &opt, &err); // brute force, flattening what the BVHs flatten
     CHECK(a && a2 && an);
     if (!a || !a2 || !an) {
         accel_free(a);
@@ -210,10 +211,10 @@ static void check_soup(void) {
     rng g = rng_for_sample(11, 300, 0);
     mesh m;
     CHECK(make_soup(&g, 300000, &m));
-    check_same_trees("soup of 300k triangles", (bvh_input){.mesh = &m});
+    check_same_trees("soup of 300k triangles", (bvh_input){.mesh = &m}, 0);
     const mesh *meshes[1] = {&m};
     instance inst = {.kind = INSTANCE_MESH, .xf = transform_identity(), .material = -1};
-    accel_input in = {.meshes = meshes, .mesh_count = 1, .instances = &inst, .instance_count = 1};
+    geometry_arrays in = {.meshes = meshes, .mesh_count = 1, .instances = &inst, .instance_count = 1};
     check_queries("soup of 300k triangles", &in, 3, 100, 5);
     mesh_free(&m);
 }
@@ -312,15 +313,15 @@ static void check_slivers(void) {
         }
     mesh_compute_bounds(&m);
     bvh split, whole;
-    CHECK(bvh_build(&split, &(bvh_input){.mesh = &m}, true));
-    CHECK(bvh_build(&whole, &(bvh_input){.mesh = &m, .no_presplit = true}, true));
+    CHECK(bvh_build(&split, &(bvh_input){.mesh = &m}, NULL, true));
+    CHECK(bvh_build(&whole, &(bvh_input){.mesh = &m}, &(accel_build_options){.no_presplit = true}, true));
     CHECK(split.stats.leaves > 2 * whole.stats.leaves);
     bvh_release(&split);
     bvh_release(&whole);
-    check_same_trees("sphere of slivers", (bvh_input){.mesh = &m, .parallel_min = 4096});
+    check_same_trees("sphere of slivers", (bvh_input){.mesh = &m}, 4096);
     const mesh *meshes[1] = {&m};
     instance inst = {.kind = INSTANCE_MESH, .xf = transform_identity(), .material = -1};
-    accel_input in = {.meshes = meshes, .mesh_count = 1, .instances = &inst, .instance_count = 1};
+    geometry_arrays in = {.meshes = meshes, .mesh_count = 1, .instances = &inst, .instance_count = 1};
     check_queries("sphere of slivers", &in, 2, 3000, 7);
     mesh_free(&m);
 }
@@ -331,8 +332,8 @@ static void check_sphere_scene(void) {
     sphere *s = make_spheres(&g, n);
     CHECK(s != NULL);
     if (!s) return;
-    check_same_trees("100k spheres", (bvh_input){.spheres = s, .sphere_count = n});
-    accel_input in = {.spheres = s, .sphere_count = n};
+    geometry_arrays in = {.spheres = s, .sphere_count = n};
+    check_same_trees("100k spheres", (bvh_input){.geometry = &in}, 0);
     check_queries("100k spheres", &in, 8, 300, 6);
     free(s);
 }
@@ -350,21 +351,24 @@ static void check_small(void) {
             CHECK(make_soup(&g, sizes[i], &m));
             char what[64];
             snprintf(what, sizeof what, "soup of %zu triangles", sizes[i]);
-            check_same_trees(what, (bvh_input){.mesh = &m, .parallel_min = mins[j]});
+            check_same_trees(what, (bvh_input){.mesh = &m}, mins[j]);
             // Sorted along x, then reversed: every partition finds its sides in order, or all on the wrong one.
             for (size_t t = 0; t < m.triangle_count; t++)
                 for (int k = 0; k < 3; k++) m.positions[3 * t + (size_t)k].x = (float)t + (float)k * 0.25f;
-            check_same_trees("sorted soup", (bvh_input){.mesh = &m, .parallel_min = mins[j]});
+            check_same_trees("sorted soup", (bvh_input){.mesh = &m}, mins[j]);
             for (size_t t = 0; t < m.triangle_count; t++)
                 for (int k = 0; k < 3; k++) m.positions[3 * t + (size_t)k].x = -(float)t - (float)k * 0.25f;
-            check_same_trees("reversed soup", (bvh_input){.mesh = &m, .parallel_min = mins[j]});
+            check_same_trees("reversed soup", (bvh_input){.mesh = &m}, mins[j]);
             // Every triangle on one centroid: halved ranges down to the leaves.
             for (size_t t = 0; t < m.position_count; t++) m.positions[t] = m.positions[t % 3];
-            check_same_trees("coincident soup", (bvh_input){.mesh = &m, .parallel_min = mins[j]});
+            check_same_trees("coincident soup", (bvh_input){.mesh = &m}, mins[j]);
             mesh_free(&m);
             sphere *s = make_spheres(&g, sizes[i] + 1);
             CHECK(s != NULL);
-            if (s) check_same_trees("spheres", (bvh_input){.spheres = s, .sphere_count = sizes[i] + 1, .parallel_min = mins[j]});
+            if (s) {
+                geometry_arrays some = {.spheres = s, .sphere_count = sizes[i] + 1};
+                check_same_trees("spheres", (bvh_input){.geometry = &some}, mins[j]);
+            }
             free(s);
         }
 }
@@ -398,8 +402,8 @@ static void check_stop(void) {
         if (!started) break;
         if (delays_us[i] == 0) pthread_join(thread, NULL); // stopped before it starts
         bvh b;
-        bvh_input in = {.mesh = &m, .stop = &stop, .threads = 3, .parallel_min = i % 2 ? 1000 : 0};
-        bool built = bvh_build(&b, &in, i % 2 == 0);
+        accel_build_options opt = {.stop = &stop, .threads = 3, .parallel_min = i % 2 ? 1000 : 0};
+        bool built = bvh_build(&b, &(bvh_input){.mesh = &m}, &opt, i % 2 == 0);
         if (delays_us[i] != 0) pthread_join(thread, NULL);
         if (!built) {
             stopped++;
@@ -426,7 +430,8 @@ static void check_floor_leaf(void) {
         m.positions[i] = v3(m.positions[i].x * 0.1f, 0.26f + fabsf(m.positions[i].y) * 0.01f, m.positions[i].z * 0.1f);
     mesh_compute_bounds(&m);
     bvh b;
-    CHECK(bvh_build(&b, &(bvh_input){.quads = &floor, .quad_count = 1, .mesh = &m}, true));
+    geometry_arrays ground = {.quads = &floor, .quad_count = 1};
+    CHECK(bvh_build(&b, &(bvh_input){.geometry = &ground, .mesh = &m}, NULL, true));
     int floor_leaves = 0;
     float spawned = 0.25f + 0x1p-21f * 50.0f; // a point off the floor, as spawn_point_of offsets it
     for (size_t w = 0; w < b.wnode_count; w++)
@@ -450,8 +455,8 @@ static void check_floor_leaf(void) {
     bvh_release(&b);
     instance inst = {.kind = INSTANCE_MESH, .xf = transform_identity(), .material = -1};
     const mesh *meshes[1] = {&m};
-    accel_input in = {.quads = &floor, .quad_count = 1, .meshes = meshes, .mesh_count = 1, .instances = &inst,
-                      .instance_count = 1};
+    geometry_arrays in = {.quads = &floor, .quad_count = 1, .meshes = meshes, .mesh_count = 1, .instances = &inst,
+                          .instance_count = 1};
     check_queries("a floor under triangles", &in, 2, 3000, 8);
     mesh_free(&m);
 }
@@ -465,7 +470,7 @@ static void check_cover_plan(void) {
     glint_error err;
     CHECK(glint_scene_load(path, &s, &err) == GLINT_OK);
     if (!s) return;
-    accel *a = frame_accel_build(s, 2, NULL, &err);
+    accel *a = frame_accel_build(s, &(accel_build_options){.threads = 2}, &err);
     CHECK(a != NULL);
     accel_stats st;
     if (a) accel_get_stats(a, &st);

@@ -69,9 +69,13 @@ typedef struct run {
     glint_error err;
 } run;
 
+// How every render builds its BVH (stream_min_bytes, ...: the tests' knobs); zero: the defaults.
+static accel_build_options build_knobs;
+
 static run render_cancel(const glint_scene *s, int threads, const char *checkpoint, const char *resume,
                          const int *region, const atomic_int *cancel) {
-    render_options o = {.threads = threads, .checkpoint = checkpoint, .resume = resume, .cancel = cancel};
+    render_options o = {.threads = threads, .checkpoint = checkpoint, .resume = resume, .cancel = cancel,
+                        .accel = build_knobs};
     if (region) memcpy(o.region, region, sizeof o.region);
     run r = {0};
     r.status = render_scene(s, &o, NULL, NULL, &r.image, &r.stats, &r.err);
@@ -232,10 +236,11 @@ static run render_stopped(const glint_scene *s, int threads, const char *ckp, co
 static void test_stopped_and_resumed(bool streams) {
     enum { W = 64, H = 48, SPP = 128 };
     glint_scene *s = scene_ground("stop.json", W, H, SPP, 4, streams ? GROUND_QUAD : GROUND_SPHERE, "");
+    build_knobs = (accel_build_options){.stream_min_bytes = streams ? 1 : 0, .interleave_min_bytes = streams ? 1 : 0};
     if (streams) {
-        s->settings.stream_min_bytes = s->settings.interleave_min_bytes = 1;
         glint_error err;
-        accel *a = frame_accel_build(s, 1, NULL, &err);
+        accel *a = frame_accel_build(s, &(accel_build_options){.threads = 1, .stream_min_bytes = 1,
+                                                               .interleave_min_bytes = 1}, &err);
         CHECK(a && accel_streams(a) == BVH_SIMD && accel_interleaves(a) == BVH_SIMD); // (the SIMD traversal)
         accel_free(a);
     }
@@ -274,6 +279,7 @@ static void test_stopped_and_resumed(bool streams) {
     }
     CHECK(interrupted > 0);
     if (mixed == 0) printf("note: no stop fell inside a tile this time (test_mixed_counts covers that case)\n");
+    build_knobs = (accel_build_options){0};
     glint_image_free(ref.image);
     glint_scene_free(s);
 }

@@ -193,7 +193,7 @@ static void test_accel_agreement(void) {
         const accel_kind kinds[3] = {ACCEL_NONE, ACCEL_BVH, ACCEL_BVH2};
         for (int k = 0; k < 3; k++) {
             s->settings.accel = kinds[k];
-            a[k] = frame_accel_build(s, 0, NULL, &err);
+            a[k] = frame_accel_build(s, NULL, &err);
             CHECK(a[k] != NULL);
         }
         int differ = 0, hits = 0, moving_hits = 0;

@@ -58,6 +58,7 @@ static uint32_t add_texture(glint_scene *s, texture t) {
 
 static bool without_nee; // the next render() samples no area lights (set by the scene builders)
 static unsigned with_aovs; // the AOV planes (glint_aov bits) the next render() makes
+static accel_build_options build_knobs; // how the next render() builds its BVH (stream_min_bytes, ...)
 
 static material lambertian(float a) {
     material m = material_default(MAT_LAMBERTIAN);
@@ -79,9 +80,11 @@ static glint_scene *plane_under_light(int nee, float rho) {
 // builder set without_nee (the choice holds for that one render); the image's linear pixels stay valid until
 // glint_image_free.
 static glint_image *render(glint_scene *s, int threads, render_stats *stats) {
-    render_options opt = {.threads = threads, .aovs = with_aovs, .integrator = {.no_light_sampling = without_nee}};
+    render_options opt = {.threads = threads, .aovs = with_aovs, .integrator = {.no_light_sampling = without_nee},
+                          .accel = build_knobs};
     without_nee = false;
     with_aovs = 0;
+    build_knobs = (accel_build_options){0};
     glint_image *img = NULL;
     glint_error err;
     render_stats local;
@@ -976,15 +979,18 @@ static void test_streams_same_bytes(void) {
             glint_image *img[VARIANTS];
             for (int i = 0; i < VARIANTS; i++) {
                 glint_scene *s = stream_scene(kind, depths[d]);
-                s->settings.stream_min_bytes = i == 0 ? SIZE_MAX : 1;
-                s->settings.interleave_min_bytes = i == 3 ? SIZE_MAX : 1;
+                accel_build_options knobs = {.stream_min_bytes = i == 0 ? SIZE_MAX : 1,
+                                             .interleave_min_bytes = i == 3 ? SIZE_MAX : 1};
                 if (i == 1 || i == 3) { // the structure this scene renders with does stream (with the SIMD traversal)
                     glint_error err;
-                    accel *a = frame_accel_build(s, 1, NULL, &err);
+                    accel_build_options one = knobs;
+                    one.threads = 1;
+                    accel *a = frame_accel_build(s, &one, &err);
                     CHECK(a && accel_streams(a) == BVH_SIMD && accel_interleaves(a) == (i == 1 && BVH_SIMD));
                     accel_free(a);
                 }
                 with_aovs = aovs ? GLINT_AOV_ALL : 0;
+                build_knobs = knobs;
                 img[i] = render(s, i == 2 ? 3 : 1, NULL);
                 glint_scene_free(s);
             }

@@ -2,6 +2,7 @@
 // bytes), on any thread count; bad regions are refused; region PNGs merge back into the full image.
 #include "check.h"
 #include "glint.h"
+#include "render/render.h"
 #include "scene/scene.h"
 
 #include <stdio.h>
@@ -25,11 +26,14 @@ static glint_scene *load(const char *name, long width, long height) {
     return s;
 }
 
+// How render() builds the BVH (stream_min_bytes, ...: the tests' knobs); zero: the defaults.
+static accel_build_options build_knobs;
+
 static glint_image *render(const glint_scene *s, int threads, int x0, int y0, int x1, int y1, glint_status *st,
                            glint_error *err) {
-    glint_render_options opt = {.threads = threads, .region = {x0, y0, x1, y1}};
+    render_options opt = {.threads = threads, .region = {x0, y0, x1, y1}, .accel = build_knobs};
     glint_image *img = NULL;
-    *st = glint_render(s, &opt, NULL, NULL, &img, NULL, err);
+    *st = render_scene(s, &opt, NULL, NULL, &img, NULL, err);
     return img;
 }
 
@@ -55,7 +59,7 @@ static void test_regions_match(const char *scene, int width, int height, bool st
     glint_scene *s = load(scene, width, height);
     CHECK(s != NULL);
     if (!s) return;
-    if (streams) s->settings.stream_min_bytes = s->settings.interleave_min_bytes = 1;
+    build_knobs = (accel_build_options){.stream_min_bytes = streams ? 1 : 0, .interleave_min_bytes = streams ? 1 : 0};
     glint_status st;
     glint_error err;
     glint_image *full = render(s, 2, 0, 0, 0, 0, &st, &err);
@@ -84,6 +88,7 @@ static void test_regions_match(const char *scene, int width, int height, bool st
     }
     glint_image_free(full);
     glint_scene_free(s);
+    build_knobs = (accel_build_options){0};
 }
 
 // Regions that are empty or reach outside the image are input errors with their exact messages, and no image.

@@ -105,7 +105,7 @@ static void test_deterministic(integrator_kind kind, int width, int height, int 
     CHECK(stats.threads == 1);
     render_frame frame;
     glint_error err;
-    CHECK(frame_build(&frame, s, NULL, 0, NULL, &err) == GLINT_OK);
+    CHECK(frame_build(&frame, s, NULL, NULL, &err) == GLINT_OK);
     int mismatches = 0;
     for (int y = 0; y < height; y++)
         for (int x = 0; x < width; x++) {
@@ -200,7 +200,7 @@ static void test_stop_during(void) {
     if (!img) { glint_scene_free(s); return; }
     if (st == GLINT_ERR_INTERRUPTED) CHECK(stats.samples < (uint64_t)SW * SH * SPP);
     render_frame frame;
-    CHECK(frame_build(&frame, s, NULL, 0, NULL, &err) == GLINT_OK);
+    CHECK(frame_build(&frame, s, NULL, NULL, &err) == GLINT_OK);
     const integrator *it = frame.integrator;
     int inconsistent = 0;
     uint64_t matched_samples = 0;
@@ -324,11 +324,11 @@ static void test_stop_during_build(void) {
     atomic_init(&stop, 1);
     render_frame frame;
     glint_error err;
-    CHECK(frame_build(&frame, s, NULL, 0, &stop, &err) == GLINT_ERR_INTERRUPTED);
+    CHECK(frame_build(&frame, s, NULL, &(accel_build_options){.stop = &stop}, &err) == GLINT_ERR_INTERRUPTED);
     CHECK(strcmp(err.message, "interrupted while building the BVH") == 0);
     CHECK(frame.accel == NULL && frame.integrator == NULL);
     atomic_store(&stop, 0);
-    CHECK(frame_build(&frame, s, NULL, 0, &stop, &err) == GLINT_OK);
+    CHECK(frame_build(&frame, s, NULL, &(accel_build_options){.stop = &stop}, &err) == GLINT_OK);
     frame_release(&frame);
     glint_scene_free(s);
 }

@@ -112,7 +112,7 @@ static void test_records(void) {
     glint_scene *s = make_scene();
     if (!s) return;
     glint_error err;
-    accel *a = frame_accel_build(s, 1, NULL, &err);
+    accel *a = frame_accel_build(s, &(accel_build_options){.threads = 1}, &err);
     CHECK(a != NULL);
     if (!a) {
         glint_scene_free(s);

@@ -77,7 +77,7 @@ static void test_same_as_render_loop(const char *name, const int region[4]) {
     tiles_init(&t, r, s->settings.spp);
     render_frame frame;
     atomic_int stop = 0;
-    CHECK(frame_build(&frame, s, NULL, 0, &stop, &err) == GLINT_OK);
+    CHECK(frame_build(&frame, s, NULL, &(accel_build_options){.stop = &stop}, &err) == GLINT_OK);
     double *sums = calloc((size_t)t.tile_count * TILES_SIZE * TILES_SIZE * 3, sizeof *sums);
     float means[TILES_SIZE * TILES_SIZE * 3];
     _Atomic uint64_t progress = 0;

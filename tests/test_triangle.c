@@ -215,7 +215,7 @@ static int fire_at_vertices_and_edges(const mesh *m, const vec3 *origins, int no
     int escaped = 0;
     bvh b;
     bvh_input in = {.mesh = m};
-    CHECK(bvh_build(&b, &in, true));
+    CHECK(bvh_build(&b, &in, NULL, true));
     for (int o = 0; o < norigins; o++) {
         for (size_t i = 0; i < m->position_count; i++) {
             ray r = mkray(origins[o], v3_sub(m->positions[i], origins[o]));

@@ -14,8 +14,10 @@
 
 struct accel {
     accel_kind kind;
-    accel_input input;     ///< the primitives (brute force tests them directly); its `meshes` is mesh_list
-    const mesh **mesh_list; ///< the input's list of meshes, copied: the caller's may go once the build is done
+    geometry_arrays geometry; ///< the value built over (brute force tests it, the BVHs point at it); meshes: mesh_list
+    const mesh **mesh_list;   ///< the value's list of meshes, copied: the caller's may go once the build is done
+    size_t stream_min_bytes;  ///< accel_streams' smallest world BVH (the option, or ACCEL_STREAM_MIN_BYTES)
+    size_t interleave_min_bytes; ///< accel_interleaves' smallest world BVH (the option, or ACCEL_INTERLEAVE_MIN_BYTES)
     bvh world;
     bvh *blas;             ///< one per mesh (empty for a mesh that is only flattened)
     size_t blas_count;
@@ -26,7 +28,7 @@ struct accel {
 
 // Whether instance i is flattened: a still mesh placed by no other instance. Its triangles then cost no
 // more memory in the world BVH than in a BVH of their own, and rays skip the second tree and the transform.
-static bool flattens(const accel_input *in, const uint32_t *placements, size_t i) {
+static bool flattens(const geometry_arrays *in, const uint32_t *placements, size_t i) {
     const instance *inst = &in->instances[i];
     return inst->kind == INSTANCE_MESH && inst->motion == 0 && placements[inst->index] == 1;
 }
@@ -34,7 +36,7 @@ static bool flattens(const accel_input *in, const uint32_t *placements, size_t i
 // Fills a->flat_meshes and a->flat for the instances that flattens() picks: the mesh's arrays shared, its
 // positions transformed to world space (each vertex once, so triangles that share it still share it exactly
 // and the mesh stays watertight). False when out of memory.
-static bool flatten_instances(accel *a, const accel_input *in) {
+static bool flatten_instances(accel *a, const geometry_arrays *in) {
     if (in->instance_count == 0) return true;
     uint32_t *placements = calloc(in->mesh_count ? in->mesh_count : 1, sizeof *placements);
     a->flat_meshes = calloc(in->instance_count, sizeof *a->flat_meshes);
@@ -69,7 +71,7 @@ static bool flatten_instances(accel *a, const accel_input *in) {
 }
 
 // Whether mesh i has an instance that is not flattened (only those need the mesh's own BVH).
-static bool mesh_needs_blas(const accel *a, const accel_input *in, size_t i) {
+static bool mesh_needs_blas(const accel *a, const geometry_arrays *in, size_t i) {
     for (size_t k = 0; k < in->instance_count; k++)
         if (in->instances[k].kind == INSTANCE_MESH && in->instances[k].index == i && !(a->flat && a->flat[k]))
             return true;
@@ -78,67 +80,64 @@ static bool mesh_needs_blas(const accel *a, const accel_input *in, size_t i) {
 
 const char *const accel_kind_names[ACCEL_KIND_COUNT] = {"bvh", "bvh2", "none"};
 
-accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err) {
-    double t0 = clock_seconds();
+// A new accel over its own copy of the value *g (and of g's list of meshes), with nothing built yet; NULL when
+// out of memory.
+static accel *accel_new(const geometry_arrays *g, accel_kind kind, const accel_build_options *opt) {
     accel *a = calloc(1, sizeof *a);
-    const mesh **meshes = in->mesh_count ? malloc(in->mesh_count * sizeof *meshes) : NULL;
-    if (!a || (in->mesh_count && !meshes)) {
+    const mesh **meshes = g->mesh_count ? malloc(g->mesh_count * sizeof *meshes) : NULL;
+    if (!a || (g->mesh_count && !meshes)) {
         free(a);
         free(meshes);
-        snprintf(err->message, sizeof err->message, "out of memory building the acceleration structure");
         return NULL;
     }
-    if (in->mesh_count) memcpy(meshes, in->meshes, in->mesh_count * sizeof *meshes);
+    if (g->mesh_count) memcpy(meshes, g->meshes, g->mesh_count * sizeof *meshes);
     a->kind = kind;
-    a->input = *in;
-    a->input.meshes = a->mesh_list = meshes;
-    if (!flatten_instances(a, &a->input)) {
+    a->geometry = *g;
+    a->geometry.meshes = a->mesh_list = meshes;
+    a->stream_min_bytes = opt->stream_min_bytes ? opt->stream_min_bytes : ACCEL_STREAM_MIN_BYTES;
+    a->interleave_min_bytes = opt->interleave_min_bytes ? opt->interleave_min_bytes : ACCEL_INTERLEAVE_MIN_BYTES;
+    return a;
+}
+
+// The BVHs of a (wide or binary): one per mesh that an instance places unflattened, then the world's over
+// a->geometry; false when out of memory or stopped.
+static bool accel_build_bvhs(accel *a, const accel_build_options *opt) {
+    const geometry_arrays *g = &a->geometry;
+    bool wide = a->kind == ACCEL_BVH;
+    a->blas = g->mesh_count ? calloc(g->mesh_count, sizeof *a->blas) : NULL;
+    bool ok = !g->mesh_count || a->blas;
+    for (size_t i = 0; ok && i < g->mesh_count; i++, a->blas_count++) {
+        if (!mesh_needs_blas(a, g, i)) continue;
+        ok = bvh_build(&a->blas[i], &(bvh_input){.mesh = g->meshes[i]}, opt, wide);
+        a->stats.nodes += a->blas[i].stats.nodes;
+        a->stats.leaves += a->blas[i].stats.leaves;
+        if (a->blas[i].stats.depth > a->stats.depth) a->stats.depth = a->blas[i].stats.depth;
+    }
+    bvh_input world = {.geometry = g, .blas = a->blas, .flat = (const mesh *const *)a->flat};
+    ok = ok && bvh_build(&a->world, &world, opt, wide);
+    // Counts add up over the world BVH and the meshes' BVHs; depth is the world's plus the deepest mesh's.
+    a->stats.nodes += a->world.stats.nodes;
+    a->stats.leaves += a->world.stats.leaves;
+    a->stats.depth += a->world.stats.depth;
+    return ok;
+}
+
+accel *accel_build(const geometry_arrays *g, accel_kind kind, const accel_build_options *opt, glint_error *err) {
+    static const accel_build_options defaults;
+    if (!opt) opt = &defaults;
+    double t0 = clock_seconds();
+    accel *a = accel_new(g, kind, opt);
+    if (!a || !flatten_instances(a, &a->geometry)) {
         accel_free(a);
         snprintf(err->message, sizeof err->message, "out of memory building the acceleration structure");
         return NULL;
     }
-    if (kind != ACCEL_NONE) {
-        bool wide = kind == ACCEL_BVH;
-        a->blas = in->mesh_count ? calloc(in->mesh_count, sizeof *a->blas) : NULL;
-        bool ok = !in->mesh_count || a->blas;
-        for (size_t i = 0; ok && i < in->mesh_count; i++, a->blas_count++) {
-            if (!mesh_needs_blas(a, in, i)) continue;
-            bvh_input mi = {.mesh = meshes[i], .stop = in->stop, .threads = in->threads,
-                            .no_presplit = in->no_presplit};
-            ok = bvh_build(&a->blas[i], &mi, wide);
-            a->stats.nodes += a->blas[i].stats.nodes;
-            a->stats.leaves += a->blas[i].stats.leaves;
-            if (a->blas[i].stats.depth > a->stats.depth) a->stats.depth = a->blas[i].stats.depth;
-        }
-        bvh_input world = {.spheres = in->spheres,
-                           .sphere_count = in->sphere_count,
-                           .quads = in->quads,
-                           .quad_count = in->quad_count,
-                           .instances = in->instances,
-                           .instance_count = in->instance_count,
-                           .blas = a->blas,
-                           .flat = (const mesh *const *)a->flat,
-                           .instance_spheres = in->instance_spheres,
-                           .moving_spheres = in->moving_spheres,
-                           .moving_sphere_count = in->moving_sphere_count,
-                           .motions = in->motions,
-                           .time0 = in->time0,
-                           .time1 = in->time1,
-                           .stop = in->stop,
-                           .threads = in->threads,
-                           .no_presplit = in->no_presplit};
-        ok = ok && bvh_build(&a->world, &world, wide);
-        if (!ok) {
-            accel_free(a);
-            bool stopped = in->stop && atomic_load(in->stop);
-            snprintf(err->message, sizeof err->message, "%s",
-                     stopped ? "interrupted while building the BVH" : "out of memory building the BVH");
-            return NULL;
-        }
-        // Counts add up over the world BVH and the meshes' BVHs; depth is the world's plus the deepest mesh's.
-        a->stats.nodes += a->world.stats.nodes;
-        a->stats.leaves += a->world.stats.leaves;
-        a->stats.depth += a->world.stats.depth;
+    if (kind != ACCEL_NONE && !accel_build_bvhs(a, opt)) {
+        accel_free(a);
+        bool stopped = opt->stop && atomic_load(opt->stop);
+        snprintf(err->message, sizeof err->message, "%s",
+                 stopped ? "interrupted while building the BVH" : "out of memory building the BVH");
+        return NULL;
     }
     a->stats.build_seconds = clock_seconds() - t0;
     return a;
@@ -149,7 +148,7 @@ void accel_free(accel *a) {
     bvh_release(&a->world);
     for (size_t i = 0; i < a->blas_count; i++) bvh_release(&a->blas[i]);
     free(a->blas);
-    for (size_t i = 0; a->flat && i < a->input.instance_count; i++) free(a->flat_meshes[i].positions);
+    for (size_t i = 0; a->flat && i < a->geometry.instance_count; i++) free(a->flat_meshes[i].positions);
     free(a->flat_meshes);
     free(a->flat);
     free(a->mesh_list);
@@ -162,7 +161,7 @@ bool accel_intersect(const accel *a, const ray *r, hit *h) {
     switch (a->kind) {
     case ACCEL_BVH: return bvh_intersect(&a->world, r, h);
     case ACCEL_BVH2: return bvh2_intersect(&a->world, r, h);
-    case ACCEL_NONE: return brute_force_intersect(&a->input, (const mesh *const *)a->flat, r, h);
+    case ACCEL_NONE: return brute_force_intersect(&a->geometry, (const mesh *const *)a->flat, r, h);
     }
     return false;
 }
@@ -183,13 +182,11 @@ static size_t world_bytes(const accel *a) {
 }
 
 bool accel_streams(const accel *a) {
-    size_t min = a->input.stream_min_bytes ? a->input.stream_min_bytes : ACCEL_STREAM_MIN_BYTES;
-    return a->kind == ACCEL_BVH && bvh_streams(&a->world) && world_bytes(a) >= min;
+    return a->kind == ACCEL_BVH && bvh_streams(&a->world) && world_bytes(a) >= a->stream_min_bytes;
 }
 
 bool accel_interleaves(const accel *a) {
-    size_t min = a->input.interleave_min_bytes ? a->input.interleave_min_bytes : ACCEL_INTERLEAVE_MIN_BYTES;
-    return accel_streams(a) && world_bytes(a) >= min;
+    return accel_streams(a) && world_bytes(a) >= a->interleave_min_bytes;
 }
 
 void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, bool *found) {
@@ -204,7 +201,7 @@ void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, b
         return;
     case ACCEL_NONE:
         for (int i = 0; i < n; i++)
-            found[i] = brute_force_intersect(&a->input, (const mesh *const *)a->flat, &rays[i], &hits[i]);
+            found[i] = brute_force_intersect(&a->geometry, (const mesh *const *)a->flat, &rays[i], &hits[i]);
         return;
     }
 }
@@ -213,7 +210,7 @@ bool accel_occluded(const accel *a, const ray *r) {
     switch (a->kind) {
     case ACCEL_BVH: return bvh_occluded(&a->world, r);
     case ACCEL_BVH2: return bvh2_occluded(&a->world, r);
-    case ACCEL_NONE: return brute_force_occluded(&a->input, (const mesh *const *)a->flat, r);
+    case ACCEL_NONE: return brute_force_occluded(&a->geometry, (const mesh *const *)a->flat, r);
     }
     return false;
 }

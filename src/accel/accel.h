@@ -1,15 +1,12 @@
-// accel.h — closest-hit and any-hit queries over geometry arrays (brute force or a BVH). Built from plain
-// arrays of spheres, quads, meshes and instances (accel_input), never from an application's scene.
+// accel.h — closest-hit and any-hit queries over geometry arrays (brute force or a BVH). Built from the one
+// geometry value (geometry/geometry.h: plain arrays of spheres, quads, meshes and instances), never from an
+// application's scene, as the build options say (accel_build_options).
 #ifndef GLINT_ACCEL_H
 #define GLINT_ACCEL_H
 
 #include "core/status.h"
 #include "core/vec.h"
-#include "geometry/instance.h"
-#include "geometry/mesh.h"
-#include "geometry/motion.h"
-#include "geometry/quad.h"
-#include "geometry/sphere.h"
+#include "geometry/geometry.h"
 
 #include <stdatomic.h>
 #include <stdbool.h>
@@ -21,28 +18,16 @@ enum { ACCEL_KIND_COUNT = ACCEL_NONE + 1 };
 /// Their names, in order ("bvh", "bvh2", "none"): scene files, --accel, checkpoints and traces say these.
 extern const char *const accel_kind_names[ACCEL_KIND_COUNT];
 
-/// The geometry a structure is built over, in world space except what instances place. The arrays must
-/// outlive the structure (it keeps pointers into them); unused arrays are NULL with count 0.
-typedef struct accel_input {
-    const sphere *spheres;
-    size_t sphere_count;
-    const quad *quads;
-    size_t quad_count;
-    const mesh *const *meshes;      ///< meshes[i]: the triangles an INSTANCE_MESH instance with index i places
-    size_t mesh_count;
-    const sphere *instance_spheres; ///< the object-space spheres INSTANCE_SPHERE instances place
-    const instance *instances;
-    size_t instance_count;
-    const moving_sphere *moving_spheres; ///< spheres that move while the shutter is open
-    size_t moving_sphere_count;
-    const motion *motions;  ///< motions[k - 1]: how an instance with motion k moves
-    float time0, time1;     ///< the shutter: moving primitives are bounded over every time in [time0, time1]
-    const atomic_int *stop; ///< nonzero once a stop is requested: the build gives up (NULL: never)
-    int threads;            ///< threads that build the BVHs (the same BVHs for any number); 0: all online CPUs
-    size_t stream_min_bytes; ///< smallest world BVH (nodes and leaves) for accel_streams; 0: ACCEL_STREAM_MIN_BYTES
-    size_t interleave_min_bytes; ///< the same for accel_interleaves; 0: ACCEL_INTERLEAVE_MIN_BYTES
-    bool no_presplit;        ///< the wide BVHs keep long, slanted triangles whole (bvh_input.no_presplit)
-} accel_input;
+/// How a structure is built, apart from what it is built over (geometry_arrays): handed by pointer to
+/// accel_build and on to bvh_build, never copied field by field. Zero everywhere: the defaults.
+typedef struct accel_build_options {
+    const atomic_int *stop;  ///< nonzero once a stop is requested: the build gives up (NULL: never)
+    int threads;             ///< threads that build the BVHs (the same BVHs for any number); 0: all online CPUs
+    bool no_presplit;        ///< the wide BVHs keep long, slanted triangles whole (tri_split.h; "presplit": false)
+    size_t parallel_min;     ///< (tests) fewest primitives of a range split by all threads together; 0: the default
+    size_t stream_min_bytes; ///< (tests) smallest world BVH (in bytes) for accel_streams; 0: ACCEL_STREAM_MIN_BYTES
+    size_t interleave_min_bytes; ///< (tests) the same for accel_interleaves; 0: ACCEL_INTERLEAVE_MIN_BYTES
+} accel_build_options;
 
 /// Kinds of primitive a hit can be on.
 typedef enum hit_kind { HIT_SPHERE = 0, HIT_QUAD = 1, HIT_TRIANGLE = 2, HIT_MOVING_SPHERE = 3 } hit_kind;
@@ -69,9 +54,10 @@ typedef struct accel_stats {
 /// The acceleration structure of a scene (opaque): immutable once built, shared by every thread.
 typedef struct accel accel;
 
-/// Builds a structure of the given kind over in's primitives (the arrays, not copied, must outlive it; the
-/// list of meshes is copied). NULL, with a message in *err, when out of memory or stopped (in->stop).
-accel *accel_build(const accel_input *in, accel_kind kind, glint_error *err);
+/// Builds a structure of the given kind over g's primitives as opt says (NULL: the defaults). The arrays, not
+/// copied, must outlive it; the value *g and its list of meshes are copied, so they may go once it returns. NULL,
+/// with a message in *err, when out of memory or stopped (opt->stop).
+accel *accel_build(const geometry_arrays *g, accel_kind kind, const accel_build_options *opt, glint_error *err);
 /// Frees the structure (NULL is allowed).
 void accel_free(accel *a);
 /// Tree statistics and build time, for the statistics line.
@@ -94,11 +80,11 @@ bool accel_intersect(const accel *a, const ray *r, hit *h);
 /// hit, and hits[i] is then its hit. Traversed together where accel_interleaves, else one by one.
 void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, bool *found);
 /// Whether a caller gains by gathering rays for accel_intersect_stream: a wide BVH of triangles, quads and
-/// instances (not only spheres, none of them huge) of at least accel_input.stream_min_bytes (by default
+/// instances (not only spheres, none of them huge) of at least accel_build_options.stream_min_bytes (by default
 /// ACCEL_STREAM_MIN_BYTES). Else it traces them one by one.
 bool accel_streams(const accel *a);
 /// Whether accel_intersect_stream traverses its rays together: accel_streams' BVH of at least
-/// accel_input.interleave_min_bytes (by default ACCEL_INTERLEAVE_MIN_BYTES).
+/// accel_build_options.interleave_min_bytes (by default ACCEL_INTERLEAVE_MIN_BYTES).
 bool accel_interleaves(const accel *a);
 /// Most rays accel_intersect_coherent takes at once.
 enum { ACCEL_COHERENT = 16 };

@@ -4,7 +4,7 @@
 #include "accel/bvh_kernel.h"
 
 // Every primitive of in, in the same order of precedence as the BVHs (bvh_better).
-static bool brute_force_run(const accel_input *in, const mesh *const *flat, const ray *r, hit *best, bool any) {
+static bool brute_force_run(const geometry_arrays *in, const mesh *const *flat, const ray *r, hit *best, bool any) {
     if (ray_is_nan(r)) return false;
     tri_cache tc = {.ready = false};
     bool found = false;
@@ -67,14 +67,14 @@ static bool brute_force_run(const accel_input *in, const mesh *const *flat, cons
     return found;
 }
 
-bool brute_force_intersect(const accel_input *in, const mesh *const *flat, const ray *r, hit *h) {
+bool brute_force_intersect(const geometry_arrays *in, const mesh *const *flat, const ray *r, hit *h) {
     hit best = bvh_no_hit(r);
     if (!brute_force_run(in, flat, r, &best, false)) return false;
     *h = best;
     return true;
 }
 
-bool brute_force_occluded(const accel_input *in, const mesh *const *flat, const ray *r) {
+bool brute_force_occluded(const geometry_arrays *in, const mesh *const *flat, const ray *r) {
     hit best = bvh_no_hit(r);
     return brute_force_run(in, flat, r, &best, true);
 }

@@ -126,43 +126,22 @@ typedef struct bvh_slot {
     _Alignas(32) float f[8];
 } bvh_slot;
 
-/// What a BVH is built over: world-level spheres, quads and instances (with the BVH of every mesh the
-/// instances place), or the triangles of one mesh. Unused arrays are NULL with count 0.
+/// What a BVH is built over: the world (the one geometry value, with the BVH of every mesh its instances place
+/// and the instances accel_build flattened), or the triangles of one mesh. Only the view: the arrays are the
+/// geometry value's, pointed at, never copied.
 typedef struct bvh_input {
-    const sphere *spheres;
-    size_t sphere_count;
-    const quad *quads;
-    size_t quad_count;
-    const mesh *mesh; ///< its triangles
-    const instance *instances;
-    size_t instance_count;
-    const struct bvh *blas;        ///< blas[i]: the BVH of mesh i, for INSTANCE_MESH instances
-    const mesh *const *flat;       ///< flat[i]: instance i's mesh in world space, whose triangles the BVH holds
-                                   ///< instead of the instance (NULL: not flattened; the array may be NULL)
-    const sphere *instance_spheres; ///< object-space spheres of INSTANCE_SPHERE instances
-    const moving_sphere *moving_spheres;
-    size_t moving_sphere_count;
-    const motion *motions;          ///< motions[k - 1]: how an instance with motion k moves
-    float time0, time1;             ///< the shutter, over which moving primitives are bounded
-    const atomic_int *stop;         ///< nonzero once a stop is requested: the build gives up (NULL: never)
-    int threads;                    ///< threads that build a big tree (the tree is the same for any number); 0: all online CPUs
-    size_t parallel_min;            ///< (tests) fewest primitives of a range split by all threads together; 0: the default
-    bool no_presplit;               ///< long, slanted triangles kept whole (tri_split.h): the scene's "presplit": false
+    const geometry_arrays *geometry; ///< world-level spheres, quads, instances, moving spheres (NULL: none)
+    const mesh *mesh;                ///< the triangles of one mesh (a mesh's own BVH), or NULL
+    const struct bvh *blas;          ///< blas[i]: the BVH of mesh i, for INSTANCE_MESH instances
+    const mesh *const *flat;         ///< flat[i]: instance i's mesh in world space, whose triangles the BVH holds
+                                     ///< instead of the instance (NULL: not flattened; the array may be NULL)
 } bvh_input;
 
 /// Everything the traversals need; built once, then read-only.
 typedef struct bvh {
-    // primitives, by kind (see bvh_input)
-    const sphere *spheres;
-    size_t sphere_count;
-    const quad *quads;
-    const mesh *mesh;
-    const instance *instances;
-    const struct bvh *blas;
-    const sphere *instance_spheres;
-    const mesh *const *flat; ///< see bvh_input
-    size_t prim_count;
-    bool spheres_only;  ///< nothing but spheres: the traversal without the code for other kinds runs
+    bvh_input input;     ///< what it is built over; input.geometry is never NULL (an empty value when none was given)
+    size_t prim_count;   ///< primitives before pre-splitting
+    bool spheres_only;   ///< nothing but spheres: the traversal without the code for other kinds runs
     bool triangles_only; ///< nothing but triangles and quads (triangle packets): likewise
     // binary BVH (ACCEL_BVH2); nodes[0] is the root. A wide build frees both once its packets are written.
     bvh2_node *nodes2;
@@ -178,9 +157,6 @@ typedef struct bvh {
     uint32_t front; ///< leaf of the huge spheres, tested after the tree by every query (BVH_EMPTY: none)
     bounds3 bounds; ///< of everything in the BVH (empty when it holds nothing)
     accel_stats stats;
-    // moving primitives (after the rest, so that the fields every traversal reads keep their places)
-    const moving_sphere *moving_spheres;
-    const motion *motions;
 } bvh;
 
 /// Whether candidate hit a wins over b: nearer, or as near and first in (kind, instance, prim) order, so
@@ -198,9 +174,10 @@ static inline hit bvh_no_hit(const ray *r) {
     return h;
 }
 
-/// Builds the binary BVH (wide = false) or the wide one, on in->threads threads when it is big; false when out
-/// of memory or stopped by in->stop (b is then empty).
-bool bvh_build(bvh *b, const bvh_input *in, bool wide);
+/// Builds the binary BVH (wide = false) or the wide one over in (whose arrays must outlive b), as opt says (NULL:
+/// the defaults), on opt->threads threads when it is big; false when out of memory or stopped by opt->stop (b is
+/// then empty).
+bool bvh_build(bvh *b, const bvh_input *in, const accel_build_options *opt, bool wide);
 /// Frees what bvh_build allocated.
 void bvh_release(bvh *b);
 

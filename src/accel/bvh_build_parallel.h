@@ -7,7 +7,7 @@
 #include "core/thread_pool.h"
 
 /// A build over fewer than 2 * PARALLEL_MIN primitives runs on one thread (threads would cost more than they save);
-/// bvh_input.parallel_min replaces it in tests.
+/// accel_build_options.parallel_min replaces it in tests.
 enum { PARALLEL_MIN = 1 << 15 };
 
 /// Builds the tree of bvh_build_range(bd, 0, n, 0, NULL) into bd->nodes on the pool's threads; false when out of

@@ -50,7 +50,7 @@ static box3 box_padded_axes(bounds3 bb) { return box_padded_by(bb, true); }
 // Object-space bounds of what an instance places.
 static bounds3 instance_object_bounds(const bvh_input *in, const instance *inst) {
     if (inst->kind == INSTANCE_SPHERE) {
-        const sphere *sp = &in->instance_spheres[inst->index];
+        const sphere *sp = &in->geometry->instance_spheres[inst->index];
         float r = fabsf(sp->radius);
         return (bounds3){v3_sub(sp->center, v3s(r)), v3_add(sp->center, v3s(r))};
     }
@@ -104,18 +104,19 @@ static void gather_triangles(thread_pool *pool, const mesh *m, uint32_t owner, b
 // Gathers the primitives of in into prims (returning how many), with the box of them all in *all and whether they
 // are all triangles and quads (triangle packets) in *triangles_only.
 size_t bvh_gather_prims(const bvh_input *in, build_prim *prims, thread_pool *pool, box3 *all, bool *triangles_only) {
+    const geometry_arrays *g = in->geometry;
     size_t n = 0;
     const uint32_t none = PRIM_NO_INSTANCE;
     *all = box_empty();
-    *triangles_only = in->sphere_count == 0 && in->moving_sphere_count == 0;
-    for (size_t i = 0; i < in->sphere_count; i++) {
-        prims[n].box = sphere_box(&in->spheres[i]);
+    *triangles_only = g->sphere_count == 0 && g->moving_sphere_count == 0;
+    for (size_t i = 0; i < g->sphere_count; i++) {
+        prims[n].box = sphere_box(&g->spheres[i]);
         prims[n].ref = (prim_ref){.kind = PRIM_SPHERE, .index = (uint32_t)i, .instance = none};
         box_grow(all, &prims[n].box);
         n++;
     }
-    for (size_t i = 0; i < in->quad_count; i++) {
-        prims[n].box = box_padded_axes(quad_bounds(&in->quads[i]));
+    for (size_t i = 0; i < g->quad_count; i++) {
+        prims[n].box = box_padded_axes(quad_bounds(&g->quads[i]));
         prims[n].ref = (prim_ref){.kind = PRIM_QUAD, .index = (uint32_t)i, .instance = none};
         box_grow(all, &prims[n].box);
         n++;
@@ -124,8 +125,8 @@ size_t bvh_gather_prims(const bvh_input *in, build_prim *prims, thread_pool *poo
         gather_triangles(pool, in->mesh, none, &prims[n], all);
         n += in->mesh->triangle_count;
     }
-    for (size_t i = 0; i < in->instance_count; i++) {
-        const instance *inst = &in->instances[i];
+    for (size_t i = 0; i < g->instance_count; i++) {
+        const instance *inst = &g->instances[i];
         if (in->flat && in->flat[i]) { // its triangles in world space, each a primitive of this BVH
             gather_triangles(pool, in->flat[i], (uint32_t)i & PRIM_NO_INSTANCE, &prims[n], all);
             n += in->flat[i]->triangle_count;
@@ -134,7 +135,7 @@ size_t bvh_gather_prims(const bvh_input *in, build_prim *prims, thread_pool *poo
         bounds3 ob = instance_object_bounds(in, inst);
         if (bounds3_is_empty(ob)) continue; // an instance of an empty mesh: nothing to hit
         if (inst->motion) { // bounded over the whole shutter, and tested at each ray's time
-            prims[n].box = box_padded(motion_bounds(&in->motions[inst->motion - 1], ob, in->time0, in->time1));
+            prims[n].box = box_padded(motion_bounds(&g->motions[inst->motion - 1], ob, g->time0, g->time1));
             prims[n].ref = (prim_ref){.kind = PRIM_MOVING_INSTANCE, .index = (uint32_t)i, .instance = none};
         } else {
             prims[n].box = box_padded(mat4_apply_bounds(&inst->xf.m, ob));
@@ -144,10 +145,10 @@ size_t bvh_gather_prims(const bvh_input *in, build_prim *prims, thread_pool *poo
         *triangles_only = false;
         n++;
     }
-    for (size_t i = 0; i < in->moving_sphere_count; i++) {
+    for (size_t i = 0; i < g->moving_sphere_count; i++) {
         // A centre moving on a line sweeps the segment between its ends: the two end boxes hold the sweep.
-        const moving_sphere *ms = &in->moving_spheres[i];
-        sphere a = moving_sphere_at(ms, in->time0), b = moving_sphere_at(ms, in->time1);
+        const moving_sphere *ms = &g->moving_spheres[i];
+        sphere a = moving_sphere_at(ms, g->time0), b = moving_sphere_at(ms, g->time1);
         prims[n].box = sphere_box(&a);
         box3 bb = sphere_box(&b);
         box_grow(&prims[n].box, &bb);

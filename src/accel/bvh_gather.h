@@ -6,8 +6,8 @@
 #include "accel/bvh_sah.h"
 #include "core/thread_pool.h"
 
-/// Gathers the primitives of in into prims (returning how many), their box in *all, and whether they are all
-/// triangles and quads in *triangles_only.
+/// Gathers the primitives of in (whose geometry is not NULL: a bvh's adopted input) into prims (returning how
+/// many), their box in *all, and whether they are all triangles and quads in *triangles_only.
 size_t bvh_gather_prims(const bvh_input *in, build_prim *prims, thread_pool *pool, box3 *all, bool *triangles_only);
 /// Splits the long, slanted triangles among (*prims)[0, n) into pieces (tri_split.h); returns the new count.
 size_t bvh_presplit(const bvh_input *in, build_prim **prims, size_t n, thread_pool *pool);

@@ -184,8 +184,8 @@ static void leaf_rays(const bvh *b, uint32_t ref, const packet_rays *pr, unsigne
         const bvh_triangle_packet *p = (const bvh_triangle_packet *)(const void *)slot;
         int count = (int)(p->h.kind == PRIM_QUAD ? 2 * p->h.count : p->h.count); // a quad is two lanes
         const mesh *m = p->h.kind != PRIM_TRIANGLE           ? NULL
-                        : p->h.instance == HIT_NO_INSTANCE ? b->mesh
-                                                           : b->flat[p->h.instance];
+                        : p->h.instance == HIT_NO_INSTANCE ? b->input.mesh
+                                                           : b->input.flat[p->h.instance];
         for (int k = 0; k < count; k++) {
             __m256 vx[3], vy[3], vz[3];
             for (int j = 0; j < 3; j++) {

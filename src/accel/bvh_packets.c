@@ -104,7 +104,7 @@ static void emit_leaf(const bvh *b, const leaf_span *leaf) {
             bvh_sphere_packet *pk = (bvh_sphere_packet *)(void *)slot;
             for (size_t k = 0; k < BVH_PACKET; k++) {
                 if (k < n) {
-                    const sphere *sp = &b->spheres[refs[i + k].index];
+                    const sphere *sp = &b->input.geometry->spheres[refs[i + k].index];
                     pk->cx[k] = sp->center.x;
                     pk->cy[k] = sp->center.y;
                     pk->cz[k] = sp->center.z;
@@ -119,7 +119,7 @@ static void emit_leaf(const bvh *b, const leaf_span *leaf) {
             }
         } else if (kind == PRIM_TRIANGLE) {
             bvh_triangle_packet *pk = (bvh_triangle_packet *)(void *)slot;
-            const mesh *m = owner == HIT_NO_INSTANCE ? b->mesh : b->flat[owner];
+            const mesh *m = owner == HIT_NO_INSTANCE ? b->input.mesh : b->input.flat[owner];
             for (size_t k = 0; k < BVH_PACKET; k++) {
                 vec3 p[3];
                 if (k < n) mesh_triangle_positions(m, refs[i + k].index, &p[0], &p[1], &p[2]);
@@ -128,7 +128,7 @@ static void emit_leaf(const bvh *b, const leaf_span *leaf) {
         } else if (kind == PRIM_QUAD) {
             bvh_triangle_packet *pk = (bvh_triangle_packet *)(void *)slot;
             for (size_t k = 0; k < BVH_PACKET / 2; k++) {
-                const quad *q = k < n ? &b->quads[refs[i + k].index] : NULL;
+                const quad *q = k < n ? &b->input.geometry->quads[refs[i + k].index] : NULL;
                 uint32_t prim = q ? refs[i + k].index : UINT32_MAX;
                 vec3 t0[3], t1[3]; // quad_intersect's two triangles
                 if (q) {

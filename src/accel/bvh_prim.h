@@ -20,16 +20,16 @@ static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t ins
 /// meaning), then the mesh's BVH or the object-space sphere. True when it hit (any-hit queries stop there).
 static bool instance_hit(const bvh *b, uint32_t index, const mat4 *world_to_object, const ray *r, hit *best, bool any,
                          trav_mode mode) {
-    const instance *in = &b->instances[index];
+    const instance *in = &b->input.geometry->instances[index];
     ray o = mat4_apply_ray(world_to_object, r);
     if (in->kind == INSTANCE_SPHERE) {
-        const sphere *sp = &b->instance_spheres[in->index];
+        const sphere *sp = &b->input.geometry->instance_spheres[in->index];
         float t;
         if (!sphere_intersect(sp->center, sp->radius, &o, o.tmin, o.tmax, &t)) return false;
         offer(best, (hit){t, in->index, HIT_SPHERE, index, 0.0f, 0.0f});
         return true;
     }
-    return blas_traverse(&b->blas[in->index], &o, best, index, any, mode);
+    return blas_traverse(&b->input.blas[in->index], &o, best, index, any, mode);
 }
 
 /// A moving instance: its transform at the ray's time, then as any instance. Out of line: only scenes with
@@ -37,16 +37,16 @@ static bool instance_hit(const bvh *b, uint32_t index, const mat4 *world_to_obje
 static __attribute__((noinline)) bool moving_instance_hit(const bvh *b, uint32_t index, const ray *r, hit *best,
                                                           bool any, trav_mode mode) {
     transform xf;
-    motion_at(&b->motions[b->instances[index].motion - 1], r->time, &xf);
+    motion_at(&b->input.geometry->motions[b->input.geometry->instances[index].motion - 1], r->time, &xf);
     return instance_hit(b, index, &xf.inv, r, best, any, mode);
 }
 
 /// A moving sphere: the sphere where it is at the ray's time.
 static __attribute__((noinline)) bool moving_sphere_hit(const bvh *b, uint32_t index, const ray *r, hit *best,
                                                         uint32_t inst_id) {
-    vec3 c = moving_sphere_center(&b->moving_spheres[index], r->time);
+    vec3 c = moving_sphere_center(&b->input.geometry->moving_spheres[index], r->time);
     float t;
-    if (!sphere_intersect(c, b->moving_spheres[index].radius, r, r->tmin, r->tmax, &t)) return false;
+    if (!sphere_intersect(c, b->input.geometry->moving_spheres[index].radius, r, r->tmin, r->tmax, &t)) return false;
     offer(best, (hit){t, index, HIT_MOVING_SPHERE, inst_id, 0.0f, 0.0f});
     return true;
 }
@@ -58,7 +58,7 @@ static inline bool prim_hit(const bvh *b, uint32_t kind, uint32_t index, uint32_
                             hit *best, uint32_t inst_id, bool any, trav_mode mode) {
     switch ((prim_kind)kind) {
     case PRIM_SPHERE: {
-        const sphere *s = &b->spheres[index];
+        const sphere *s = &b->input.geometry->spheres[index];
         float t;
         if (!sphere_intersect(s->center, s->radius, r, r->tmin, r->tmax, &t)) return false;
         offer(best, (hit){t, index, HIT_SPHERE, inst_id, 0.0f, 0.0f});
@@ -66,18 +66,18 @@ static inline bool prim_hit(const bvh *b, uint32_t kind, uint32_t index, uint32_
     }
     case PRIM_QUAD: {
         quad_hit qh;
-        if (!quad_intersect(&b->quads[index], tri_for(tc, r), r->tmin, r->tmax, &qh)) return false;
+        if (!quad_intersect(&b->input.geometry->quads[index], tri_for(tc, r), r->tmin, r->tmax, &qh)) return false;
         offer(best, (hit){qh.t, index, HIT_QUAD, inst_id, qh.alpha, qh.beta});
         return true;
     }
     case PRIM_TRIANGLE: {
-        const mesh *m = owner == HIT_NO_INSTANCE ? b->mesh : b->flat[owner];
+        const mesh *m = owner == HIT_NO_INSTANCE ? b->input.mesh : b->input.flat[owner];
         tri_hit th;
         if (!mesh_intersect_triangle(m, index, tri_for(tc, r), r->tmin, r->tmax, &th)) return false;
         offer(best, (hit){th.t, index, HIT_TRIANGLE, owner == HIT_NO_INSTANCE ? inst_id : owner, th.b1, th.b2});
         return true;
     }
-    case PRIM_INSTANCE: return instance_hit(b, index, &b->instances[index].xf.inv, r, best, any, mode);
+    case PRIM_INSTANCE: return instance_hit(b, index, &b->input.geometry->instances[index].xf.inv, r, best, any, mode);
     case PRIM_MOVING_SPHERE: return moving_sphere_hit(b, index, r, best, inst_id);
     case PRIM_MOVING_INSTANCE: return moving_instance_hit(b, index, r, best, any, mode);
     }

@@ -174,7 +174,7 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
                 // A nearer triangle of a mesh: start fetching its record (corner indices, material), which
                 // shading reads first, while the traversal goes on.
                 if (best->t < before && p->h.kind == PRIM_TRIANGLE) {
-                    const mesh *m = p->h.instance == HIT_NO_INSTANCE ? b->mesh : b->flat[p->h.instance];
+                    const mesh *m = p->h.instance == HIT_NO_INSTANCE ? b->input.mesh : b->input.flat[p->h.instance];
                     if (m) _mm_prefetch((const char *)&m->triangles[best->prim], _MM_HINT_T0);
                 }
             }

@@ -221,7 +221,8 @@ int main(int argc, char **argv) {
     if (threads > 256) threads = 256;
     render_frame frame = {0};
     double t0 = clock_seconds(); // glint's wall time starts here too: the frame build and the render
-    if (st == GLINT_OK) st = frame_build(&frame, scene, NULL, threads, &stopping, &err);
+    accel_build_options build = {.threads = threads, .stop = &stopping};
+    if (st == GLINT_OK) st = frame_build(&frame, scene, NULL, &build, &err);
     int code = 0;
     if (!all_ready(st, &err, rank, size, opt.quiet, &code)) {
         frame_release(&frame);

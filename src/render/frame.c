@@ -1,5 +1,5 @@
-// frame.c — building the render frame: the scene's geometry handed to the accel as plain arrays, then the
-// integrator over the scene and that accel.
+// frame.c — building the render frame: the scene's geometry value (scene_geometry) handed to the accel with the
+// build options, then the integrator over the scene and that accel.
 #include "render/frame.h"
 #include "core/trace.h"
 
@@ -20,47 +20,30 @@ static void trace_accel_build(trace_lane *lane, const glint_scene *s, int64_t be
                                     {"instances", (int64_t)s->instance_count, NULL}}});
 }
 
-accel *frame_accel_build(const glint_scene *s, int threads, const atomic_int *stop, glint_error *err) {
-    // The accel sees meshes as bare triangle lists: their material slots are the scene's business.
+accel *frame_accel_build(const glint_scene *s, const accel_build_options *opt, glint_error *err) {
+    // The scene's "presplit" joins the caller's options; the rest (threads, stop, tests' knobs) are the caller's.
+    accel_build_options o = opt ? *opt : (accel_build_options){0};
+    o.no_presplit = o.no_presplit || s->settings.no_presplit;
     const mesh **meshes = s->mesh_count ? malloc(s->mesh_count * sizeof *meshes) : NULL;
     if (s->mesh_count && !meshes) {
         snprintf(err->message, sizeof err->message, "out of memory building the acceleration structure");
         return NULL;
     }
-    for (size_t i = 0; i < s->mesh_count; i++) meshes[i] = &s->meshes[i].geometry;
-    accel_input in = {.spheres = s->spheres,
-                      .sphere_count = s->sphere_count,
-                      .quads = s->quads,
-                      .quad_count = s->quad_count,
-                      .meshes = meshes,
-                      .mesh_count = s->mesh_count,
-                      .instance_spheres = s->instance_spheres,
-                      .instances = s->instances,
-                      .instance_count = s->instance_count,
-                      .moving_spheres = s->moving_spheres,
-                      .moving_sphere_count = s->moving_sphere_count,
-                      .motions = s->motions,
-                      .time0 = s->camera.shutter_open,
-                      .time1 = s->camera.shutter_close,
-                      .stop = stop,
-                      .threads = threads,
-                      .stream_min_bytes = s->settings.stream_min_bytes,
-                      .interleave_min_bytes = s->settings.interleave_min_bytes,
-                      .no_presplit = s->settings.no_presplit};
+    geometry_arrays g = scene_geometry(s, meshes);
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
-    accel *a = accel_build(&in, s->settings.accel, err);
+    accel *a = accel_build(&g, s->settings.accel, &o, err);
     if (lane) trace_accel_build(lane, s, began);
     free(meshes); // accel_build keeps a copy of the list
     return a;
 }
 
-glint_status frame_build(render_frame *f, const glint_scene *s, const integrator_options *o, int threads,
-                         const atomic_int *stop, glint_error *err) {
+glint_status frame_build(render_frame *f, const glint_scene *s, const integrator_options *o,
+                         const accel_build_options *build, glint_error *err) {
     f->accel = NULL;
     f->integrator = NULL;
-    f->accel = frame_accel_build(s, threads, stop, err);
-    if (!f->accel) return stop && atomic_load(stop) ? GLINT_ERR_INTERRUPTED : GLINT_ERR_RENDER;
+    f->accel = frame_accel_build(s, build, err);
+    if (!f->accel) return build && build->stop && atomic_load(build->stop) ? GLINT_ERR_INTERRUPTED : GLINT_ERR_RENDER;
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
     f->integrator = integrator_create(s, f->accel, o, err);

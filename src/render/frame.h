@@ -15,14 +15,15 @@ typedef struct render_frame {
     integrator *integrator;
 } render_frame;
 
-/// Builds the frame of scene s (which must outlive it), the BVH on `threads` threads (0: all online CPUs; the
-/// frame is the same for any number); a nonzero *stop (stop may be NULL) ends the BVH build early. On failure
+/// Builds the frame of scene s (which must outlive it), the BVH as frame_accel_build does with `build` (its
+/// threads: the frame is the same for any number; a nonzero *build->stop ends the BVH build early). On failure
 /// returns GLINT_ERR_RENDER (GLINT_ERR_INTERRUPTED when stopped) with a message and leaves f empty.
-glint_status frame_build(render_frame *f, const glint_scene *s, const integrator_options *o, int threads,
-                         const atomic_int *stop, glint_error *err);
-/// The acceleration structure the scene's settings choose, over its geometry, built on `threads` threads (0: all
-/// online CPUs); NULL (message in *err) when out of memory. The scene must outlive it.
-accel *frame_accel_build(const glint_scene *s, int threads, const atomic_int *stop, glint_error *err);
+glint_status frame_build(render_frame *f, const glint_scene *s, const integrator_options *o,
+                         const accel_build_options *build, glint_error *err);
+/// The acceleration structure the scene's settings choose, over its geometry (scene_geometry), built as opt says
+/// (NULL: the defaults: all online CPUs, no stop) with the scene's "presplit"; NULL (message in *err) when out of
+/// memory or stopped. The scene must outlive it.
+accel *frame_accel_build(const glint_scene *s, const accel_build_options *opt, glint_error *err);
 /// Frees what the frame built and leaves it empty.
 void frame_release(render_frame *f);
 

@@ -646,7 +646,10 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
     int threads = opt && opt->threads > 0 ? opt->threads : thread_pool_online_cpus();
     if (threads > MAX_THREADS) threads = MAX_THREADS;
     render_frame frame;
-    st = frame_build(&frame, s, opt ? &opt->integrator : NULL, threads, job.cancel, err);
+    accel_build_options build = opt ? opt->accel : (accel_build_options){0};
+    build.threads = threads;
+    build.stop = job.cancel;
+    st = frame_build(&frame, s, opt ? &opt->integrator : NULL, &build, err);
     if (st == GLINT_ERR_INTERRUPTED) { // stopped while the BVH was built: no sample, a black image
         job_free(&job);
         if (stats) memset(stats, 0, sizeof *stats);

@@ -234,6 +234,24 @@ glint_status scene_override(glint_scene *s, const scene_overrides *o, glint_erro
     return warn_brute_force(s, o->accel != NULL, err);
 }
 
+geometry_arrays scene_geometry(const glint_scene *s, const mesh **meshes) {
+    for (size_t i = 0; i < s->mesh_count; i++) meshes[i] = &s->meshes[i].geometry;
+    return (geometry_arrays){.spheres = s->spheres,
+                             .sphere_count = s->sphere_count,
+                             .quads = s->quads,
+                             .quad_count = s->quad_count,
+                             .meshes = meshes,
+                             .mesh_count = s->mesh_count,
+                             .instance_spheres = s->instance_spheres,
+                             .instances = s->instances,
+                             .instance_count = s->instance_count,
+                             .moving_spheres = s->moving_spheres,
+                             .moving_sphere_count = s->moving_sphere_count,
+                             .motions = s->motions,
+                             .time0 = s->camera.shutter_open,
+                             .time1 = s->camera.shutter_close};
+}
+
 void scene_free(glint_scene *s) {
     if (!s) return;
     for (size_t i = 0; i < s->material_count; i++) free(s->material_names[i]);

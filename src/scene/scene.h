@@ -11,6 +11,7 @@
 #include "material/material.h"
 #include "light/envmap.h"
 #include "light/light.h"
+#include "geometry/geometry.h"
 #include "geometry/instance.h"
 #include "geometry/mesh.h"
 #include "geometry/motion.h"
@@ -43,9 +44,7 @@ typedef struct render_settings {
     vec3 sky_horizon, sky_zenith; ///< sky: lerp(horizon, zenith, 0.5 * (dir.y + 1))
     output_transform transform;
     accel_kind accel;
-    bool no_presplit;        ///< "presplit": false: long, slanted triangles keep whole boxes in the BVH (accel_input)
-    size_t stream_min_bytes; ///< (tests) smallest BVH whose rays are traced in streams (accel_input); 0: the default
-    size_t interleave_min_bytes; ///< (tests) smallest BVH whose streams are traversed together (accel_input); 0: the default
+    bool no_presplit; ///< "presplit": false: long, slanted triangles keep whole boxes (accel_build_options)
 } render_settings;
 
 /// Hard limits on sizes, so that a scene file cannot ask for absurd amounts of memory or time.
@@ -181,6 +180,10 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
                               glint_error *err);
 /// Reads a JSON scene file (at most 256 MiB).
 glint_status scene_file_load(const char *path, int threads, glint_scene **out, glint_error *err);
+/// The scene's geometry as the one value the accel is built over (geometry/geometry.h): its arrays, not copied,
+/// and the camera's shutter. The value's list of meshes is `meshes` (mesh_count places, the caller's), which it
+/// fills with the triangles of each scene mesh (their material slots stay the scene's business).
+geometry_arrays scene_geometry(const glint_scene *s, const mesh **meshes);
 /// Frees the scene and everything it owns (NULL is allowed).
 void scene_free(glint_scene *s);
 
