@@ -528,6 +528,8 @@ static bool worker_fail(const farm_setup *s, const char *what) {
     return false;
 }
 
+// One loop over the messages a worker rank can receive and the units its crew finishes, kept whole (101 lines):
+// its states (waiting, stopping, draining) are easiest to check against farm_master's when read in one place.
 bool farm_worker(const farm_setup *s) {
     const tiles *g = s->grid;
     crew c;

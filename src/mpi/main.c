@@ -165,6 +165,58 @@ static void print_shares(const farm_report *r, int size, double seconds) {
             r->units_remote, units, r->busy_seconds * 1e3, units ? r->busy_seconds * 1e6 / (double)units : 0.0);
 }
 
+// The job's statistics, as glint's statistics line gives them, from rank 0's report and clock.
+static glint_render_stats job_stats(const farm_report *report, const accel *a, double t0, double t_built,
+                                    double t_end, int all_threads, int spp) {
+    glint_render_stats stats;
+    memset(&stats, 0, sizeof stats);
+    stats.samples = report->total.samples;
+    stats.rays = report->total.rays;
+    stats.shadow_rays = report->total.shadow_rays;
+    stats.discarded_samples = report->total.discarded_samples;
+    accel_stats as;
+    accel_get_stats(a, &as);
+    stats.bvh_nodes = as.nodes;
+    stats.bvh_leaves = as.leaves;
+    stats.bvh_depth = as.depth;
+    stats.build_seconds = as.build_seconds > 0 ? as.build_seconds : t_built - t0;
+    stats.wall_seconds = t_end - t0;
+    stats.render_seconds = t_end - t_built;
+    stats.threads = all_threads;
+    stats.spp = spp;
+    return stats;
+}
+
+// Rank 0's end of the job: the statistics, the warnings, the image written. The exit status.
+static int finish_master(const cli_program *prog, const cli_options *opt, glint_format format,
+                         const farm_report *report, const glint_render_stats *stats, const glint_image *img, int size,
+                         bool interrupted) {
+    glint_error err;
+    int code;
+    if (!opt->quiet) {
+        cli_print_stats(prog, stats, interrupted && stats->samples == 0 ? NULL : opt->output, -1.0);
+        print_shares(report, size, stats->render_seconds);
+    }
+    bool lost = cli_warn_discarded(prog, stats);
+    if (!interrupted && stats->spp_done < stats->spp && !opt->quiet)
+        fprintf(stderr, "glint-mpi: time limit of %ld s reached: %d of %d samples per pixel rendered\n",
+                opt->time_limit, stats->spp_done, stats->spp);
+    int sig = report->stop_signal > 0 ? report->stop_signal : SIGINT;
+    if (interrupted && !opt->quiet && report->stopped_by != 0)
+        fprintf(stderr, "glint-mpi: rank %d was stopped by signal %d\n", report->stopped_by, sig);
+    if (interrupted && stats->samples == 0) {
+        if (!opt->quiet) fprintf(stderr, "glint-mpi: interrupted before any sample was rendered, no image written\n");
+        code = 128 + sig;
+    } else {
+        if (interrupted && !opt->quiet) cli_print_interrupted(prog, img, stats->samples, opt->output);
+        if (strcmp(opt->output, "-") != 0) cli_signals_block();
+        glint_status st = glint_image_write(img, opt->output, format, &err);
+        if (st != GLINT_OK) fprintf(stderr, "glint-mpi: %s\n", err.message);
+        code = st != GLINT_OK ? exit_code(st) : interrupted ? 128 + sig : lost ? 1 : 0;
+    }
+    return code;
+}
+
 int main(int argc, char **argv) {
     int provided = 0;
     // Only each process's main thread calls MPI; the render threads never do.
@@ -282,22 +334,7 @@ int main(int argc, char **argv) {
     }
     double t_end = clock_seconds();
 
-    glint_render_stats stats;
-    memset(&stats, 0, sizeof stats);
-    stats.samples = report.total.samples;
-    stats.rays = report.total.rays;
-    stats.shadow_rays = report.total.shadow_rays;
-    stats.discarded_samples = report.total.discarded_samples;
-    accel_stats as;
-    accel_get_stats(frame.accel, &as);
-    stats.bvh_nodes = as.nodes;
-    stats.bvh_leaves = as.leaves;
-    stats.bvh_depth = as.depth;
-    stats.build_seconds = as.build_seconds > 0 ? as.build_seconds : t_built - t0;
-    stats.wall_seconds = t_end - t0;
-    stats.render_seconds = t_end - t_built;
-    stats.threads = all_threads;
-    stats.spp = rs->spp;
+    glint_render_stats stats = job_stats(&report, frame.accel, t0, t_built, t_end, all_threads, rs->spp);
     bool interrupted = st == GLINT_ERR_INTERRUPTED;
     stats.spp_done = interrupted ? 0 : grid.pass_start[report.passes_done];
     frame_release(&frame);
@@ -306,27 +343,7 @@ int main(int argc, char **argv) {
     glint_image *img = film_take_image(&f);
     film_release(&f);
 
-    if (!opt.quiet) {
-        cli_print_stats(&prog, &stats, interrupted && stats.samples == 0 ? NULL : opt.output, -1.0);
-        print_shares(&report, size, stats.render_seconds);
-    }
-    bool lost = cli_warn_discarded(&prog, &stats);
-    if (!interrupted && stats.spp_done < stats.spp && !opt.quiet)
-        fprintf(stderr, "glint-mpi: time limit of %ld s reached: %d of %d samples per pixel rendered\n",
-                opt.time_limit, stats.spp_done, stats.spp);
-    int sig = report.stop_signal > 0 ? report.stop_signal : SIGINT;
-    if (interrupted && !opt.quiet && report.stopped_by != 0)
-        fprintf(stderr, "glint-mpi: rank %d was stopped by signal %d\n", report.stopped_by, sig);
-    if (interrupted && stats.samples == 0) {
-        if (!opt.quiet) fprintf(stderr, "glint-mpi: interrupted before any sample was rendered, no image written\n");
-        code = 128 + sig;
-    } else {
-        if (interrupted && !opt.quiet) cli_print_interrupted(&prog, img, stats.samples, opt.output);
-        if (strcmp(opt.output, "-") != 0) cli_signals_block();
-        st = glint_image_write(img, opt.output, format, &err);
-        if (st != GLINT_OK) fprintf(stderr, "glint-mpi: %s\n", err.message);
-        code = st != GLINT_OK ? exit_code(st) : interrupted ? 128 + sig : lost ? 1 : 0;
-    }
+    code = finish_master(&prog, &opt, format, &report, &stats, img, size, interrupted);
     glint_image_free(img);
     bool finished = farm_master_finish(&setup, &report, 10.0);
     farm_report_free(&report);
