@@ -27,6 +27,12 @@ typedef struct glint_error {
 // guarded apart, so that it is declared even when glint.h came first.
 #if !defined(GLINT_PUBLIC_HEADER) && !defined(GLINT_CORE_STATUS_FAIL)
 #define GLINT_CORE_STATUS_FAIL
+#include <stdarg.h>
+#include <stddef.h>
+/// The one formatter of messages: `prefix` (a reader's "file:line:col: ", "file:line: warning: ", or "") then the
+/// printf-style message, into buf (size bytes, always terminated, cut when longer).
+void status_vformat(char *buf, size_t size, const char *prefix, const char *format, va_list ap)
+    __attribute__((format(printf, 4, 0)));
 /// Formats the message into err (printf-style) and returns `status`: `return status_fail(err, GLINT_ERR_INPUT,
 /// "%s: ...", path);`.
 glint_status status_fail(glint_error *err, glint_status status, const char *format, ...)

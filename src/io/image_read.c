@@ -22,7 +22,7 @@ static void set_error(glint_error *err, const char *fmt, ...) {
     if (!err) return;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(err->message, sizeof err->message, fmt, ap);
+    status_vformat(err->message, sizeof err->message, "", fmt, ap);
     va_end(ap);
 }
 

@@ -16,8 +16,9 @@ void jr_vformat(const json_reader *rd, char *buf, size_t size, size_t offset, co
                 va_list ap) {
     size_t line, col;
     json_line_col(rd->text, rd->len, offset, &line, &col);
-    int n = snprintf(buf, size, "%s:%zu:%zu: %s", rd->name, line, col, label);
-    if (n >= 0 && (size_t)n < size) vsnprintf(buf + n, size - (size_t)n, fmt, ap);
+    char prefix[400];
+    snprintf(prefix, sizeof prefix, "%s:%zu:%zu: %s", rd->name, line, col, label);
+    status_vformat(buf, size, prefix, fmt, ap);
 }
 
 bool jr_fail_at(json_reader *rd, size_t offset, const char *fmt, ...) {

@@ -3,6 +3,7 @@
 // whitespace), stops at 1000 nesting levels and gives no line numbers; this pass runs first, so that
 // every syntax error is precise and cJSON only ever sees text it reads the same way we do.
 #include "io/json_scan.h"
+#include "core/status.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -99,7 +100,7 @@ static json_result scan_fail(scanner *sc, size_t offset, const char *fmt, ...) {
     sc->e->offset = offset;
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(sc->e->message, sizeof sc->e->message, fmt, ap);
+    status_vformat(sc->e->message, sizeof sc->e->message, "", fmt, ap);
     va_end(ap);
     return JSON_SCAN_SYNTAX;
 }

@@ -42,11 +42,11 @@ obj_quoted obj_quote_path(const char *s, size_t n) {
 // "file:line: " and the message.
 bool obj_fail(obj_reporter *r, const char *fmt, ...) {
     if (!r->err) return false;
-    int k = snprintf(r->err->message, sizeof r->err->message, "%s:%ld: ", r->name, r->line);
-    if (k < 0 || (size_t)k >= sizeof r->err->message) return false;
+    char prefix[400];
+    snprintf(prefix, sizeof prefix, "%s:%ld: ", r->name, r->line);
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(r->err->message + k, sizeof r->err->message - (size_t)k, fmt, ap);
+    status_vformat(r->err->message, sizeof r->err->message, prefix, fmt, ap);
     va_end(ap);
     return false;
 }
@@ -61,13 +61,12 @@ bool obj_out_of_memory(obj_reporter *r) {
 void obj_warn_at(obj_reporter *r, long line, const char *fmt, ...) {
     (*r->warnings)++;
     if (!r->warn) return;
-    char buf[1200];
-    int k = line > 0 ? snprintf(buf, sizeof buf, "%s:%ld: warning: ", r->name, line)
-                     : snprintf(buf, sizeof buf, "%s: warning: ", r->name);
-    if (k < 0 || (size_t)k >= sizeof buf) return;
+    char buf[1200], prefix[400];
+    if (line > 0) snprintf(prefix, sizeof prefix, "%s:%ld: warning: ", r->name, line);
+    else snprintf(prefix, sizeof prefix, "%s: warning: ", r->name);
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(buf + k, sizeof buf - (size_t)k, fmt, ap);
+    status_vformat(buf, sizeof buf, prefix, fmt, ap);
     va_end(ap);
     r->warn(buf, r->user);
 }
