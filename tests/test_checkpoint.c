@@ -430,6 +430,23 @@ static void test_refused(void) {
     glint_scene_free(s);
 }
 
+// A render stopped before its first sample (here while its BVH is built) still leaves a checkpoint, of no samples,
+// from which the whole render resumes.
+static void test_stopped_before_build(void) {
+    glint_scene *s = scene_with("early.json", 20, 12, 4, 3);
+    run ref = render(s, 1, NULL, NULL, NULL);
+    atomic_int stop;
+    atomic_init(&stop, 1);
+    run a = render_cancel(s, 1, tmp_path("early.ckp"), NULL, NULL, &stop);
+    CHECK(a.status == GLINT_ERR_INTERRUPTED && file_exists(tmp_path("early.ckp")));
+    run b = render(s, 2, NULL, tmp_path("early.ckp"), NULL);
+    CHECK(b.status == GLINT_OK && same_image(b.image, ref.image) && b.stats.samples_resumed == 0);
+    glint_image_free(ref.image);
+    glint_image_free(a.image);
+    glint_image_free(b.image);
+    glint_scene_free(s);
+}
+
 // ---- forged files: valid checksums (anyone can recompute them), contents no render makes ----
 
 // Writes a checkpoint of s's render with the given planes and spp, as a forger would: checkpoint_write computes
@@ -542,6 +559,7 @@ int main(void) {
     test_time_limit();
     test_region();
     test_refused();
+    test_stopped_before_build();
     test_forged();
     test_input_files();
     // Every file a checkpoint write made is in place: no temporary one is left in the directory.

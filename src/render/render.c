@@ -651,7 +651,13 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
     build.stop = job.cancel;
     st = frame_build(&frame, s, opt ? &opt->integrator : NULL, &build, err);
     if (st == GLINT_ERR_INTERRUPTED) { // stopped while the BVH was built: no sample, a black image
+        // A checkpoint is written however the render ends: here the samples it resumed, or none (a stop that came
+        // early on a loaded machine once left no file to resume from).
+        if (job.checkpoint) job_write_checkpoint(&job);
+        glint_status failed = atomic_load(&job.failed) ? GLINT_ERR_RENDER : GLINT_OK;
+        if (failed) *err = job.failure;
         job_free(&job);
+        if (failed) return failed;
         if (stats) memset(stats, 0, sizeof *stats);
         film f;
         if (!film_init(&f, region, s->settings.width, s->settings.height, 1, 1, s->settings.transform, aovs)) {
