@@ -107,7 +107,7 @@ medium_event medium_sample(const medium *media, size_t count, const texture *tex
                            medium_path *mp, rng *r) {
     medium_event ev = {false, 0, tmax, o, v3s(1.0f)};
     float first = tmax;
-    bool crossed = false;
+    bool crossed = false, media_grey = true; // media_grey: every medium crossed has equal densities in R, G, B
     // Each medium's events along its segment form a Poisson process of rate sigma_t (in the path's channel),
     // independent of the others': the earliest of their first events is the first event of their sum, and it
     // falls in medium i with probability sigma_t,i / sum, as it must.
@@ -115,6 +115,8 @@ medium_event medium_sample(const medium *media, size_t count, const texture *tex
         float t0, t1;
         if (!medium_segment(&media[i], o, d, 0.0f, tmax, &t0, &t1)) continue;
         crossed = true;
+        vec3 st = media[i].sigma_t;
+        media_grey = media_grey && st.x == st.y && st.y == st.z;
         if (mp->hero < 0) { // the path's channel, uniform, drawn once
             int c = (int)(rng_float(r) * 3.0f);
             mp->hero = c > 2 ? 2 : c;
@@ -130,9 +132,16 @@ medium_event medium_sample(const medium *media, size_t count, const texture *tex
         }
     }
     if (!crossed) return ev;
+    // Grey media on a path that has met only grey ones (book 2's): the optical depth's channels are equal, so the
+    // transmittance cancels below and is not computed (its three exp were 40 % of book 2's final scene).
+    vec3 ra = mp->ratio;
+    bool ratio_grey = ra.x == ra.y && ra.y == ra.z;
     double tau[3] = {0.0, 0.0, 0.0};
-    optical_depth(media, count, o, d, 0.0f, first, tau);
-    vec3 tr = exp_neg(tau);
+    vec3 tr = v3s(1.0f);
+    if (!(media_grey && ratio_grey)) {
+        optical_depth(media, count, o, d, 0.0f, first, tau);
+        tr = exp_neg(tau);
+    }
     const medium *m = ev.scattered ? &media[ev.index] : NULL;
     vec3 sigma_s = v3s(0.0f);
     if (m) {
@@ -141,10 +150,9 @@ medium_event medium_sample(const medium *media, size_t count, const texture *tex
         sigma_s = m->albedo_texture >= 0 ? v3_mul(m->sigma_t, texture_value(&textures[m->albedo_texture], 0.0f, 0.0f, ev.p))
                                          : m->sigma_s;
     }
-    // Grey media on a path that has met only grey ones (book 2's): the densities of the three channels are
-    // equal, and the factors are exactly 1 and the albedo, without the rounding of tr / tr.
-    vec3 ra = mp->ratio;
-    bool grey = tau[0] == tau[1] && tau[1] == tau[2] && ra.x == ra.y && ra.y == ra.z;
+    // Then the factors are exactly 1 and the albedo, without the rounding of tr / tr. (Grey media give equal
+    // channels of tau, computed alike; non-grey ones may too, where their segment lies beyond the event.)
+    bool grey = ratio_grey && ((media_grey) || (tau[0] == tau[1] && tau[1] == tau[2]));
     if (grey && !m) return ev;
     if (grey && m->sigma_t.x == m->sigma_t.y && m->sigma_t.y == m->sigma_t.z) {
         float st = m->sigma_t.x; // divided, not scaled by 1 / st: an albedo of 1 stays exactly 1
