@@ -113,6 +113,7 @@ static const char *const viewport_keys[] = {"type", "position", "viewport", "dis
 static const char *const lookat_keys[] = {"type",          "lookfrom",       "lookat",  "vup", "vfov",
                                           "defocus_angle", "focus_distance", "shutter", NULL};
 static const jr_numspec NUM_TIME = {0.0, 1.0, JR_FLOAT, "a time in [0, 1]"};
+static const char *const import_camera_keys[] = {"type", "file", "name", "transform", "shutter", NULL};
 
 // "shutter": [open, close], times in [0, 1] (the span over which objects' motions are defined), open <= close.
 static bool read_shutter(sf_loader *ld, const jr_obj *o, camera *c) {
@@ -136,6 +137,7 @@ static const struct camera_type {
 } camera_types[] = {
     {"viewport", CAMERA_VIEWPORT, viewport_keys},
     {"lookat", CAMERA_LOOKAT, lookat_keys},
+    {"import", CAMERA_LOOKAT, import_camera_keys}, // a glTF file's camera, as a look-at camera (scene_file_import.c)
 };
 
 // The camera's film for the widest and the tallest image allowed must lie within the extent (a huge focus
@@ -195,12 +197,13 @@ static bool read_viewport(sf_loader *ld, const jr_obj *o, camera *c) {
 
 static bool read_camera(sf_loader *ld, jr_val v) {
     size_t t;
-    if (!jr_open_typed(&ld->r, v, "camera", camera_types, 2, sizeof camera_types[0], &t)) return false;
+    if (!jr_open_typed(&ld->r, v, "camera", camera_types, 3, sizeof camera_types[0], &t)) return false;
     char typed[64];
     snprintf(typed, sizeof typed, "camera (%s)", camera_types[t].name);
     jr_obj o;
     if (!jr_open(&ld->r, v, typed, camera_types[t].keys, &o)) return false;
     camera *c = &ld->scene->camera;
+    if (t == 2) return sf_read_import_camera(ld, &o, c);
     *c = camera_default();
     c->kind = camera_types[t].kind;
     if (c->kind == CAMERA_VIEWPORT) {
@@ -464,6 +467,7 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
     names_free(&ld.materials);
     names_free(&ld.textures);
     free(ld.meshes);
+    free(ld.imports);
     free(ld.images);
     cJSON_Delete(root);
     json_index_free(&ix);

@@ -11,6 +11,7 @@
 #include "core/strmap.h"
 #include "io/image_read.h"
 #include "io/json_read.h"
+#include "io/model_read.h"
 #include "io/mtl.h"
 #include "scene/scene.h"
 
@@ -58,6 +59,12 @@ typedef struct sf_mesh_entry {
     uint32_t mesh;
 } sf_mesh_entry;
 
+/// A model file already imported: placing it again adds instances of the same scene meshes.
+typedef struct sf_import_entry {
+    sf_file_id id;
+    uint32_t first_mesh; ///< the scene mesh of the model's mesh 0; the others follow in order
+} sf_import_entry;
+
 /// An image file already decoded into a texture.
 typedef struct sf_image_entry {
     sf_file_id id;
@@ -75,6 +82,7 @@ typedef enum sf_object_kind {
     SF_OBJECT_MESH,
     SF_OBJECT_CONSTANT_MEDIUM,
     SF_OBJECT_HOMOGENEOUS_MEDIUM,
+    SF_OBJECT_IMPORT,
     SF_OBJECT_KINDS
 } sf_object_kind;
 
@@ -87,6 +95,8 @@ typedef struct sf_loader {
     size_t mesh_count, mesh_cap;
     sf_image_entry *images;
     size_t image_count, image_cap;
+    sf_import_entry *imports; ///< model files imported ("import" objects), each loaded once
+    size_t import_count, import_cap;
     long fallback_material;  ///< the grey Lambertian of faces without a material, once created; else -1
     int mesh_threads;        ///< threads that read a large mesh file (0: all online CPUs)
     size_t warnings_dropped; ///< warnings past SF_MAX_WARNINGS
@@ -161,6 +171,18 @@ bool sf_read_light(sf_loader *ld, jr_val v, size_t i);
 bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what);
 /// The glint material of an MTL material's values (the policy: docs/scene-format.md, "Meshes").
 material sf_mtl_material(const mtl_values *v);
+
+// scene_file_import.c: glTF and PLY files (models)
+
+/// Reads model file `path` (written as `file`; `kind`, "mesh" or "import", names it in messages) and records the
+/// files it read as scene inputs.
+bool sf_model_load(sf_loader *ld, jr_val file, const char *path, const char *kind, model_file *model);
+/// Model material i as a new scene material named "FILE:NAME", with its textures.
+bool sf_model_material(sf_loader *ld, jr_val file, const model_file *model, size_t i, uint32_t *index);
+/// An "import" object: every node's meshes placed as instances (under the object's "transform"), the file's lights.
+bool sf_read_import(sf_loader *ld, const jr_obj *o, const char *what);
+/// A camera {"type": "import", "file", "name", "transform", "shutter"}: the file's perspective camera as a look-at one.
+bool sf_read_import_camera(sf_loader *ld, const jr_obj *o, camera *c);
 
 // scene_file_media.c: participating media
 
