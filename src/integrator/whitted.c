@@ -485,6 +485,10 @@ static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thre
         switch (m->kind) {
         case MAT_DIFFUSE_LIGHT: return sum; // handled above
         case MAT_LAMBERTIAN:
+        case MAT_CONDUCTOR: // placeholder until the BSDF interface
+        case MAT_ROUGH_DIELECTRIC:
+        case MAT_PBR:
+        case MAT_KIND_COUNT:
         case MAT_PHONG: {
             vec3 local = color_local(it, m, albedo, &co, &sf, v3_neg(d), ts);
             float rfl = m->kind == MAT_PHONG ? m->reflective : 0.0f;

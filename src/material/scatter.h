@@ -117,6 +117,14 @@ static inline __attribute__((always_inline)) bool mat_scatter(const material *m,
         ev->diffuse = true;
         return true;
     case MAT_DIFFUSE_LIGHT: return false;
+    case MAT_CONDUCTOR: // placeholder: diffuse until the BSDF interface takes the microfacet materials
+    case MAT_ROUGH_DIELECTRIC:
+    case MAT_PBR:
+    case MAT_KIND_COUNT:
+        ev->dir = mat_lambertian_dir(n, sample_sphere_uniform(r));
+        ev->weight = albedo;
+        ev->diffuse = true;
+        return true;
     }
     return false;
 }
