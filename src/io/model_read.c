@@ -98,7 +98,9 @@ static void assimp_log(const char *message, char *user) {
     read_context *c = current_read;
     if (!c || c->dropped[0]) return;
     // assimp does not fail a file whose faces index past its vertices: it drops those faces and says so.
-    if (strstr(message, "out-of-range") || strstr(message, "out of range")) {
+    bool warning = strncmp(message, "Warn", 4) == 0 || strncmp(message, "Error", 5) == 0;
+    if (warning && (strstr(message, "out-of-range indices") || strstr(message, "index is out of range") ||
+                    strstr(message, "indices out of range"))) {
         const char *text = strstr(message, "T0: ");
         snprintf(c->dropped, sizeof c->dropped, "%s", text ? text + 4 : message);
         size_t n = strlen(c->dropped);
@@ -626,10 +628,87 @@ static glint_status convert(converter *cv) {
     return GLINT_OK;
 }
 
+// ---------------------------------------------------------------------------------------------
+// PLY headers, checked before assimp reads the body: assimp allocates what the header declares
+
+enum { PLY_MAX_HEADER = 64 << 10 };
+
+// The bytes of a PLY scalar type, 0 for an unknown name.
+static unsigned ply_type_size(const char *t) {
+    static const struct { const char *name; unsigned size; } types[] = {
+        {"char", 1}, {"uchar", 1}, {"int8", 1}, {"uint8", 1}, {"short", 2}, {"ushort", 2}, {"int16", 2},
+        {"uint16", 2}, {"int", 4}, {"uint", 4}, {"int32", 4}, {"uint32", 4}, {"float", 4}, {"float32", 4},
+        {"double", 8}, {"float64", 8}};
+    for (size_t i = 0; i < sizeof types / sizeof types[0]; i++)
+        if (strcmp(t, types[i].name) == 0) return types[i].size;
+    return 0;
+}
+
+/// Refuses a PLY file whose header declares more elements than its body could hold: every element needs at least
+/// its properties' bytes (binary; a list at least its count) or two characters a property (ASCII: a digit and a
+/// separator). A forged count would otherwise have assimp allocate gigabytes before it finds the file short.
+static glint_status check_ply_header(const char *path, glint_error *err) {
+    struct stat st;
+    int problem;
+    FILE *f = filepath_open_regular(path, &st, &problem);
+    if (!f) return status_fail(err, GLINT_ERR_INPUT, "%s: cannot open: %s", path, filepath_problem_text(problem));
+    char *text = malloc(PLY_MAX_HEADER + 1);
+    if (!text) {
+        fclose(f);
+        return status_fail(err, GLINT_ERR_RENDER, "%s: out of memory while reading the model", path);
+    }
+    size_t n = fread(text, 1, PLY_MAX_HEADER, f);
+    fclose(f);
+    text[n] = '\0';
+    char *end = strstr(text, "end_header");
+    glint_status result = GLINT_OK;
+    if (strncmp(text, "ply", 3) != 0 || !end) {
+        free(text);
+        return GLINT_OK; // not a PLY header glint can read: assimp says what is wrong
+    }
+    char *body = strchr(end, '\n');
+    double header_bytes = body ? (double)(body + 1 - text) : (double)n, body_bytes = (double)st.st_size - header_bytes;
+    *end = '\0';
+    bool ascii = strstr(text, "format ascii") != NULL;
+    double need = 0.0, per_item = 0.0, count = 0.0;
+    char name[64] = "", current[64] = "";
+    char *save = NULL;
+    for (char *line = strtok_r(text, "\r\n", &save); line; line = strtok_r(NULL, "\r\n", &save)) {
+        char a[32], b[32], c[32];
+        unsigned long long declared;
+        if (sscanf(line, "element %63s %llu", name, &declared) == 2) {
+            need += count * per_item;
+            count = (double)declared;
+            per_item = 0.0;
+            snprintf(current, sizeof current, "%s", name);
+            if (declared > (unsigned long long)INT32_MAX) {
+                result = status_fail(err, GLINT_ERR_INPUT, "%s: the header declares %llu elements \"%s\"; at most 2^31 - 1",
+                                     path, declared, current);
+                break;
+            }
+        } else if (sscanf(line, "property list %31s %31s %31s", a, b, c) == 3) {
+            per_item += ascii ? 2.0 : (double)ply_type_size(a);
+        } else if (sscanf(line, "property %31s %31s", a, b) == 2) {
+            per_item += ascii ? 2.0 : (double)ply_type_size(a);
+        }
+    }
+    need += count * per_item;
+    if (result == GLINT_OK && need > body_bytes)
+        result = status_fail(err, GLINT_ERR_INPUT,
+                             "%s: the header declares elements that need at least %.0f bytes, but the file has %.0f "
+                             "after its header (truncated, or a forged count)", path, need, body_bytes > 0 ? body_bytes : 0.0);
+    free(text);
+    return result;
+}
+
 glint_status model_read(const char *path, model_warning_fn warn_fn, void *user, model_file *out, glint_error *err) {
     memset(out, 0, sizeof *out);
     if (model_format_of(path) == MODEL_FORMAT_NONE)
         return status_fail(err, GLINT_ERR_INPUT, "%s: not a glTF (.gltf, .glb) or PLY (.ply) file", path);
+    if (model_format_of(path) == MODEL_FORMAT_PLY) {
+        glint_status st = check_ply_header(path, err);
+        if (st != GLINT_OK) return st;
+    }
     read_context ctx = {.path = path, .out = out};
     struct aiFileIO io = {file_open_proc, file_close_proc, (aiUserData)(void *)&ctx};
     // Polygons (PLY) become triangles; nothing else is made: no joined, generated or smoothed vertices.

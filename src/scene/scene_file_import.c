@@ -88,19 +88,29 @@ bool sf_model_material(sf_loader *ld, jr_val file, const model_file *model, size
     char prefix[512], shown[204];
     snprintf(prefix, sizeof prefix, "model file \"%s\": material \"%.100s\": ", filepath_tail(written, 200, shown, sizeof shown),
              mm->name);
-    material m;
-    if (mm->emission.x > 0.0f || mm->emission.y > 0.0f || mm->emission.z > 0.0f) {
-        m = material_default(MAT_DIFFUSE_LIGHT);
-        m.emission = mm->emission;
-        m.albedo_texture = -1;
-        if (!model_texture(ld, where, prefix, model, mm->emissive_image, IMAGE_DECODE_SRGB, &m.emission_texture))
-            return false;
-    } else {
-        m = material_default(MAT_LAMBERTIAN);
-        m.albedo = mm->base_color;
-        m.emission_texture = -1;
-        if (!model_texture(ld, where, prefix, model, mm->base_color_image, IMAGE_DECODE_SRGB, &m.albedo_texture))
-            return false;
+    // glTF's metallic-roughness model is glint's pbr, field for field (docs/scene-format.md, "Importing a model").
+    material m = material_default(MAT_PBR);
+    m.albedo = mm->base_color;
+    m.metallic = mm->metallic;
+    m.roughness = mm->roughness;
+    m.ior = mm->ior;
+    m.transmission = mm->transmission;
+    m.emission = mm->emission;
+    m.normal_scale = mm->normal_scale;
+    int32_t metal_rough = -1;
+    if (!model_texture(ld, where, prefix, model, mm->base_color_image, IMAGE_DECODE_SRGB, &m.albedo_texture) ||
+        !model_texture(ld, where, prefix, model, mm->metallic_roughness_image, IMAGE_DECODE_LINEAR, &metal_rough) ||
+        !model_texture(ld, where, prefix, model, mm->normal_image, IMAGE_DECODE_LINEAR, &m.normal_texture) ||
+        !model_texture(ld, where, prefix, model, mm->transmission_image, IMAGE_DECODE_LINEAR, &m.transmission_texture) ||
+        (v3_max_comp(m.emission) > 0.0f &&
+         !model_texture(ld, where, prefix, model, mm->emissive_image, IMAGE_DECODE_SRGB, &m.emission_texture)))
+        return false;
+    m.metallic_texture = m.roughness_texture = metal_rough; // glTF: blue is metal, green is roughness
+    if (mm->alpha_mode != MODEL_ALPHA_OPAQUE) {
+        char shown2[204];
+        sf_warn_at(ld, where, "model file \"%s\": material \"%.100s\": alphaMode %s is not supported; rendered opaque",
+                   filepath_tail(written, 200, shown2, sizeof shown2), mm->name,
+                   mm->alpha_mode == MODEL_ALPHA_MASK ? "MASK" : "BLEND");
     }
     if (ld->scene->material_count >= SF_MAX_ITEMS)
         return jr_fail_at(&ld->r, where, "too many materials (the limit is %d)", SF_MAX_ITEMS);
