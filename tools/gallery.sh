@@ -27,4 +27,5 @@ rtiow2-bouncing-spheres 400 225 64
 cornell-smoke 300 300 128
 rtiow2-final 300 300 64
 envmap-bunny 320 240 64
+gltf-boxes 320 240 64
 LIST

@@ -15,5 +15,5 @@ for png in "$TMP"/gallery/*.png; do
     check "docs/gallery/$name is what tools/gallery.sh makes" cmp -s "$png" "$SRC/docs/gallery/$name"
     count=$((count + 1))
 done
-check "the script made all 15 pictures (made $count)" test "$count" -eq 15
+check "the script made all 16 pictures (made $count)" test "$count" -eq 16
 summary
