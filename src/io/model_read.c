@@ -1,6 +1,7 @@
 // model_read.c — glTF 2.0 and PLY files through assimp's C API, checked and turned into glint records (model_read.h).
 #include "io/model_read.h"
 
+#include "core/file_read.h"
 #include "core/filepath.h"
 
 #include <ctype.h>
@@ -73,6 +74,7 @@ glint_status model_read(const char *path, model_warning_fn warn, void *user, mod
 #include <assimp/scene.h>
 #include <assimp/GltfMaterial.h>
 
+#include <cjson/cJSON.h>
 #include <pthread.h>
 #include <sys/stat.h>
 
@@ -194,6 +196,7 @@ static void file_close_proc(struct aiFileIO *io, struct aiFile *af) {
 
 typedef struct converter {
     const char *path;
+    model_format format;
     const struct aiScene *sc;
     model_file *out;
     glint_error *err;
@@ -399,7 +402,8 @@ static glint_status convert_material(converter *cv, unsigned index, model_materi
     struct aiString name = {0};
     aiGetMaterialString(am, AI_MATKEY_NAME, &name);
     if (!(out->name = copy_string(&name))) return fail_oom(cv);
-    out->is_default = strcmp(out->name, AI_DEFAULT_MATERIAL_NAME) == 0;
+    // PLY has no materials: whatever assimp makes of a PLY file (a stand-in, vertex colours) is none.
+    out->is_default = cv->format == MODEL_FORMAT_PLY || strcmp(out->name, AI_DEFAULT_MATERIAL_NAME) == 0;
     struct aiColor4D c;
     out->base_color = v3s(1.0f);
     out->alpha = 1.0f;
@@ -418,8 +422,7 @@ static glint_status convert_material(converter *cv, unsigned index, model_materi
         out->transmission = clamp01(finite_or(f, 0.0f));
     if (aiGetMaterialColor(am, AI_MATKEY_COLOR_EMISSIVE, &c) == aiReturn_SUCCESS)
         out->emission = v3(fmaxf(0.0f, finite_or(c.r, 0.0f)), fmaxf(0.0f, finite_or(c.g, 0.0f)), fmaxf(0.0f, finite_or(c.b, 0.0f)));
-    if (aiGetMaterialFloatArray(am, AI_MATKEY_EMISSIVE_INTENSITY, &f, NULL) == aiReturn_SUCCESS && isfinite(f) && f >= 0.0f)
-        out->emission = v3_scale(out->emission, f);
+    // KHR_materials_emissive_strength: apply_emissive_strength (assimp 5.2 does not read it).
     int two = 0;
     if (aiGetMaterialIntegerArray(am, AI_MATKEY_TWOSIDED, &two, NULL) == aiReturn_SUCCESS) out->double_sided = two != 0;
     out->alpha_cutoff = 0.5f;
@@ -569,16 +572,17 @@ static glint_status convert_cameras(converter *cv) {
         }
         model_camera c = {0};
         c.aspect = isfinite(ac->mAspect) && ac->mAspect > 0.0f ? ac->mAspect : 0.0f;
-        // assimp keeps glTF's yfov as a horizontal field of view: 2 atan(tan(yfov / 2) aspect), or yfov itself
-        // without an aspect ratio.
+        // assimp 5.2 keeps glTF's yfov as mHorizontalFOV = yfov * aspectRatio, or yfov itself without an aspect.
         float h = ac->mHorizontalFOV;
-        c.yfov = c.aspect > 0.0f ? 2.0f * atanf(tanf(0.5f * h) / c.aspect) : h;
+        c.yfov = c.aspect > 0.0f ? h / c.aspect : h;
         if (!(isfinite(c.yfov) && c.yfov > 0.0f && c.yfov < 3.14159265f)) {
             warn(cv, "camera \"%.200s\" is not a perspective camera with a field of view in (0, pi); ignored",
                  ac->mName.data);
             continue;
         }
-        c.position = mat4_apply_point(&xf, from_ai(ac->mPosition));
+        // The node places the camera: assimp 5.2 also copies the node's translation into mPosition, which
+        // would count it twice, so the camera sits at the node's origin (as glTF defines it).
+        c.position = mat4_apply_point(&xf, v3s(0.0f));
         vec3 fwd = mat4_apply_vector(&xf, from_ai(ac->mLookAt)), up = mat4_apply_vector(&xf, from_ai(ac->mUp));
         // Up is made perpendicular to forward (a node's shear or non-uniform scale could tilt it).
         vec3 right = v3_cross(fwd, up);
@@ -701,6 +705,53 @@ static glint_status check_ply_header(const char *path, glint_error *err) {
     return result;
 }
 
+// ---------------------------------------------------------------------------------------------
+// What assimp 5.2 does not read of a glTF file: KHR_materials_emissive_strength
+
+/// Multiplies the emission of material i by its KHR_materials_emissive_strength, read from the file's JSON (the
+/// .gltf, or a .glb's first chunk): assimp keeps glTF's materials in the file's order. A file that cannot be
+/// read here was read by assimp, which reported what was wrong; nothing is changed then.
+static void apply_emissive_strength(const char *path, model_file *m) {
+    struct stat st;
+    int problem;
+    FILE *f = filepath_open_regular(path, &st, &problem);
+    if (!f) return;
+    size_t len;
+    int errnum;
+    char *data = file_read_stream(f, (size_t)st.st_size, MODEL_MAX_FILE_BYTES, &len, &errnum);
+    fclose(f);
+    if (!data) return;
+    const char *json = data;
+    size_t json_len = len;
+    if (model_format_of(path) == MODEL_FORMAT_GLB) {
+        // 12-byte header ("glTF", version, length), then chunk 0: length, type "JSON", the text.
+        uint32_t chunk = 0;
+        if (len < 20 || memcmp(data, "glTF", 4) != 0 || memcmp(data + 16, "JSON", 4) != 0) {
+            free(data);
+            return;
+        }
+        memcpy(&chunk, data + 12, 4);
+        if (chunk > len - 20) {
+            free(data);
+            return;
+        }
+        json = data + 20;
+        json_len = chunk;
+    }
+    cJSON *root = cJSON_ParseWithLength(json, json_len);
+    free(data);
+    const cJSON *mats = cJSON_GetObjectItemCaseSensitive(root, "materials");
+    size_t i = 0;
+    for (const cJSON *mat = cJSON_IsArray(mats) ? mats->child : NULL; mat && i < m->material_count; mat = mat->next, i++) {
+        const cJSON *ext = cJSON_GetObjectItemCaseSensitive(mat, "extensions");
+        const cJSON *es = cJSON_GetObjectItemCaseSensitive(ext, "KHR_materials_emissive_strength");
+        const cJSON *k = cJSON_GetObjectItemCaseSensitive(es, "emissiveStrength");
+        if (cJSON_IsNumber(k) && isfinite(k->valuedouble) && k->valuedouble >= 0.0 && k->valuedouble <= 1e6)
+            m->materials[i].emission = v3_scale(m->materials[i].emission, (float)k->valuedouble);
+    }
+    cJSON_Delete(root);
+}
+
 glint_status model_read(const char *path, model_warning_fn warn_fn, void *user, model_file *out, glint_error *err) {
     memset(out, 0, sizeof *out);
     if (model_format_of(path) == MODEL_FORMAT_NONE)
@@ -735,8 +786,9 @@ glint_status model_read(const char *path, model_warning_fn warn_fn, void *user, 
         st = status_fail(err, GLINT_ERR_INPUT, "%s: faces index vertices the file does not have (%s); expected every index "
                          "in range", path, ctx.dropped);
     } else {
-        converter cv = {.path = path, .sc = sc, .out = out, .err = err, .warn = warn_fn, .user = user};
+        converter cv = {.path = path, .format = model_format_of(path), .sc = sc, .out = out, .err = err, .warn = warn_fn, .user = user};
         st = convert(&cv);
+        if (st == GLINT_OK && model_format_of(path) != MODEL_FORMAT_PLY) apply_emissive_strength(path, out);
     }
     if (sc) aiReleaseImport(sc);
     if (st != GLINT_OK) model_file_free(out);

@@ -53,7 +53,7 @@ typedef struct model_material {
     vec3 base_color;        ///< baseColorFactor's RGB (linear)
     float alpha;            ///< baseColorFactor's A
     float metallic, roughness, ior, transmission;
-    vec3 emission;          ///< emissiveFactor times KHR_materials_emissive_strength where assimp gives it
+    vec3 emission;          ///< emissiveFactor times KHR_materials_emissive_strength (read by glint: assimp 5.2 does not)
     int32_t base_color_image, metallic_roughness_image, normal_image, emissive_image, transmission_image;
     float normal_scale;
     model_alpha_mode alpha_mode;

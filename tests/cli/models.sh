@@ -48,6 +48,9 @@ sys.exit(0 if ok else 1)
 PY
 }
 
+# differ_beyond A.ppm B.ppm TOLERANCE: the mean absolute difference exceeds TOLERANCE.
+differ_beyond() { ! same_within "$@" >/dev/null; }
+
 # ---- malformed files: exit 2 within the time limit, a message naming the file ----
 for f in index-out-of-range.gltf infinite-vertex.gltf missing-bin.gltf recursive-nodes.gltf cyclic-nodes.gltf \
          huge-count.gltf deep-nodes.gltf huge-count.ply nan-vertex.ply index-out-of-range.ply truncated.ply; do
@@ -87,16 +90,22 @@ run_bounded byhand.json -q -o byhand.ppm
 check "its JSON twin renders: $(cat err)" test "$rc" -eq 0
 check "a reused mesh renders as the JSON scene's instances, byte for byte" cmp -s import.ppm byhand.ppm
 # ---- cameras: the file's view, as the equivalent look-at camera ----
-for cam in 'front|[0.25, 1, 4]|[0.25, 1, 3]|34.3774677' 'side|[4, 1, 0]|[3, 1, 0]|28.6478898'; do
+for cam in 'front|[0.25, 1, 4]|[0.25, 1, 3]|34.37746771' 'side|[4, 1, 0]|[3, 1, 0]|28.64788976'; do
     IFS='|' read -r name from at vfov <<<"$cam"
-    printf '{%s, "camera": {"type": "import", "file": "cameras.gltf", "name": "%s"}, %s, "objects": [{"type": "import", "file": "cameras.gltf"}]}\n' \
-        "$render" "$name" "$light" >cam.json
-    printf '{%s, "camera": {"type": "lookat", "lookfrom": %s, "lookat": %s, "vfov": %s}, %s, "objects": [{"type": "import", "file": "cameras.gltf"}]}\n' \
-        "$render" "$from" "$at" "$vfov" "$light" >lookat.json
+    objects='"objects": [{"type": "import", "file": "cameras.gltf"}, {"type": "sphere", "center": [0, 0.6, 0], "radius": 0.6, "material": {"type": "lambertian", "albedo": [0.2, 0.6, 0.3]}}]'
+    printf '{%s, "camera": {"type": "import", "file": "cameras.gltf", "name": "%s"}, %s, %s}\n' \
+        "$render" "$name" "$light" "$objects" >cam.json
+    printf '{%s, "camera": {"type": "lookat", "lookfrom": %s, "lookat": %s, "vfov": %s}, %s, %s}\n' \
+        "$render" "$from" "$at" "$vfov" "$light" "$objects" >lookat.json
+    # A camera 10%% further away: what the comparison must tell apart.
+    printf '{%s, "camera": {"type": "lookat", "lookfrom": %s, "lookat": %s, "vfov": %s}, %s, %s}\n' \
+        "$render" "$from" "$at" "$(python3 -c "print($vfov * 0.9)")" "$light" "$objects" >other.json
+    run_bounded other.json -q -o other.ppm
     run_bounded cam.json -q -o cam.ppm
     check "camera $name imports: $(cat err)" test "$rc" -eq 0
     run_bounded lookat.json -q -o lookat.ppm
-    check "camera $name: the file's view is the look-at camera's ($(same_within cam.ppm lookat.ppm 1))" same_within cam.ppm lookat.ppm 1
+    check "camera $name: the file's view is the look-at camera's ($(same_within cam.ppm lookat.ppm 0.25))" same_within cam.ppm lookat.ppm 0.25
+    check "camera $name: and not a narrower one ($(same_within cam.ppm other.ppm 0.25))" differ_beyond cam.ppm other.ppm 0.75
 done
 printf '{"camera": {"type": "import", "file": "cameras.gltf", "name": "top"}}\n' >cam.json
 run_bounded cam.json -q -o cam.ppm

@@ -73,6 +73,13 @@ write('spot.gltf', gltf(nodes=[{"mesh": 0, "scale": [4.0, 1.0, 4.0]},
                                    {"type": "spot", "color": [1.0, 0.9, 0.8], "intensity": 8.0,
                                     "spot": {"innerConeAngle": 0.3, "outerConeAngle": 0.6}}]}}}))
 
+# An emissive material with KHR_materials_emissive_strength (read by glint: assimp 5.2 does not) and a metallic one.
+write('emissive.gltf', gltf(extra={"extensionsUsed": ["KHR_materials_emissive_strength"],
+                                   "materials": [{"name": "lamp", "emissiveFactor": [1.0, 0.5, 0.25],
+                                                  "extensions": {"KHR_materials_emissive_strength": {"emissiveStrength": 4.0}},
+                                                  "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.2, 0.3, 1.0],
+                                                                           "metallicFactor": 0.25, "roughnessFactor": 0.75}}]}))
+
 # ---- malformed files: each must be refused with a message naming it, exit 2 ----
 write('index-out-of-range.gltf', gltf(indices=[0, 2, 1, 0, 3, 9]))
 pb, ib = buffer_of([(0, 0, 0), (float('inf'), 0, 0), (0, 0, 1)], [0, 1, 2])

@@ -1,0 +1,161 @@
+// test_model_read.c — glTF and PLY files through io/model_read (assimp): what the records hold for the files of
+// tests/data/models (made by its make.py), and that malformed ones are refused with a message naming the file.
+// Skipped (every check passes vacuously, and says so) in a glint built without assimp.
+#include "check.h"
+#include "io/model_read.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#define DIR GLINT_SOURCE_DIR "/tests/data/models/"
+
+static size_t warnings;
+static void count_warning(const char *message, void *user) {
+    (void)message;
+    (void)user;
+    warnings++;
+}
+
+static bool load(const char *name, model_file *m, glint_error *err) {
+    return model_read(name, count_warning, NULL, m, err) == GLINT_OK;
+}
+
+static void test_formats(void) {
+    CHECK(model_format_of("a/b.PLY") == MODEL_FORMAT_PLY);
+    CHECK(model_format_of("b.gltf") == MODEL_FORMAT_GLTF);
+    CHECK(model_format_of("b.GLB") == MODEL_FORMAT_GLB);
+    CHECK(model_format_of("b.obj") == MODEL_FORMAT_NONE);
+    CHECK(model_format_of("dir.ply/b") == MODEL_FORMAT_NONE);
+    CHECK(model_format_of("ply") == MODEL_FORMAT_NONE);
+}
+
+// One mesh, three placements: a node, a node's child (the parent's translation composed with its scale), a node.
+static void test_reused(void) {
+    model_file m;
+    glint_error err;
+    CHECK(load(DIR "reused.gltf", &m, &err));
+    CHECK(m.mesh_count == 1 && m.placement_count == 3);
+    if (m.mesh_count == 1 && m.placement_count == 3) {
+        CHECK(m.meshes[0].geometry.triangle_count == 2 && m.meshes[0].geometry.position_count == 4);
+        CHECK(m.placements[0].xf.m[0][3] == -1.5f);
+        CHECK(m.placements[1].xf.m[0][3] == 1.5f && m.placements[1].xf.m[0][0] == 0.5f);
+        CHECK(m.placements[2].xf.m[2][3] == -1.5f);
+        const model_material *mat = &m.materials[m.meshes[0].material];
+        CHECK(strcmp(mat->name, "clay") == 0 && !mat->is_default);
+        CHECK(mat->base_color.x == 0.8f && mat->base_color.y == 0.3f && mat->metallic == 0.0f && mat->roughness == 1.0f);
+    }
+    CHECK(m.input_count == 1); // the .gltf alone: its buffer is a data: URI
+    model_file_free(&m);
+}
+
+static void test_emissive(void) {
+    model_file m;
+    glint_error err;
+    CHECK(load(DIR "emissive.gltf", &m, &err));
+    if (m.material_count >= 1) {
+        const model_material *mat = &m.materials[0];
+        CHECK_NEAR(mat->emission.x, 4.0, 0.0);
+        CHECK_NEAR(mat->emission.y, 2.0, 0.0);
+        CHECK_NEAR(mat->emission.z, 1.0, 0.0);
+        CHECK(mat->metallic == 0.25f && mat->roughness == 0.75f);
+    }
+    model_file_free(&m);
+}
+
+static void test_cameras_and_lights(void) {
+    model_file m;
+    glint_error err;
+    CHECK(load(DIR "cameras.gltf", &m, &err));
+    CHECK(m.camera_count == 2);
+    if (m.camera_count == 2) {
+        const model_camera *front = &m.cameras[0], *side = &m.cameras[1];
+        CHECK(strcmp(front->name, "front") == 0 && strcmp(side->name, "side") == 0);
+        CHECK_NEAR(front->yfov, 0.6, 1e-6);
+        CHECK_NEAR(front->position.x, 0.25, 0.0);
+        CHECK_NEAR(front->position.z, 4.0, 0.0);
+        CHECK_NEAR(front->forward.z, -1.0, 0.0);
+        CHECK_NEAR(front->up.y, 1.0, 0.0);
+        // Turned a quarter about +y: looking along -x.
+        CHECK_NEAR(side->yfov, 0.5, 1e-6);
+        CHECK_NEAR(side->aspect, 1.5, 0.0);
+        CHECK_NEAR(side->forward.x, -1.0, 1e-6);
+        CHECK_NEAR(side->up.y, 1.0, 1e-6);
+    }
+    model_file_free(&m);
+    CHECK(load(DIR "spot.gltf", &m, &err));
+    CHECK(m.light_count == 1);
+    if (m.light_count == 1) {
+        const model_light *l = &m.lights[0];
+        CHECK(l->kind == MODEL_LIGHT_SPOT);
+        CHECK_NEAR(l->intensity.x, 8.0, 1e-5);
+        CHECK_NEAR(l->intensity.y, 7.2, 1e-5);
+        CHECK_NEAR(l->position.y, 2.0, 1e-6);
+        CHECK_NEAR(l->direction.y, -1.0, 1e-6); // the node turns -z down
+        CHECK_NEAR(l->inner_cone, 0.3, 1e-6);
+        CHECK_NEAR(l->outer_cone, 0.6, 1e-6);
+    }
+    model_file_free(&m);
+}
+
+// A PLY file has no materials: assimp's stand-in is marked.
+static void test_ply(void) {
+    model_file m;
+    glint_error err;
+    CHECK(load(DIR "quad.ply", &m, &err));
+    CHECK(m.mesh_count == 1 && m.placement_count == 1 && m.material_count == 1);
+    if (m.material_count == 1) CHECK(m.materials[0].is_default);
+    if (m.mesh_count == 1) {
+        const mesh *g = &m.meshes[0].geometry;
+        CHECK(g->triangle_count == 2 && g->normals == NULL && g->uvs == NULL);
+        // The file's triangles, as written: no joined or reordered vertices.
+        CHECK(g->triangles[0].v[0] == 0 && g->triangles[0].v[1] == 2 && g->triangles[0].v[2] == 1);
+    }
+    model_file_free(&m);
+}
+
+static void test_refused(void) {
+    static const struct {
+        const char *file, *says;
+    } bad[] = {
+        {"index-out-of-range.gltf", "out-of-range"},
+        {"infinite-vertex.gltf", "is not finite"},
+        {"missing-bin.gltf", "cannot open \"" DIR "missing.bin\": No such file or directory"},
+        {"recursive-nodes.gltf", "recursive"},
+        {"cyclic-nodes.gltf", "recursive"},
+        {"huge-count.gltf", "out of range"},
+        {"deep-nodes.gltf", "nested deeper than 256"},
+        {"huge-count.ply", "at most 2^31 - 1"},
+        {"nan-vertex.ply", "is not finite"},
+        {"index-out-of-range.ply", "vertex index 7 is out of range"},
+        {"truncated.ply", "truncated, or a forged count"},
+        {"does-not-exist.ply", "No such file"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char path[512];
+        snprintf(path, sizeof path, DIR "%s", bad[i].file);
+        model_file m;
+        glint_error err;
+        glint_status st = model_read(path, NULL, NULL, &m, &err);
+        bool ok = st == GLINT_ERR_INPUT && strncmp(err.message, path, strlen(path)) == 0 && strstr(err.message, bad[i].says);
+        if (!ok) fprintf(stderr, "%s: status %d, message: %s\n", bad[i].file, (int)st, st ? err.message : "");
+        CHECK(ok);
+        CHECK(m.mesh_count == 0 && m.meshes == NULL); // left empty
+    }
+}
+
+int main(void) {
+    test_formats();
+    if (!model_read_available()) {
+        model_file m;
+        glint_error err;
+        CHECK(model_read(DIR "quad.ply", NULL, NULL, &m, &err) == GLINT_ERR_INPUT && strstr(err.message, "without it"));
+        printf("built without assimp: glTF and PLY files are refused\n");
+        return check_summary();
+    }
+    test_reused();
+    test_emissive();
+    test_cameras_and_lights();
+    test_ply();
+    test_refused();
+    return check_summary();
+}
