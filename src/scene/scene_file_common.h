@@ -177,6 +177,9 @@ material sf_mtl_material(const mtl_values *v);
 /// Reads model file `path` (written as `file`; `kind`, "mesh" or "import", names it in messages) and records the
 /// files it read as scene inputs.
 bool sf_model_load(sf_loader *ld, jr_val file, const char *path, const char *kind, model_file *model);
+/// Whether every fragment of the mesh is cut away (alphaMode MASK with baseColorFactor's alpha below the cutoff):
+/// such meshes are not placed.
+bool sf_model_fully_cut(const model_file *model, const model_mesh *placed);
 /// Model material i as a new scene material named "FILE:NAME", with its textures.
 bool sf_model_material(sf_loader *ld, jr_val file, const model_file *model, size_t i, uint32_t *index);
 /// An "import" object: every node's meshes placed as instances (under the object's "transform"), the file's lights.

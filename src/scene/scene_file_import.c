@@ -81,6 +81,11 @@ static bool model_texture(sf_loader *ld, size_t where, const char *prefix, const
     return true;
 }
 
+bool sf_model_fully_cut(const model_file *model, const model_mesh *placed) {
+    const model_material *mm = &model->materials[placed->material];
+    return mm->alpha_mode == MODEL_ALPHA_MASK && mm->alpha < mm->alpha_cutoff;
+}
+
 bool sf_model_material(sf_loader *ld, jr_val file, const model_file *model, size_t i, uint32_t *index) {
     const model_material *mm = &model->materials[i];
     size_t where = jr_offset(&ld->r, file.tok);
@@ -106,11 +111,15 @@ bool sf_model_material(sf_loader *ld, jr_val file, const model_file *model, size
          !model_texture(ld, where, prefix, model, mm->emissive_image, IMAGE_DECODE_SRGB, &m.emission_texture)))
         return false;
     m.metallic_texture = m.roughness_texture = metal_rough; // glTF: blue is metal, green is roughness
-    if (mm->alpha_mode != MODEL_ALPHA_OPAQUE) {
+    // MASK: alpha = baseColorFactor.a x the texture's alpha, at most the factor: a factor below the cutoff cuts every
+    // fragment (such meshes are never placed: sf_model_fully_cut); otherwise only the texture's alpha could cut.
+    bool partly_cut = mm->alpha_mode == MODEL_ALPHA_MASK && mm->alpha >= mm->alpha_cutoff && mm->base_color_image >= 0;
+    if (mm->alpha_mode == MODEL_ALPHA_BLEND || partly_cut) {
         char shown2[204];
-        sf_warn_at(ld, where, "model file \"%s\": material \"%.100s\": alphaMode %s is not supported; rendered opaque",
+        sf_warn_at(ld, where, "model file \"%s\": material \"%.100s\": alphaMode %s%s is not supported; rendered opaque",
                    filepath_tail(written, 200, shown2, sizeof shown2), mm->name,
-                   mm->alpha_mode == MODEL_ALPHA_MASK ? "MASK" : "BLEND");
+                   mm->alpha_mode == MODEL_ALPHA_MASK ? "MASK" : "BLEND",
+                   partly_cut ? " with the base colour texture's alpha" : "");
     }
     if (ld->scene->material_count >= SF_MAX_ITEMS)
         return jr_fail_at(&ld->r, where, "too many materials (the limit is %d)", SF_MAX_ITEMS);
@@ -241,7 +250,7 @@ bool sf_read_import(sf_loader *ld, const jr_obj *o, const char *what) {
     for (size_t i = 0; ok && i < model.placement_count; i++) {
         const model_placement *pl = &model.placements[i];
         const scene_mesh *sm = &ld->scene->meshes[first + pl->mesh];
-        if (!sm->geometry.triangle_count) continue;
+        if (!sm->geometry.triangle_count || sf_model_fully_cut(&model, &model.meshes[pl->mesh])) continue;
         mat4 m = mat4_mul(&xf.m, &pl->xf);
         transform placed;
         if (!transform_make(&m, &placed)) continue; // a node that scales its mesh to nothing (model_read warned)

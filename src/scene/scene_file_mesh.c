@@ -232,7 +232,7 @@ static bool flatten_model(sf_loader *ld, size_t where, const model_file *model, 
     bool any_n = false, all_n = true, any_uv = false;
     for (size_t i = 0; i < model->placement_count; i++) {
         const mesh *g = &model->meshes[model->placements[i].mesh].geometry;
-        if (!g->triangle_count) continue;
+        if (!g->triangle_count || sf_model_fully_cut(model, &model->meshes[model->placements[i].mesh])) continue;
         nv += g->position_count, nt += g->triangle_count;
         any_n |= g->normals != NULL, all_n &= g->normals != NULL, any_uv |= g->uvs != NULL;
         if (nv > (size_t)INT32_MAX || nt > (size_t)INT32_MAX)
@@ -251,7 +251,7 @@ static bool flatten_model(sf_loader *ld, size_t where, const model_file *model, 
         const model_placement *pl = &model->placements[i];
         const model_mesh *mm = &model->meshes[pl->mesh];
         const mesh *g = &mm->geometry;
-        if (!g->triangle_count) continue;
+        if (!g->triangle_count || sf_model_fully_cut(model, mm)) continue;
         transform xf;
         bool invertible = transform_make(&pl->xf, &xf);
         for (size_t k = 0; k < g->position_count; k++) {

@@ -89,6 +89,18 @@ check "reused.gltf imports: $(cat err)" test "$rc" -eq 0
 run_bounded byhand.json -q -o byhand.ppm
 check "its JSON twin renders: $(cat err)" test "$rc" -eq 0
 check "a reused mesh renders as the JSON scene's instances, byte for byte" cmp -s import.ppm byhand.ppm
+# ---- alphaMode MASK with an alpha below the cutoff: nothing is placed (the scene without it, byte for byte) ----
+sphere='{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": {"type": "lambertian", "albedo": 0.5}}'
+printf '{%s, %s, %s, "objects": [%s, {"type": "import", "file": "masked.gltf", "transform": [{"scale": 4}]}]}\n' \
+    "$render" "$camera" "$light" "$sphere" >masked.json
+printf '{%s, %s, %s, "objects": [%s]}\n' "$render" "$camera" "$light" "$sphere" >unmasked.json
+run_bounded masked.json -q -o masked.ppm
+run_bounded unmasked.json -q -o unmasked.ppm
+check "a fully masked glTF mesh is cut away" cmp -s masked.ppm unmasked.ppm
+scene_with mesh masked.gltf
+run_bounded s.json -q -o masked.ppm
+check "and as a mesh too (exit $rc)" test "$rc" -eq 0
+
 # ---- cameras: the file's view, as the equivalent look-at camera ----
 for cam in 'front|[0.25, 1, 4]|[0.25, 1, 3]|34.37746771' 'side|[4, 1, 0]|[3, 1, 0]|28.64788976'; do
     IFS='|' read -r name from at vfov <<<"$cam"

@@ -80,6 +80,10 @@ write('emissive.gltf', gltf(extra={"extensionsUsed": ["KHR_materials_emissive_st
                                                   "pbrMetallicRoughness": {"baseColorFactor": [0.1, 0.2, 0.3, 1.0],
                                                                            "metallicFactor": 0.25, "roughnessFactor": 0.75}}]}))
 
+# alphaMode MASK with baseColorFactor's alpha below the cutoff: every fragment is cut away.
+write('masked.gltf', gltf(extra={"materials": [{"name": "cut", "alphaMode": "MASK", "alphaCutoff": 0.5,
+                                                "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 0.25]}}]}))
+
 # ---- malformed files: each must be refused with a message naming it, exit 2 ----
 write('index-out-of-range.gltf', gltf(indices=[0, 2, 1, 0, 3, 9]))
 pb, ib = buffer_of([(0, 0, 0), (float('inf'), 0, 0), (0, 0, 1)], [0, 1, 2])
