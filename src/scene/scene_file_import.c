@@ -163,7 +163,7 @@ static bool add_model_meshes(sf_loader *ld, jr_val file, model_file *model, cons
         sm.geometry = mm->geometry;
         memset(&mm->geometry, 0, sizeof mm->geometry);
         sm.default_material = materials[k];
-        ok = mesh_compute_normals(&sm.geometry) || sf_fail_oom(ld);
+        ok = sm.geometry.smooth || mesh_compute_normals(&sm.geometry) || sf_fail_oom(ld); // the file's, or smooth ones
         if (ok && !(sm.path = malloc(strlen(path) + 1))) ok = sf_fail_oom(ld);
         if (!ok) {
             mesh_free(&sm.geometry);

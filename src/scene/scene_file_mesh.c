@@ -226,8 +226,19 @@ static vec3 unit_or(vec3 n, vec3 fallback) {
 /// The model's placed meshes as one mesh in model space: each placement's vertices moved by its node's transform
 /// (normals by the inverse transpose, mirrors keeping their fronts), its triangles in material slot = the model
 /// material. Normals and uvs are kept where the file gives them; triangles without are given none.
-static bool flatten_model(sf_loader *ld, size_t where, const model_file *model, mesh *out) {
+static bool flatten_model(sf_loader *ld, size_t where, model_file *model, mesh *out) {
     memset(out, 0, sizeof *out);
+    // One mesh placed once where it is (every PLY file): taken as it is, not copied.
+    if (model->placement_count == 1 && !sf_model_fully_cut(model, &model->meshes[model->placements[0].mesh])) {
+        const mat4 id = mat4_identity();
+        model_mesh *mm = &model->meshes[model->placements[0].mesh];
+        if (memcmp(&model->placements[0].xf, &id, sizeof id) == 0) {
+            *out = mm->geometry;
+            memset(&mm->geometry, 0, sizeof mm->geometry);
+            for (size_t k = 0; k < out->triangle_count; k++) out->triangles[k].material = (int32_t)mm->material;
+            return true;
+        }
+    }
     size_t nv = 0, nt = 0;
     bool any_n = false, all_n = true, any_uv = false;
     for (size_t i = 0; i < model->placement_count; i++) {
@@ -310,7 +321,8 @@ static bool load_model_mesh(sf_loader *ld, jr_val file, const char *path, sf_fil
     model_file_free(&model);
     if (ok) {
         if (face_normals) mesh_drop_normals(&sm.geometry);
-        else ok = mesh_compute_normals(&sm.geometry) || sf_fail_oom(ld);
+        else if (!(sm.geometry.smooth && !sm.geometry.normal_corners)) // not when every vertex has its normal
+            ok = mesh_compute_normals(&sm.geometry) || sf_fail_oom(ld);
     }
     if (ok) ok = sm.slot_count ? (sm.default_material = sm.slot_material[0], true) : fallback_material(ld, &sm.default_material);
     if (ok && !(sm.path = malloc(strlen(path) + 1))) ok = sf_fail_oom(ld);
