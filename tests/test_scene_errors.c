@@ -180,10 +180,10 @@ static const bad_scene cases[] = {
     // --- materials ---
     {__LINE__, TEXT("{\"materials\": {\"glass\": {\"type\": \"glass\", \"ior\": 1.5}}}"),
      "bad.json:1:34: \"type\" must be \"lambertian\", \"metal\", \"dielectric\", "
-     "\"phong\" or \"diffuse_light\", got \"glass\""},
+     "\"phong\", \"diffuse_light\", \"conductor\", \"rough_dielectric\" or \"pbr\", got \"glass\""},
     {__LINE__, TEXT("{\"materials\": {\"m\": {\"albedo\": [1, 1, 1]}}}"),
      "bad.json:1:21: missing required key \"type\" in material \"m\"; expected one of \"lambertian\", \"metal\", "
-     "\"dielectric\", \"phong\" or \"diffuse_light\""},
+     "\"dielectric\", \"phong\", \"diffuse_light\", \"conductor\", \"rough_dielectric\" or \"pbr\""},
     {__LINE__, TEXT("{\"materials\": {\"steel\": {\"type\": \"metal\", \"fuzz\": 2}}}"),
      "bad.json:1:51: \"fuzz\" must be a number in [0, 1], got 2"},
     {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": [0.5, 1.5, 0.5]}}}"),
