@@ -89,6 +89,10 @@ check "reused.gltf imports: $(cat err)" test "$rc" -eq 0
 run_bounded byhand.json -q -o byhand.ppm
 check "its JSON twin renders: $(cat err)" test "$rc" -eq 0
 check "a reused mesh renders as the JSON scene's instances, byte for byte" cmp -s import.ppm byhand.ppm
+sed 's/"type": "import", "file": "reused.gltf"/"type": "mesh", "file": "reused.gltf"/' import.json >flat.json
+run_bounded flat.json -q -o flat.ppm
+check "as a \"mesh\", its nodes flattened with their transforms: the same picture ($(same_within flat.ppm import.ppm 0.25))" \
+    same_within flat.ppm import.ppm 0.25
 # ---- alphaMode MASK with an alpha below the cutoff: nothing is placed (the scene without it, byte for byte) ----
 sphere='{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": {"type": "lambertian", "albedo": 0.5}}'
 printf '{%s, %s, %s, "objects": [%s, {"type": "import", "file": "masked.gltf", "transform": [{"scale": 4}]}]}\n' \
