@@ -225,7 +225,8 @@ static void warn(converter *cv, const char *fmt, ...) {
 static bool finite3(struct aiVector3D v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
 
 /// One aiMesh as a glint mesh: its vertices as they are, its triangles checked (indices in range) and those of
-/// zero area skipped.
+/// zero area skipped. One pass over the vertices and one over the faces (assimp keeps each face's indices in an
+/// allocation of its own: a second pass would miss the cache again on a large mesh).
 static glint_status convert_mesh(converter *cv, unsigned index, model_mesh *out) {
     const struct aiMesh *am = cv->sc->mMeshes[index];
     mesh *m = &out->geometry;
@@ -234,10 +235,11 @@ static glint_status convert_mesh(converter *cv, unsigned index, model_mesh *out)
         return status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh %u names material %u of %u", cv->path, index,
                            am->mMaterialIndex, cv->sc->mNumMaterials);
     out->material = am->mMaterialIndex;
-    unsigned nv = am->mNumVertices;
-    if (nv > (unsigned)INT32_MAX)
-        return status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh %u has %u vertices; at most 2^31 - 1", cv->path, index, nv);
-    if (nv && !am->mVertices)
+    unsigned nv = am->mNumVertices, nf = am->mNumFaces;
+    if (nv > (unsigned)INT32_MAX || nf > (unsigned)INT32_MAX)
+        return status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh %u has %u vertices and %u faces; at most 2^31 - 1 each",
+                           cv->path, index, nv, nf);
+    if ((nv && !am->mVertices) || (nf && !am->mFaces))
         return status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh %u has vertices without positions", cv->path, index);
     const struct aiVector3D *uvs = am->mTextureCoords[0];
     bool has_uv = uvs != NULL, has_n = am->mNormals != NULL;
@@ -245,40 +247,30 @@ static glint_status convert_mesh(converter *cv, unsigned index, model_mesh *out)
         cv->uv_set_warned = true;
         warn(cv, "meshes with several texture coordinate sets: glint uses the first (TEXCOORD_0)");
     }
-    for (unsigned i = 0; i < nv; i++) {
-        if (!finite3(am->mVertices[i]))
-            return status_fail(cv->err, GLINT_ERR_INPUT,
-                               "%s: mesh %u, vertex %u: the position (%g, %g, %g) is not finite; expected finite numbers",
-                               cv->path, index, i, (double)am->mVertices[i].x, (double)am->mVertices[i].y,
-                               (double)am->mVertices[i].z);
-        if (has_n && !finite3(am->mNormals[i]))
-            return status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh %u, vertex %u: the normal is not finite", cv->path,
-                               index, i);
-        if (has_uv && !(isfinite(uvs[i].x) && isfinite(uvs[i].y)))
-            return status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh %u, vertex %u: the texture coordinate is not finite",
-                               cv->path, index, i);
-    }
-    size_t triangles = 0;
-    for (unsigned f = 0; f < am->mNumFaces; f++) {
-        const struct aiFace *face = &am->mFaces[f];
-        for (unsigned k = 0; k < face->mNumIndices; k++)
-            if (face->mIndices[k] >= nv)
-                return status_fail(cv->err, GLINT_ERR_INPUT,
-                                   "%s: mesh %u, face %u: vertex index %u is out of range (the mesh has %u vertices)",
-                                   cv->path, index, f, face->mIndices[k], nv);
-        if (face->mNumIndices == 3) triangles++;
-        else cv->not_triangles++;
-    }
     if (nv && !(m->positions = malloc(nv * sizeof *m->positions))) return fail_oom(cv);
-    if (triangles && !(m->triangles = malloc(triangles * sizeof *m->triangles))) return fail_oom(cv);
+    if (nf && !(m->triangles = malloc(nf * sizeof *m->triangles))) return fail_oom(cv);
     if (has_n && nv && !(m->normals = malloc(nv * sizeof *m->normals))) return fail_oom(cv);
     if (has_uv && nv && !(m->uvs = malloc(nv * sizeof *m->uvs))) return fail_oom(cv);
-    if (has_uv && triangles && !(m->uv_corners = malloc(triangles * sizeof *m->uv_corners))) return fail_oom(cv);
+    if (has_uv && nf && !(m->uv_corners = malloc(nf * sizeof *m->uv_corners))) return fail_oom(cv);
     for (unsigned i = 0; i < nv; i++) {
         struct aiVector3D p = am->mVertices[i];
+        if (!finite3(p))
+            return status_fail(cv->err, GLINT_ERR_INPUT,
+                               "%s: mesh %u, vertex %u: the position (%g, %g, %g) is not finite; expected finite numbers",
+                               cv->path, index, i, (double)p.x, (double)p.y, (double)p.z);
         m->positions[i] = v3(p.x, p.y, p.z);
-        if (has_n) m->normals[i] = v3(am->mNormals[i].x, am->mNormals[i].y, am->mNormals[i].z);
-        if (has_uv) m->uvs[i] = (uv2){uvs[i].x, uvs[i].y};
+        if (has_n) {
+            if (!finite3(am->mNormals[i]))
+                return status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh %u, vertex %u: the normal is not finite", cv->path,
+                                   index, i);
+            m->normals[i] = v3(am->mNormals[i].x, am->mNormals[i].y, am->mNormals[i].z);
+        }
+        if (has_uv) {
+            if (!(isfinite(uvs[i].x) && isfinite(uvs[i].y)))
+                return status_fail(cv->err, GLINT_ERR_INPUT,
+                                   "%s: mesh %u, vertex %u: the texture coordinate is not finite", cv->path, index, i);
+            m->uvs[i] = (uv2){uvs[i].x, uvs[i].y};
+        }
     }
     m->position_count = nv;
     if (has_n) {
@@ -288,10 +280,19 @@ static glint_status convert_mesh(converter *cv, unsigned index, model_mesh *out)
     }
     if (has_uv) m->uv_count = nv;
     size_t t = 0;
-    for (unsigned f = 0; f < am->mNumFaces; f++) {
+    for (unsigned f = 0; f < nf; f++) {
         const struct aiFace *face = &am->mFaces[f];
-        if (face->mNumIndices != 3) continue;
-        int32_t a = (int32_t)face->mIndices[0], b = (int32_t)face->mIndices[1], c = (int32_t)face->mIndices[2];
+        const unsigned *ix = face->mIndices;
+        for (unsigned k = 0; k < face->mNumIndices; k++)
+            if (ix[k] >= nv)
+                return status_fail(cv->err, GLINT_ERR_INPUT,
+                                   "%s: mesh %u, face %u: vertex index %u is out of range (the mesh has %u vertices)",
+                                   cv->path, index, f, ix[k], nv);
+        if (face->mNumIndices != 3) {
+            cv->not_triangles++;
+            continue;
+        }
+        int32_t a = (int32_t)ix[0], b = (int32_t)ix[1], c = (int32_t)ix[2];
         vec3 e = v3_cross(v3_sub(m->positions[b], m->positions[a]), v3_sub(m->positions[c], m->positions[a]));
         if (e.x == 0.0f && e.y == 0.0f && e.z == 0.0f) {
             cv->zero_area++;
