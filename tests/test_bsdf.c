@@ -423,7 +423,42 @@ static void test_fresnel(void) {
     CHECK_NEAR(sum, 1.0, 2e-3);
 }
 
+// Both strategies of next-event estimation's MIS estimate the light a rectangle above the surface reflects towards
+// wo the same: BSDF samples that hit it (weight f cos / pdf), and uniform points on it (f cos cos_l / (d^2 pdf_A)).
+static void test_strategies_agree(void) {
+    material ms[] = {conductor_metal(0.5f, "Au", 0.0f), conductor_f0(0.9f, 1.0f), pbr(0.6f, 0.0f, 0.0f, v3s(0.8f)),
+                     glass(0.5f, 1.5f)};
+    static const double cosines[] = {0.7, 0.2, 0.05};
+    for (size_t k = 0; k < sizeof ms / sizeof ms[0] * 3; k++) {
+        bsdf b = make(&ms[k / 3], true, true);
+        vec3 wo = dir_of(cosines[k % 3], 0.3);
+        // The rectangle [-1, 2] x [-0.5, 1.5] at height 1 (z), facing down.
+        vec3 q0 = v3(-1, -0.5f, 1), eu = v3(3, 0, 0), ev = v3(0, 2, 0);
+        float area = 6.0f;
+        rng r = rng_for_sample(9, k, 1);
+        double by_bsdf = 0.0, by_light = 0.0;
+        int n = 200000;
+        for (int i = 0; i < n; i++) {
+            bsdf_sample_record s;
+            if (bsdf_sample(&b, wo, &r, &s) && s.wi.z > 0.0f) {
+                float t = 1.0f / s.wi.z;
+                float x = s.wi.x * t, y = s.wi.y * t;
+                if (x >= -1 && x <= 2 && y >= -0.5f && y <= 1.5f) by_bsdf += s.weight.y;
+            }
+            vec3 p = v3_add(q0, v3_add(v3_scale(eu, rng_float(&r)), v3_scale(ev, rng_float(&r))));
+            float d2 = v3_len2(p);
+            vec3 wi = v3_scale(p, 1.0f / sqrtf(d2));
+            by_light += (double)bsdf_eval(&b, wo, wi).y * wi.z * wi.z / d2 * area;
+        }
+        by_bsdf /= n;
+        by_light /= n;
+        printf("light from a rectangle, case %zu: BSDF sampling %.5f, area sampling %.5f\n", k, by_bsdf, by_light);
+        CHECK_NEAR(by_bsdf, by_light, 0.02 * by_light + 3e-4);
+    }
+}
+
 int main(void) {
+    test_strategies_agree();
     test_fresnel();
     test_classic_materials();
     test_reciprocity();

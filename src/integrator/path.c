@@ -564,19 +564,25 @@ static __attribute__((noinline)) bool path_bsdf_vertex(const path_integrator *pi
     bsdf b;
     bsdf_init(&b, m, s->textures, albedo, &site);
     vec3 wo = v3_neg(cur->d);
+    // The direction first, then the lights: next-event estimation counts whether or not the sample is absorbed
+    // (a rough lobe at a grazing angle loses many below the horizon, and the light they would have found is
+    // next-event estimation's to add).
     bsdf_sample_record bs;
-    if (!bsdf_sample(&b, wo, r, &bs)) return false;
+    bool scattered = bsdf_sample(&b, wo, r, &bs);
     spawn_point sp = spawn_point_of(s, sf);
     float in_side = v3_dot(cur->d, sf->ng);
     if (bsdf_has_nee(&b)) {
         nee_vertex nv = {sf, in_side, cur->d, 0.0f, &b, wo, pi->light_only};
-        path_nee(pi, setup, ps, &nv, &sp, v3s(1.0f), bs.pdf, ps->depth + 1 < s->settings.max_depth, r, ts);
+        path_nee(pi, setup, ps, &nv, &sp, v3s(1.0f), scattered ? bs.pdf : 0.0f,
+                 ps->depth + 1 < s->settings.max_depth, r, ts);
+        if (!scattered) return false;
         // A delta lobe's direction cannot be found by light sampling: what it hits counts in full. Light sampling
         // alone (tests): what the BSDF's own samples hit adds nothing.
         if (bs.flags & BSDF_DELTA) ps->light_sampled = ps->env_sampled = false;
         else if (pi->light_only) ps->bsdf_pdf = 0.0f, ps->env_sampled = false;
     } else {
         ps->light_sampled = ps->env_sampled = false;
+        if (!scattered) return false;
     }
     if (path_crosses(sf, in_side, bs.wi, (bs.flags & BSDF_TRANSMISSION) != 0)) return false;
     return path_continue(ps, cur, &sp, bs.weight, bs.wi);
