@@ -525,9 +525,28 @@ static inline __attribute__((always_inline)) void path_emitter(const glint_scene
 }
 
 // A tangent frame at sf for anisotropy and normal maps: along u and v on world quads, along increasing longitude
-// on world spheres (about the y axis, as sphere_uv), none elsewhere (bsdf_init then takes any).
+// on world spheres (about the y axis, as sphere_uv), dp/du and dp/dv of a mesh triangle with texture coordinates
+// (per triangle: MikkTSpace's face tangents, not its per-vertex averages), none elsewhere (bsdf_init then takes
+// any).
 static void path_tangents(const glint_scene *s, const surface *sf, vec3 *t, vec3 *b) {
     *t = *b = v3s(0.0f);
+    if (sf->kind == HIT_TRIANGLE && sf->instance < s->instance_count) {
+        const instance *in = &s->instances[sf->instance];
+        const mesh *mh = &s->meshes[in->index].geometry;
+        mesh_corners uc = mesh_triangle_uvs(mh, sf->prim);
+        if (!mesh_corners_complete(uc)) return;
+        vec3 p0, p1, p2;
+        mesh_triangle_positions(mh, sf->prim, &p0, &p1, &p2);
+        uv2 a = mh->uvs[uc.i[0]], bb = mh->uvs[uc.i[1]], c = mh->uvs[uc.i[2]];
+        vec3 e1 = v3_sub(p1, p0), e2 = v3_sub(p2, p0);
+        float du1 = bb.u - a.u, dv1 = bb.v - a.v, du2 = c.u - a.u, dv2 = c.v - a.v;
+        float det = du1 * dv2 - du2 * dv1;
+        if (!(fabsf(det) > 1e-20f)) return;
+        float inv = 1.0f / det;
+        *t = mat4_apply_vector(&in->xf.m, v3_scale(v3_sub(v3_scale(e1, dv2), v3_scale(e2, dv1)), inv));
+        *b = mat4_apply_vector(&in->xf.m, v3_scale(v3_sub(v3_scale(e2, du1), v3_scale(e1, du2)), inv));
+        return;
+    }
     if (sf->instance != HIT_NO_INSTANCE) return;
     if (sf->kind == HIT_QUAD) {
         const quad *q = &s->quads[sf->prim];
