@@ -183,7 +183,7 @@ static bool read_image(sf_loader *ld, const jr_obj *o, int variant, const char *
     sf_file_id id;
     jr_val where;
     static const char *const encodings[] = {"srgb", "linear"}, *const filters[] = {"bilinear", "nearest"};
-    int encoding = 0, filter = 0;
+    int encoding = ld->linear_images ? 1 : 0, filter = 0;
     if (!jr_read_enum(&ld->r, o, "encoding", encodings, 2, &encoding) ||
         !jr_read_enum(&ld->r, o, "filter", filters, 2, &filter))
         return false;
@@ -329,7 +329,11 @@ static bool read_texture_ref(sf_loader *ld, const jr_obj *o, const char *key, jr
     }
     char what[96 + SCENE_MAX_NAME];
     snprintf(what, sizeof what, "the texture \"%s\" of %s", key, o->what);
-    return sf_read_texture(ld, v, what, NULL, index);
+    // Every texture given this way holds data, not colour (metallic, roughness, transmission, normals): linear.
+    ld->linear_images = true;
+    bool ok = sf_read_texture(ld, v, what, NULL, index);
+    ld->linear_images = false;
+    return ok;
 }
 
 /// A scalar material parameter in [0, 1]: a number (into *value), or a texture by name or inline whose `channel`

@@ -93,6 +93,22 @@ sed 's/"type": "import", "file": "reused.gltf"/"type": "mesh", "file": "reused.g
 run_bounded flat.json -q -o flat.ppm
 check "as a \"mesh\", its nodes flattened with their transforms: the same picture ($(same_within flat.ppm import.ppm 0.25))" \
     same_within flat.ppm import.ppm 0.25
+# ---- an emissive glTF material (emissiveFactor x KHR_materials_emissive_strength) is an area light: the bytes of
+# the JSON scene with the same pbr emitter (so next-event estimation samples it alike) ----
+lamp='{"type": "pbr", "base_color": [0.1, 0.2, 0.3], "metallic": 0.25, "roughness": 0.75, "emission": [4, 2, 1]}'
+floor='{"type": "quad", "q": [-3, 0, -3], "u": [0, 0, 6], "v": [6, 0, 0], "material": {"type": "lambertian", "albedo": 0.5}}'
+flip='[{"rotate": {"axis": [1, 0, 0], "degrees": 180}}, {"translate": [0, 1.5, 0]}]'
+dark='"render": {"width": 48, "height": 32, "spp": 4, "integrator": "path", "background": [0, 0, 0]}'
+printf '{%s, %s, "objects": [%s, {"type": "import", "file": "emissive.gltf", "transform": %s}]}\n' \
+    "$dark" "$camera" "$floor" "$flip" >lamp.json
+printf '{%s, %s, "objects": [%s, {"type": "mesh", "file": "quad.ply", "material": %s, "transform": %s}]}\n' \
+    "$dark" "$camera" "$floor" "$lamp" "$flip" >lamp-json.json
+run_bounded lamp.json -q -o lamp.ppm
+check "emissive.gltf imports: $(cat err)" test "$rc" -eq 0
+run_bounded lamp-json.json -q -o lamp-json.ppm
+check "an emissive glTF material lights the scene as the JSON pbr emitter does, byte for byte" cmp -s lamp.ppm lamp-json.ppm
+check "and it does light it" python3 -c "import sys; d = open('lamp.ppm', 'rb').read().split(maxsplit=4)[4]; sys.exit(0 if sum(d) > 4 * len(d) else 1)"
+
 # ---- alphaMode MASK with an alpha below the cutoff: nothing is placed (the scene without it, byte for byte) ----
 sphere='{"type": "sphere", "center": [0, 0.5, 0], "radius": 0.5, "material": {"type": "lambertian", "albedo": 0.5}}'
 printf '{%s, %s, %s, "objects": [%s, {"type": "import", "file": "masked.gltf", "transform": [{"scale": 4}]}]}\n' \
