@@ -97,6 +97,28 @@ static void test_cameras_and_lights(void) {
     model_file_free(&m);
 }
 
+static void test_point_and_directional(void) {
+    model_file m;
+    glint_error err;
+    CHECK(load(DIR "lights.gltf", &m, &err));
+    CHECK(m.light_count == 2);
+    for (size_t i = 0; i < m.light_count; i++) {
+        const model_light *l = &m.lights[i];
+        if (l->kind == MODEL_LIGHT_POINT) {
+            CHECK(strcmp(l->name, "bulb") == 0);
+            CHECK_NEAR(l->intensity.x, 2.0, 1e-6);
+            CHECK_NEAR(l->intensity.y, 1.0, 1e-6);
+            CHECK_NEAR(l->intensity.z, 0.5, 1e-6);
+            CHECK(l->position.x == 1.0f && l->position.y == 2.0f && l->position.z == 3.0f);
+        } else {
+            CHECK(l->kind == MODEL_LIGHT_DIRECTIONAL && strcmp(l->name, "sun") == 0);
+            CHECK_NEAR(l->intensity.y, 3.0, 1e-6); // white: glTF's default colour
+            CHECK_NEAR(l->direction.y, -1.0, 1e-6); // travelling down: the node turns -z to -y
+        }
+    }
+    model_file_free(&m);
+}
+
 // A PLY file has no materials: assimp's stand-in is marked.
 static void test_ply(void) {
     model_file m;
@@ -155,6 +177,7 @@ int main(void) {
     test_reused();
     test_emissive();
     test_cameras_and_lights();
+    test_point_and_directional();
     test_ply();
     test_refused();
     return check_summary();

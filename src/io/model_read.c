@@ -538,11 +538,12 @@ static glint_status convert_lights(converter *cv) {
         l.position = mat4_apply_point(&xf, from_ai(al->mPosition));
         vec3 d = mat4_apply_vector(&xf, from_ai(al->mDirection));
         float len = v3_len(d);
-        if (!(len > 0.0f) || !isfinite(len) || !v3_is_finite(l.position)) {
+        bool aimed = l.kind != MODEL_LIGHT_POINT; // a point light has no direction (assimp gives it none)
+        if ((aimed && (!(len > 0.0f) || !isfinite(len))) || !v3_is_finite(l.position)) {
             warn(cv, "light \"%.200s\" has no direction or position after its node's transform; ignored", al->mName.data);
             continue;
         }
-        l.direction = v3_scale(d, 1.0f / len);
+        l.direction = aimed ? v3_scale(d, 1.0f / len) : v3s(0.0f);
         l.inner_cone = al->mAngleInnerCone;
         l.outer_cone = al->mAngleOuterCone;
         if (l.kind == MODEL_LIGHT_SPOT &&

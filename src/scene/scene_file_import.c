@@ -187,8 +187,8 @@ static bool add_model_lights(sf_loader *ld, size_t where, const model_file *mode
         l.position = mat4_apply_point(&xf->m, ml->position);
         vec3 d = mat4_apply_vector(&xf->m, ml->direction);
         float len = v3_len(d);
-        if (!(len > 0.0f) || !isfinite(len)) continue;
-        d = v3_scale(d, 1.0f / len);
+        if (ml->kind != MODEL_LIGHT_POINT && (!(len > 0.0f) || !isfinite(len))) continue;
+        d = ml->kind != MODEL_LIGHT_POINT ? v3_scale(d, 1.0f / len) : d;
         switch (ml->kind) {
         case MODEL_LIGHT_POINT: l.kind = LIGHT_POINT; break;
         case MODEL_LIGHT_DIRECTIONAL:

@@ -93,12 +93,23 @@ sed 's/"type": "import", "file": "reused.gltf"/"type": "mesh", "file": "reused.g
 run_bounded flat.json -q -o flat.ppm
 check "as a \"mesh\", its nodes flattened with their transforms: the same picture ($(same_within flat.ppm import.ppm 0.25))" \
     same_within flat.ppm import.ppm 0.25
+dark='"render": {"width": 48, "height": 32, "spp": 4, "integrator": "path", "background": [0, 0, 0]}'
+floor='{"type": "quad", "q": [-3, 0, -3], "u": [0, 0, 6], "v": [6, 0, 0], "material": {"type": "lambertian", "albedo": 0.5}}'
+
+# ---- glTF point and directional lights: the JSON scene's, byte for byte ----
+printf '{%s, %s, "objects": [%s, {"type": "import", "file": "lights.gltf"}]}\n' "$dark" "$camera" "$floor" >lights.json
+printf '{%s, %s, "objects": [%s, {"type": "mesh", "file": "quad.ply", "material": %s}],
+ "lights": [{"type": "point", "position": [1, 2, 3], "intensity": [2, 1, 0.5]},
+            {"type": "directional", "direction": [0, 1, 0], "intensity": 3}]}\n' "$dark" "$camera" "$floor" "$clay" >lights-json.json
+run_bounded lights.json -q -o lights.ppm
+check "lights.gltf imports: $(cat err)" test "$rc" -eq 0
+run_bounded lights-json.json -q -o lights-json.ppm
+check "glTF point and directional lights light the scene as the JSON ones do, byte for byte" cmp -s lights.ppm lights-json.ppm
+
 # ---- an emissive glTF material (emissiveFactor x KHR_materials_emissive_strength) is an area light: the bytes of
 # the JSON scene with the same pbr emitter (so next-event estimation samples it alike) ----
 lamp='{"type": "pbr", "base_color": [0.1, 0.2, 0.3], "metallic": 0.25, "roughness": 0.75, "emission": [4, 2, 1]}'
-floor='{"type": "quad", "q": [-3, 0, -3], "u": [0, 0, 6], "v": [6, 0, 0], "material": {"type": "lambertian", "albedo": 0.5}}'
 flip='[{"rotate": {"axis": [1, 0, 0], "degrees": 180}}, {"translate": [0, 1.5, 0]}]'
-dark='"render": {"width": 48, "height": 32, "spp": 4, "integrator": "path", "background": [0, 0, 0]}'
 printf '{%s, %s, "objects": [%s, {"type": "import", "file": "emissive.gltf", "transform": %s}]}\n' \
     "$dark" "$camera" "$floor" "$flip" >lamp.json
 printf '{%s, %s, "objects": [%s, {"type": "mesh", "file": "quad.ply", "material": %s, "transform": %s}]}\n' \

@@ -84,6 +84,17 @@ write('emissive.gltf', gltf(extra={"extensionsUsed": ["KHR_materials_emissive_st
 write('masked.gltf', gltf(extra={"materials": [{"name": "cut", "alphaMode": "MASK", "alphaCutoff": 0.5,
                                                 "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 0.25]}}]}))
 
+# A point light moved by its node, a directional light turned by its node to shine along -y.
+write('lights.gltf', gltf(nodes=[{"mesh": 0},
+                                 {"name": "bulb", "translation": [1.0, 2.0, 3.0], "extensions": {"KHR_lights_punctual": {"light": 0}}},
+                                 {"name": "sun", "rotation": [-0.7071067811865476, 0.0, 0.0, 0.7071067811865476],
+                                  "extensions": {"KHR_lights_punctual": {"light": 1}}}],
+                          scene_nodes=[0, 1, 2],
+                          extra={"extensionsUsed": ["KHR_lights_punctual"],
+                                 "extensions": {"KHR_lights_punctual": {"lights": [
+                                     {"type": "point", "color": [1.0, 0.5, 0.25], "intensity": 2.0},
+                                     {"type": "directional", "intensity": 3.0}]}}}))
+
 # ---- malformed files: each must be refused with a message naming it, exit 2 ----
 write('index-out-of-range.gltf', gltf(indices=[0, 2, 1, 0, 3, 9]))
 pb, ib = buffer_of([(0, 0, 0), (float('inf'), 0, 0), (0, 0, 1)], [0, 1, 2])
