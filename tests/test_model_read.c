@@ -135,6 +135,123 @@ static void test_ply(void) {
     model_file_free(&m);
 }
 
+// ---- binary PLY files read by glint itself (ply_read_fast) and by assimp: the same records, the same refusals ----
+
+// Writes a binary little-endian PLY: `props` the vertex property lines, `floats` per vertex, then triangles (count
+// byte `corners`: 3, or 4 for a quad made of the triangle's corners and its first again).
+static void write_ply(const char *path, const char *props, int floats, const float *v, int nv, const int32_t *tri,
+                      int nt, int corners) {
+    FILE *f = fopen(path, "wb");
+    if (!f) return;
+    fprintf(f, "ply\nformat binary_little_endian 1.0\ncomment made by test_model_read\nelement vertex %d\n%s"
+               "element face %d\nproperty list uchar int vertex_indices\nend_header\n", nv, props, nt);
+    fwrite(v, sizeof *v, (size_t)(nv * floats), f);
+    for (int i = 0; i < nt; i++) {
+        unsigned char c = (unsigned char)corners;
+        fwrite(&c, 1, 1, f);
+        fwrite(&tri[3 * i], 4, 3, f);
+        if (corners == 4) fwrite(&tri[3 * i], 4, 1, f);
+    }
+    fclose(f);
+}
+
+static bool same_floats(const void *a, const void *b, size_t n) { return n == 0 || (a && b && memcmp(a, b, n) == 0); }
+
+// Reads path both ways: both fail with the same message, or both give the same mesh and the same warning count.
+static void check_both_ways(const char *path, bool expect_ok) {
+    model_file a, b;
+    glint_error ea, eb;
+    size_t w0 = warnings;
+    glint_status sa = model_read_ex(path, true, count_warning, NULL, &a, &ea);
+    size_t wa = warnings - w0;
+    glint_status sb = model_read_ex(path, false, count_warning, NULL, &b, &eb);
+    size_t wb = warnings - w0 - wa;
+    CHECK(sa == sb);
+    CHECK((sa == GLINT_OK) == expect_ok);
+    if (sa != GLINT_OK || sb != GLINT_OK) {
+        bool same = sa != GLINT_OK && sb != GLINT_OK && strcmp(ea.message, eb.message) == 0;
+        if (!same) fprintf(stderr, "%s:\n  fast:   %s\n  assimp: %s\n", path, sa ? ea.message : "ok", sb ? eb.message : "ok");
+        CHECK(same);
+        model_file_free(&a);
+        model_file_free(&b);
+        return;
+    }
+    CHECK(wa == wb);
+    CHECK(a.mesh_count == 1 && b.mesh_count == 1 && a.placement_count == 1 && b.placement_count == 1);
+    CHECK(a.material_count == 1 && a.materials[0].is_default && b.materials[0].is_default);
+    CHECK(a.input_count == 1 && b.input_count == 1);
+    if (a.mesh_count == 1 && b.mesh_count == 1) {
+        const mesh *x = &a.meshes[0].geometry, *y = &b.meshes[0].geometry;
+        CHECK(x->position_count == y->position_count && x->normal_count == y->normal_count &&
+              x->uv_count == y->uv_count && x->triangle_count == y->triangle_count && x->smooth == y->smooth);
+        if (x->position_count == y->position_count && x->triangle_count == y->triangle_count &&
+            x->normal_count == y->normal_count && x->uv_count == y->uv_count) {
+            CHECK(same_floats(x->positions, y->positions, x->position_count * sizeof *x->positions));
+            CHECK(same_floats(x->normals, y->normals, x->normal_count * sizeof *x->normals));
+            CHECK(same_floats(x->uvs, y->uvs, x->uv_count * sizeof *x->uvs));
+            CHECK(same_floats(x->triangles, y->triangles, x->triangle_count * sizeof *x->triangles));
+            CHECK((x->uv_corners == NULL) == (y->uv_corners == NULL));
+            if (x->uv_corners && y->uv_corners)
+                CHECK(same_floats(x->uv_corners, y->uv_corners, x->triangle_count * sizeof *x->uv_corners));
+        }
+    }
+    model_file_free(&a);
+    model_file_free(&b);
+}
+
+static void test_ply_fast_path(void) {
+    const char *path = "test_model_read.tmp.ply";
+    // A grid of 16 x 16 vertices with normals, a texture coordinate pair and a property glint skips.
+    enum { N = 16 };
+    float v[N * N * 9];
+    int32_t tri[(N - 1) * (N - 1) * 6];
+    int nt = 0;
+    for (int j = 0; j < N; j++)
+        for (int i = 0; i < N; i++) {
+            float *p = &v[9 * (j * N + i)];
+            p[0] = (float)i * 0.1f, p[1] = 0.01f * (float)((i * 7 + j * 3) % 5), p[2] = (float)j * 0.1f;
+            p[3] = 0.0f, p[4] = 1.0f, p[5] = 0.0f;          // nx ny nz
+            p[6] = 0.5f;                                    // confidence (skipped)
+            p[7] = (float)i / (N - 1), p[8] = (float)j / (N - 1); // s t
+        }
+    for (int j = 0; j + 1 < N; j++)
+        for (int i = 0; i + 1 < N; i++) {
+            int32_t a = j * N + i, b = a + 1, c = a + N, d = c + 1;
+            int32_t q[6] = {a, c, b, b, c, d};
+            memcpy(&tri[3 * nt], q, sizeof q);
+            nt += 2;
+        }
+    const char *full = "property float x\nproperty float y\nproperty float z\nproperty float nx\nproperty float ny\n"
+                       "property float nz\nproperty float confidence\nproperty float s\nproperty float t\n";
+    write_ply(path, full, 9, v, N * N, tri, nt, 3);
+    check_both_ways(path, true);
+    // Positions alone (every field but x y z named so that glint skips it).
+    const char *plain = "property float x\nproperty float y\nproperty float z\nproperty float a\nproperty float b\n"
+                        "property float c\nproperty float d\nproperty float e\nproperty float f\n";
+    write_ply(path, plain, 9, v, N * N, tri, nt, 3);
+    check_both_ways(path, true);
+    // A triangle of zero area (skipped, one warning), an index out of range, a position that is not finite.
+    int32_t keep = tri[2];
+    tri[2] = tri[0];
+    write_ply(path, plain, 9, v, N * N, tri, nt, 3);
+    check_both_ways(path, true);
+    tri[2] = N * N + 5;
+    write_ply(path, plain, 9, v, N * N, tri, nt, 3);
+    check_both_ways(path, false);
+    tri[2] = -1;
+    write_ply(path, plain, 9, v, N * N, tri, nt, 3);
+    check_both_ways(path, false);
+    tri[2] = keep;
+    v[9 * 5 + 1] = INFINITY;
+    write_ply(path, full, 9, v, N * N, tri, nt, 3);
+    check_both_ways(path, false);
+    v[9 * 5 + 1] = 0.0f;
+    // Quads: not the fast layout's faces, read by assimp (the records are still both ways').
+    write_ply(path, full, 9, v, N * N, tri, nt, 4);
+    check_both_ways(path, true);
+    remove(path);
+}
+
 static void test_refused(void) {
     static const struct {
         const char *file, *says;
@@ -179,6 +296,7 @@ int main(void) {
     test_cameras_and_lights();
     test_point_and_directional();
     test_ply();
+    test_ply_fast_path();
     test_refused();
     return check_summary();
 }

@@ -56,6 +56,12 @@ void model_file_free(model_file *m) {
 bool model_read_available(void) { return false; }
 
 glint_status model_read(const char *path, model_warning_fn warn, void *user, model_file *out, glint_error *err) {
+    return model_read_ex(path, true, warn, user, out, err);
+}
+
+glint_status model_read_ex(const char *path, bool fast_ply, model_warning_fn warn, void *user, model_file *out,
+                           glint_error *err) {
+    (void)fast_ply;
     (void)warn;
     (void)user;
     memset(out, 0, sizeof *out);
@@ -650,10 +656,37 @@ static unsigned ply_type_size(const char *t) {
     return 0;
 }
 
+/// The layout of the PLY files glint reads itself (ply_read_fast): binary little-endian, the element "vertex" of
+/// float properties (x, y, z; optionally nx, ny, nz and a texture coordinate pair; others skipped) and then the
+/// element "face" of one list property (uchar count, 32-bit indices) whose every face is a triangle.
+typedef struct ply_layout {
+    bool fast;              ///< the header is of that layout
+    size_t header_bytes;    ///< where the body starts
+    uint32_t vertices, faces;
+    unsigned stride;        ///< bytes of a vertex
+    int pos[3], nrm[3], uv[2]; ///< byte offsets in a vertex, -1 when absent
+} ply_layout;
+
+// The offset slot of vertex property `name` in the layout, or NULL when glint does not use it.
+static int *ply_slot(ply_layout *l, const char *name) {
+    static const char *const pos[] = {"x", "y", "z"}, *const nrm[] = {"nx", "ny", "nz"};
+    static const char *const uv[][2] = {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
+    for (int k = 0; k < 3; k++) {
+        if (strcmp(name, pos[k]) == 0) return &l->pos[k];
+        if (strcmp(name, nrm[k]) == 0) return &l->nrm[k];
+    }
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 2; k++)
+            if (strcmp(name, uv[i][k]) == 0) return &l->uv[k];
+    return NULL;
+}
+
 /// Refuses a PLY file whose header declares more elements than its body could hold: every element needs at least
 /// its properties' bytes (binary; a list at least its count) or two characters a property (ASCII: a digit and a
 /// separator). A forged count would otherwise have assimp allocate gigabytes before it finds the file short.
-static glint_status check_ply_header(const char *path, glint_error *err) {
+/// Fills *layout (layout->fast: glint reads the body itself).
+static glint_status check_ply_header(const char *path, ply_layout *layout, glint_error *err) {
+    *layout = (ply_layout){false, 0, 0, 0, 0, {-1, -1, -1}, {-1, -1, -1}, {-1, -1}};
     struct stat st;
     int problem;
     FILE *f = filepath_open_regular(path, &st, &problem);
@@ -676,6 +709,12 @@ static glint_status check_ply_header(const char *path, glint_error *err) {
     double header_bytes = body ? (double)(body + 1 - text) : (double)n, body_bytes = (double)st.st_size - header_bytes;
     *end = '\0';
     bool ascii = strstr(text, "format ascii") != NULL;
+    // The fast layout, checked statement by statement: elements seen (1 vertex, 2 face), properties of the face.
+    const uint32_t one = 1;
+    unsigned char little;
+    memcpy(&little, &one, 1);
+    bool fast = little && strstr(text, "format binary_little_endian 1.0") != NULL;
+    int element = 0, face_props = 0;
     double need = 0.0, per_item = 0.0, count = 0.0;
     char name[64] = "", current[64] = "";
     char *save = NULL;
@@ -692,12 +731,36 @@ static glint_status check_ply_header(const char *path, glint_error *err) {
                                      path, declared, current);
                 break;
             }
+            element++;
+            if (element == 1 && strcmp(name, "vertex") == 0) layout->vertices = (uint32_t)declared;
+            else if (element == 2 && strcmp(name, "face") == 0) layout->faces = (uint32_t)declared;
+            else fast = false;
         } else if (sscanf(line, "property list %31s %31s %31s", a, b, c) == 3) {
             per_item += ascii ? 2.0 : (double)ply_type_size(a);
+            fast = fast && element == 2 && ++face_props == 1 && (strcmp(a, "uchar") == 0 || strcmp(a, "uint8") == 0) &&
+                   ply_type_size(b) == 4 && strncmp(b, "float", 5) != 0 &&
+                   (strcmp(c, "vertex_indices") == 0 || strcmp(c, "vertex_index") == 0);
         } else if (sscanf(line, "property %31s %31s", a, b) == 2) {
             per_item += ascii ? 2.0 : (double)ply_type_size(a);
+            if (element != 1 || !(strcmp(a, "float") == 0 || strcmp(a, "float32") == 0)) {
+                fast = false;
+            } else {
+                int *slot = ply_slot(layout, b);
+                if (slot && *slot >= 0) fast = false; // the same property twice
+                if (slot) *slot = (int)layout->stride;
+                layout->stride += 4;
+            }
+        } else if (strncmp(line, "ply", 3) != 0 && strncmp(line, "format", 6) != 0 && strncmp(line, "comment", 7) != 0 &&
+                   strncmp(line, "obj_info", 8) != 0) {
+            fast = false; // a statement glint does not know: assimp reads the file
         }
     }
+    // Normals come in threes and texture coordinates in pairs, or not at all.
+    bool some_n = layout->nrm[0] >= 0 || layout->nrm[1] >= 0 || layout->nrm[2] >= 0;
+    bool all_n = layout->nrm[0] >= 0 && layout->nrm[1] >= 0 && layout->nrm[2] >= 0;
+    layout->fast = fast && element == 2 && face_props == 1 && layout->pos[0] >= 0 && layout->pos[1] >= 0 &&
+                   layout->pos[2] >= 0 && some_n == all_n && (layout->uv[0] >= 0) == (layout->uv[1] >= 0) && body;
+    layout->header_bytes = body ? (size_t)(body + 1 - text) : 0;
     need += count * per_item;
     if (result == GLINT_OK && need > body_bytes)
         result = status_fail(err, GLINT_ERR_INPUT,
@@ -754,13 +817,139 @@ static void apply_emissive_strength(const char *path, model_file *m) {
     cJSON_Delete(root);
 }
 
+/// Reads a PLY file of the fast layout into *out as the assimp path would (one mesh placed once, its material
+/// none): the same vertices, triangles, checks and warnings, without assimp's generic element tables (which take
+/// most of a large file's load). *taken is false, and *out empty, when a face is not a triangle: assimp reads the
+/// file then (its triangulation).
+static glint_status ply_read_fast(converter *cv, const ply_layout *l, bool *taken) {
+    model_file *m = cv->out;
+    *taken = false;
+    struct stat st;
+    int problem;
+    FILE *f = filepath_open_regular(cv->path, &st, &problem);
+    if (!f) return status_fail(cv->err, GLINT_ERR_INPUT, "%s: cannot open: %s", cv->path, filepath_problem_text(problem));
+    size_t len;
+    int errnum;
+    unsigned char *data = (unsigned char *)file_read_stream(f, (size_t)st.st_size, MODEL_MAX_FILE_BYTES, &len, &errnum);
+    fclose(f);
+    if (!data)
+        return errnum == ENOMEM ? fail_oom(cv)
+                                : status_fail(cv->err, GLINT_ERR_INPUT, "%s: cannot read it: %s", cv->path,
+                                              errnum == EFBIG ? "larger than 1 GiB, the limit of a model's file" : strerror(errnum));
+    size_t nv = l->vertices, nf = l->faces, at = l->header_bytes + nv * l->stride;
+    glint_status result = GLINT_OK;
+    if (at > len || nf * 13 > len - at) { // check_ply_header saw the sizes; a file may change between two opens
+        free(data);
+        return status_fail(cv->err, GLINT_ERR_INPUT, "%s: the file ends before the elements its header declares", cv->path);
+    }
+    // Every face a triangle (a count byte of 3), or assimp reads the file.
+    for (size_t i = 0; i < nf; i++)
+        if (data[at + 13 * i] != 3) {
+            free(data);
+            return GLINT_OK;
+        }
+    *taken = true;
+    bool has_n = l->nrm[0] >= 0, has_uv = l->uv[0] >= 0;
+    if (!(m->meshes = calloc(1, sizeof *m->meshes)) || !(m->materials = calloc(1, sizeof *m->materials)) ||
+        !(m->placements = malloc(sizeof *m->placements)) || !(m->materials[0].name = strdup(""))) {
+        free(data);
+        return fail_oom(cv);
+    }
+    m->mesh_count = m->material_count = m->placement_count = 1;
+    m->placements[0] = (model_placement){0, mat4_identity()};
+    model_material *mat = &m->materials[0];
+    mat->is_default = true;
+    mat->base_color = v3s(1.0f), mat->alpha = 1.0f, mat->metallic = mat->roughness = 1.0f, mat->ior = 1.5f;
+    mat->base_color_image = mat->metallic_roughness_image = mat->normal_image = mat->emissive_image = -1;
+    mat->transmission_image = -1, mat->normal_scale = 1.0f, mat->alpha_cutoff = 0.5f;
+    mesh *g = &m->meshes[0].geometry;
+    if ((nv && !(g->positions = malloc(nv * sizeof *g->positions))) || (nf && !(g->triangles = malloc(nf * sizeof *g->triangles))) ||
+        (has_n && nv && !(g->normals = malloc(nv * sizeof *g->normals))) || (has_uv && nv && !(g->uvs = malloc(nv * sizeof *g->uvs))) ||
+        (has_uv && nf && !(g->uv_corners = malloc(nf * sizeof *g->uv_corners)))) {
+        free(data);
+        return fail_oom(cv);
+    }
+    for (size_t i = 0; i < nv && result == GLINT_OK; i++) {
+        const unsigned char *v = data + l->header_bytes + i * l->stride;
+        float p[3], n[3], t[2];
+        for (int k = 0; k < 3; k++) memcpy(&p[k], v + l->pos[k], 4);
+        g->positions[i] = v3(p[0], p[1], p[2]);
+        if (!v3_is_finite(g->positions[i])) {
+            result = status_fail(cv->err, GLINT_ERR_INPUT,
+                                 "%s: mesh 0, vertex %zu: the position (%g, %g, %g) is not finite; expected finite numbers",
+                                 cv->path, i, (double)p[0], (double)p[1], (double)p[2]);
+            break;
+        }
+        if (has_n) {
+            for (int k = 0; k < 3; k++) memcpy(&n[k], v + l->nrm[k], 4);
+            g->normals[i] = v3(n[0], n[1], n[2]);
+            if (!v3_is_finite(g->normals[i]))
+                result = status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh 0, vertex %zu: the normal is not finite", cv->path, i);
+        }
+        if (has_uv) {
+            for (int k = 0; k < 2; k++) memcpy(&t[k], v + l->uv[k], 4);
+            g->uvs[i] = (uv2){t[0], t[1]};
+            if (!(isfinite(t[0]) && isfinite(t[1])))
+                result = status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh 0, vertex %zu: the texture coordinate is not finite",
+                                     cv->path, i);
+        }
+    }
+    g->position_count = nv;
+    if (has_n) g->normal_count = nv, g->smooth = true, g->smooth_base = 0;
+    if (has_uv) g->uv_count = nv;
+    size_t tri = 0;
+    for (size_t i = 0; i < nf && result == GLINT_OK; i++) {
+        uint32_t ix[3];
+        memcpy(ix, data + at + 13 * i + 1, 12);
+        for (int k = 0; k < 3; k++)
+            if (ix[k] >= nv) {
+                // An int index below 0 reads as a large unsigned one, as assimp reads it: out of range either way.
+                result = status_fail(cv->err, GLINT_ERR_INPUT,
+                                     "%s: mesh 0, face %zu: vertex index %u is out of range (the mesh has %zu vertices)",
+                                     cv->path, i, (unsigned)ix[k], nv);
+                break;
+            }
+        if (result != GLINT_OK) break;
+        int32_t a = (int32_t)ix[0], b = (int32_t)ix[1], c = (int32_t)ix[2];
+        vec3 e = v3_cross(v3_sub(g->positions[b], g->positions[a]), v3_sub(g->positions[c], g->positions[a]));
+        if (e.x == 0.0f && e.y == 0.0f && e.z == 0.0f) {
+            cv->zero_area++;
+            continue;
+        }
+        g->triangles[tri] = (mesh_triangle){{a, b, c}, -1};
+        if (has_uv) g->uv_corners[tri] = (mesh_corners){{a, b, c}};
+        tri++;
+    }
+    free(data);
+    g->triangle_count = tri;
+    mesh_compute_bounds(g);
+    if (result != GLINT_OK) return result;
+    if (!add_input(m, &st, cv->path)) return fail_oom(cv);
+    if (cv->zero_area) warn(cv, "%zu triangles of zero area (collinear or repeated corners): skipped", cv->zero_area);
+    if (tri == 0) warn(cv, "the file places no triangles");
+    return GLINT_OK;
+}
+
 glint_status model_read(const char *path, model_warning_fn warn_fn, void *user, model_file *out, glint_error *err) {
+    return model_read_ex(path, true, warn_fn, user, out, err);
+}
+
+glint_status model_read_ex(const char *path, bool fast_ply, model_warning_fn warn_fn, void *user, model_file *out,
+                           glint_error *err) {
     memset(out, 0, sizeof *out);
     if (model_format_of(path) == MODEL_FORMAT_NONE)
         return status_fail(err, GLINT_ERR_INPUT, "%s: not a glTF (.gltf, .glb) or PLY (.ply) file", path);
     if (model_format_of(path) == MODEL_FORMAT_PLY) {
-        glint_status st = check_ply_header(path, err);
+        ply_layout layout;
+        glint_status st = check_ply_header(path, &layout, err);
         if (st != GLINT_OK) return st;
+        if (layout.fast && fast_ply) {
+            converter cv = {.path = path, .format = MODEL_FORMAT_PLY, .out = out, .err = err, .warn = warn_fn, .user = user};
+            bool taken;
+            st = ply_read_fast(&cv, &layout, &taken);
+            if (st != GLINT_OK) model_file_free(out);
+            if (st != GLINT_OK || taken) return st;
+        }
     }
     read_context ctx = {.path = path, .out = out};
     struct aiFileIO io = {file_open_proc, file_close_proc, (aiUserData)(void *)&ctx};
