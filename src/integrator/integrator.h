@@ -13,6 +13,7 @@
 /// Choices of a render that are not part of the scene.
 typedef struct integrator_options {
     bool no_light_sampling; ///< path tracer: no next-event estimation towards area lights (tests compare both)
+    bool no_light_tree;     ///< path tracer: lights chosen by power alone however many there are (tests compare both)
 } integrator_options;
 
 /// The integrator the scene's settings choose, reading s and a (both must outlive it). NULL, with a message

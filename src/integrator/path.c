@@ -64,10 +64,10 @@ static inline bool shadow_unblocked(const integrator *it, const ray *r, vec3 *tr
     return true;
 }
 
-// Next-event estimation towards emissive sphere `index`: a direction in the cone the sphere subtends (a, b
-// uniform), its emission where that direction meets the sphere, a shadow ray, and the power-heuristic weight
-// against BSDF sampling; the same contract as sample_light.
-static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, uint32_t index, const nee_vertex *vx,
+// Next-event estimation towards emissive sphere `index`, chosen with probability `select`: a direction in the cone
+// the sphere subtends (a, b uniform), its emission where that direction meets the sphere, a shadow ray, and the
+// power-heuristic weight against BSDF sampling; the same contract as sample_light.
+static vec3 sample_sphere_light(const integrator *it, float select, uint32_t index, const nee_vertex *vx,
                                 const spawn_point *sp, float a, float b, thread_stats *ts) {
     const glint_scene *s = it->scene;
     const sphere *sph = &s->spheres[index];
@@ -76,7 +76,7 @@ static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, u
     if (!light_sphere_sample(sph, sp->p, a, b, &wi, &dist, &cone_pdf)) return v3s(0.0f);
     float f = nee_density(vx, wi);
     if (!(f > 0.0f)) return v3s(0.0f);
-    float pdf_light = pl->sphere_select_pdf[index] * cone_pdf;
+    float pdf_light = select * cone_pdf;
     if (!(pdf_light > 0.0f) || !isfinite(pdf_light)) return v3s(0.0f);
     // The side and texture coordinates a ray along wi sees there, as surface_at gives them.
     vec3 x = v3_fma(sp->p, wi, dist), q = v3_sub(x, sph->center);
@@ -104,16 +104,11 @@ static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, u
 static vec3 sample_light(const integrator *it, const light_sampler *pl, const nee_vertex *vx, const spawn_point *sp,
                          rng *r, thread_stats *ts) {
     const glint_scene *s = it->scene;
-    float xi = rng_float(r), a = rng_float(r), b = rng_float(r);
-    size_t lo = 0, hi = pl->count - 1; // the first light whose cdf exceeds xi
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (xi < pl->cdf[mid]) hi = mid;
-        else lo = mid + 1;
-    }
-    float select = pl->cdf[lo] - (lo ? pl->cdf[lo - 1] : 0.0f); // as light_sampler_build recorded it
-    light_ref ref = pl->lights[lo];
-    if (ref.kind == LIGHT_REF_SPHERE) return sample_sphere_light(it, pl, ref.index, vx, sp, a, b, ts);
+    float xi = rng_float(r), a = rng_float(r), b = rng_float(r), select;
+    size_t chosen = light_sampler_choose(pl, sp->p, xi, &select);
+    if (chosen == SIZE_MAX) return v3s(0.0f); // no light can reach the point
+    light_ref ref = pl->lights[chosen];
+    if (ref.kind == LIGHT_REF_SPHERE) return sample_sphere_light(it, select, ref.index, vx, sp, a, b, ts);
     vec3 x, n;
     float area;
     const tri_light *tl = NULL;
@@ -153,7 +148,7 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
     }
     float f = nee_density(vx, wi);
     if (!(cos_l > 0.0f) || !(f > 0.0f)) return v3s(0.0f);
-    float pdf_light = (q ? pl->select_pdf[ref.index] : select) * d2 / (cos_l * area);
+    float pdf_light = select * d2 / (cos_l * area);
     if (!(pdf_light > 0.0f) || !isfinite(pdf_light)) return v3s(0.0f);
     // Stop short of the light by a relative margin (pbrt's shadow epsilon) so that it does not occlude itself.
     ray shadow = spawn_ray(sp, wi, 0.0f, dist * (1.0f - 1e-4f));
@@ -664,10 +659,11 @@ static void path_release(integrator *it) {
     free(pi);
 }
 
-integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_lights, glint_error *err) {
+integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_lights, bool use_light_tree,
+                        glint_error *err) {
     path_integrator *pi = malloc(sizeof *pi);
     // The index of emissive surfaces depends only on the scene: built once per render, before the threads start.
-    if (!pi || !light_sampler_build(&pi->lights, s)) {
+    if (!pi || !light_sampler_build(&pi->lights, s, use_light_tree)) {
         free(pi);
         snprintf(err->message, sizeof err->message, "%s: out of memory while indexing the emissive surfaces", s->path);
         return NULL;

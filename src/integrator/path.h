@@ -8,6 +8,7 @@
 #include <stdbool.h>
 
 /// The path tracer; `sample_area_lights` false turns off next-event estimation towards emissive surfaces.
-integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_lights, glint_error *err);
+integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_lights, bool use_light_tree,
+                        glint_error *err);
 
 #endif
