@@ -83,17 +83,17 @@ static float add_light(light_sampler *pl, light_ref ref, double p, double *sum, 
 static void tri_light_item(const glint_scene *s, const tri_light *tl, light_tree_item *it) {
     const instance *in = &s->instances[tl->instance];
     const mesh *m = &s->meshes[in->index].geometry;
-    static const float corners[4][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}, {1.0f / 3.0f, 1.0f / 3.0f}};
+    static const float corners[3][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}};
     int front = 0, back = 0;
-    for (int k = 0; k < 4; k++) {
+    for (int k = 0; k < 3; k++) { // the shading normal is interpolated linearly: its side at the corners decides
         tri_hit th = {0.0f, 1.0f - corners[k][0] - corners[k][1], corners[k][0], corners[k][1]};
         vec3 ng = mat4_apply_normal(&in->xf.inv, mesh_shade(m, tl->tri, &th).ng);
         float side = v3_dot(ng, tl->n);
         front += side > 0.0f;
         back += side < 0.0f;
     }
-    bool one_side = !s->materials[tl->material].two_sided && (front == 4 || back == 4);
-    it->axis = front == 4 ? tl->n : v3_neg(tl->n);
+    bool one_side = !s->materials[tl->material].two_sided && (front == 3 || back == 3);
+    it->axis = front == 3 ? tl->n : v3_neg(tl->n);
     it->cos_o = one_side ? 1.0f : -1.0f;
     it->bounds = bounds3_add(bounds3_add(bounds3_add(bounds3_empty(), tl->p0), v3_add(tl->p0, tl->e1)),
                              v3_add(tl->p0, tl->e2));

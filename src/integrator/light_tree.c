@@ -18,35 +18,35 @@ enum {
 
 typedef struct cone {
     vec3 axis;
-    float cos_o;
+    float theta; ///< half-angle; pi: every direction
 } cone;
 
 static float clamp1(float x) { return x < -1.0f ? -1.0f : x > 1.0f ? 1.0f : x; }
 
 // The smallest cone (nearly: it is widened a little against rounding) holding both a and b.
 static cone cone_union(cone a, cone b) {
-    if (a.cos_o <= -1.0f || b.cos_o <= -1.0f) return (cone){a.axis, -1.0f};
-    float ta = acosf(clamp1(a.cos_o)), tb = acosf(clamp1(b.cos_o));
-    float td = acosf(clamp1(v3_dot(a.axis, b.axis)));
-    if (fminf(td + tb, pi) <= ta) return a;
-    if (fminf(td + ta, pi) <= tb) return b;
-    float to = 0.5f * (ta + td + tb) + 1e-3f; // rounding in the rotation below must not leave a child outside
+    if (a.theta >= pi || b.theta >= pi) return (cone){a.axis, pi};
+    float dot = v3_dot(a.axis, b.axis);
+    if (dot >= 1.0f && a.theta == b.theta) return a; // the same cone (flat regions of a mesh): no trigonometry
+    float td = acosf(clamp1(dot));
+    if (fminf(td + b.theta, pi) <= a.theta) return a;
+    if (fminf(td + a.theta, pi) <= b.theta) return b;
+    float to = 0.5f * (a.theta + td + b.theta) + 1e-3f; // rounding in the rotation below must not leave a child outside
     vec3 k = v3_cross(a.axis, b.axis);
     float k2 = v3_len2(k);
-    if (to >= pi || !(k2 > 1e-12f)) return (cone){a.axis, -1.0f};
+    if (to >= pi || !(k2 > 1e-12f)) return (cone){a.axis, pi};
     k = v3_scale(k, 1.0f / sqrtf(k2));
-    // Rodrigues: a's axis turned towards b's by to - ta (k is perpendicular to it).
-    float r = to - ta, c = cosf(r), s = sinf(r);
+    // Rodrigues: a's axis turned towards b's by to - theta_a (k is perpendicular to it).
+    float r = to - a.theta, c = cosf(r), s = sinf(r);
     vec3 w = v3_add(v3_scale(a.axis, c), v3_scale(v3_cross(k, a.axis), s));
-    return (cone){v3_unit(w), cosf(to)};
+    return (cone){v3_unit(w), to};
 }
 
 // The orientation measure of a cone of normals (half-angle theta_o) spreading light over theta_e: the solid angle
 // its emission reaches, weighted by cosine (Conty Estevez and Kulla, eq. 1): the SAOH's cost of the orientation.
-static float orientation_measure(float cos_o, float cos_e) {
-    float to = acosf(clamp1(cos_o)), te = acosf(clamp1(cos_e)), tw = fminf(to + te, pi);
-    float so = sinf(to);
-    return 2.0f * pi * (1.0f - cos_o) + 0.5f * pi * (2.0f * tw * so - cosf(to - 2.0f * tw) - 2.0f * to * so + cos_o);
+static float orientation_measure(float to, float te) {
+    float tw = fminf(to + te, pi), so = sinf(to), co = cosf(to);
+    return 2.0f * pi * (1.0f - co) + 0.5f * pi * (2.0f * tw * so - cosf(to - 2.0f * tw) - 2.0f * to * so + co);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -67,17 +67,17 @@ static float safe_sqrt(float x) { return sqrtf(x > 0.0f ? x : 0.0f); }
 // The node's power over the squared distance to p, times the cosine of the smallest angle between a direction
 // its cone emits into and the direction to p that its bounds allow; 0 when no light of it can reach p.
 static float importance(const light_tree_node *n, vec3 p) {
-    vec3 c = v3_scale(v3_add(n->bounds.lo, n->bounds.hi), 0.5f);
-    float r2 = 0.25f * v3_len2(v3_sub(n->bounds.hi, n->bounds.lo)); // the bounding sphere's radius, squared
-    vec3 to = v3_sub(p, c);
-    float d2 = v3_len2(to);
-    float cos_w = d2 > 0.0f ? clamp1(v3_dot(n->axis, to) / sqrtf(d2)) : 1.0f, sin_w = safe_sqrt(1.0f - cos_w * cos_w);
-    float cos_b = d2 > r2 ? safe_sqrt(1.0f - r2 / d2) : -1.0f, sin_b = safe_sqrt(1.0f - cos_b * cos_b);
-    float sin_o = safe_sqrt(1.0f - n->cos_o * n->cos_o);
-    float cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, n->cos_o), sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, n->cos_o);
+    vec3 to = v3_sub(p, n->center);
+    float d2 = v3_len2(to), r2 = n->radius2;
+    float inv_d = d2 > 0.0f ? 1.0f / sqrtf(d2) : 0.0f;
+    float cos_w = d2 > 0.0f ? clamp1(v3_dot(n->axis, to) * inv_d) : 1.0f, sin_w = safe_sqrt(1.0f - cos_w * cos_w);
+    // The cone the bounding sphere subtends: sin = r / d (none from inside it).
+    bool outside = d2 > r2;
+    float sin_b = outside ? sqrtf(r2) * inv_d : 0.0f, cos_b = outside ? safe_sqrt(1.0f - sin_b * sin_b) : -1.0f;
+    float cos_x = cos_sub_clamped(sin_w, cos_w, n->sin_o, n->cos_o), sin_x = sin_sub_clamped(sin_w, cos_w, n->sin_o, n->cos_o);
     float cos_p = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
     if (cos_p <= n->cos_e) return 0.0f;
-    float v = n->power * cos_p / fmaxf(d2, r2);
+    float v = n->power * cos_p / (outside ? d2 : r2);
     return isfinite(v) ? v : 0.0f;
 }
 
@@ -127,14 +127,6 @@ float light_tree_pmf(const light_tree *t, vec3 p, size_t item) {
 // ---------------------------------------------------------------------------------------------
 // Building
 
-typedef struct keyed keyed;
-
-typedef struct builder {
-    const light_tree_item *items;
-    uint32_t *order; ///< the lights of the node being built occupy a contiguous range
-    struct keyed *keys; ///< room to sort a range by centroid
-    light_tree *t;
-} builder;
 
 static vec3 centroid(const light_tree_item *it) { return v3_scale(v3_add(it->bounds.lo, it->bounds.hi), 0.5f); }
 
@@ -145,19 +137,34 @@ static float surface_area(bounds3 b) {
     return 2.0f * (d.x * d.y + d.y * d.z + d.z * d.x);
 }
 
-/// What a set of lights adds up to: their bounds, power, cone, and the widest spread of their emission.
+/// What a set of lights adds up to: their bounds, power, cone, and the widest spread of their emission (theta_e).
 typedef struct summary {
     bounds3 bounds;
-    float power, cos_e;
+    float power, theta_e;
     cone dirs;
     bool any;
 } summary;
 
-static void summary_add(summary *s, const light_tree_item *it) {
-    cone c = {it->axis, it->cos_o};
-    s->dirs = s->any ? cone_union(s->dirs, c) : c;
+/// A light as the build sees it: its item's cone as angles, computed once.
+typedef struct built_item {
+    cone dirs;
+    float theta_e;
+} built_item;
+
+typedef struct keyed keyed;
+
+typedef struct builder {
+    const light_tree_item *items;
+    const built_item *cones;
+    uint32_t *order; ///< the lights of the node being built occupy a contiguous range
+    struct keyed *keys; ///< room to sort a range by centroid
+    light_tree *t;
+} builder;
+
+static void summary_add(summary *s, const light_tree_item *it, const built_item *b) {
+    s->dirs = s->any ? cone_union(s->dirs, b->dirs) : b->dirs;
     s->bounds = s->any ? bounds3_union(s->bounds, it->bounds) : it->bounds;
-    s->cos_e = s->any ? fminf(s->cos_e, it->cos_e) : it->cos_e;
+    s->theta_e = s->any ? fmaxf(s->theta_e, b->theta_e) : b->theta_e;
     s->power += it->power;
     s->any = true;
 }
@@ -170,12 +177,12 @@ static void summary_merge(summary *s, const summary *o) {
     }
     s->dirs = cone_union(s->dirs, o->dirs);
     s->bounds = bounds3_union(s->bounds, o->bounds);
-    s->cos_e = fminf(s->cos_e, o->cos_e);
+    s->theta_e = fmaxf(s->theta_e, o->theta_e);
     s->power += o->power;
 }
 
 static float cost(const summary *s, float kr) {
-    return s->power * orientation_measure(s->dirs.cos_o, s->cos_e) * surface_area(s->bounds) * kr;
+    return s->power * orientation_measure(s->dirs.theta, s->theta_e) * surface_area(s->bounds) * kr;
 }
 
 /// A light and its centroid on one axis, to sort by (qsort's comparison has no argument to carry the axis).
@@ -198,11 +205,14 @@ static void build_node(builder *bd, uint32_t index, size_t begin, size_t end, ui
     memset(&all, 0, sizeof all);
     bounds3 cb = bounds3_empty();
     for (size_t i = begin; i < end; i++) {
-        summary_add(&all, &bd->items[bd->order[i]]);
+        summary_add(&all, &bd->items[bd->order[i]], &bd->cones[bd->order[i]]);
         cb = bounds3_add(cb, centroid(&bd->items[bd->order[i]]));
     }
     light_tree_node *n = &t->nodes[index];
-    *n = (light_tree_node){all.bounds, all.dirs.axis, all.dirs.cos_o, all.cos_e, all.power, UINT32_MAX, 0};
+    vec3 center = v3_scale(v3_add(all.bounds.lo, all.bounds.hi), 0.5f);
+    float radius2 = 0.25f * v3_len2(v3_sub(all.bounds.hi, all.bounds.lo));
+    float cos_o = all.dirs.theta >= pi ? -1.0f : cosf(all.dirs.theta), sin_o = all.dirs.theta >= pi ? 0.0f : sinf(all.dirs.theta);
+    *n = (light_tree_node){center, radius2, all.dirs.axis, cos_o, sin_o, cosf(all.theta_e), all.power, UINT32_MAX, 0};
     if (end - begin == 1) {
         uint32_t item = bd->order[begin];
         n->item = item;
@@ -223,7 +233,7 @@ static void build_node(builder *bd, uint32_t index, size_t begin, size_t end, ui
         for (size_t i = begin; i < end; i++) {
             const light_tree_item *it = &bd->items[bd->order[i]];
             int b = (int)((axis_of(centroid(it), a) - lo) / e * BINS);
-            summary_add(&bins[b < 0 ? 0 : b >= BINS ? BINS - 1 : b], it);
+            summary_add(&bins[b < 0 ? 0 : b >= BINS ? BINS - 1 : b], it, &bd->cones[bd->order[i]]);
         }
         float kr = max_ext / e; // long thin boxes split across their length
         for (int b = 0; b < BINS; b++) {
@@ -278,18 +288,25 @@ bool light_tree_build(light_tree *t, const light_tree_item *items, size_t count)
     t->depth = malloc(count * sizeof *t->depth);
     uint32_t *order = malloc(count * sizeof *order);
     keyed *keys = malloc(count * sizeof *keys);
-    if (!t->nodes || !t->trail || !t->depth || !order || !keys) {
+    built_item *cones = malloc(count * sizeof *cones);
+    if (!t->nodes || !t->trail || !t->depth || !order || !keys || !cones) {
         free(order);
         free(keys);
+        free(cones);
         light_tree_release(t);
         return false;
     }
-    for (size_t i = 0; i < count; i++) order[i] = (uint32_t)i;
-    builder bd = {items, order, keys, t};
+    for (size_t i = 0; i < count; i++) {
+        order[i] = (uint32_t)i;
+        cones[i] = (built_item){{items[i].axis, items[i].cos_o <= -1.0f ? pi : acosf(clamp1(items[i].cos_o))},
+                                acosf(clamp1(items[i].cos_e))};
+    }
+    builder bd = {items, cones, order, keys, t};
     t->node_count = 1;
     build_node(&bd, 0, 0, count, 0, 0);
     free(order);
     free(keys);
+    free(cones);
     return true;
 }
 

@@ -25,12 +25,13 @@ typedef struct light_tree_item {
     float cos_o, cos_e;
 } light_tree_item;
 
-/// A node: the union of its lights' bounds. Interior nodes have two children, `child` and `child + 1`; a leaf
-/// holds the single light `item`.
+/// A node: the union of its lights, as the importance bound reads it (its bounds as their bounding sphere).
+/// Interior nodes have two children, `child` and `child + 1`; a leaf holds the single light `item`.
 typedef struct light_tree_node {
-    bounds3 bounds;
+    vec3 center;
+    float radius2; ///< the bounding sphere's radius, squared
     vec3 axis;
-    float cos_o, cos_e, power;
+    float cos_o, sin_o, cos_e, power;
     uint32_t child; ///< first child, or UINT32_MAX for a leaf
     uint32_t item;  ///< a leaf's light
 } light_tree_node;
