@@ -36,7 +36,8 @@ static bool read_exr(const char *path, exr_planes *out) {
     exr_part *p = NULL;
     exr_part_info info;
     glint_error err;
-    bool ok = exr_part_open(f, path, (size_t)1 << 24, &p, &info, &err) == GLINT_OK && info.channel_count <= MAX_CHANNELS;
+    bool ok = exr_part_open(f, path, (size_t)1 << 24, &p, &info, &err) == GLINT_OK;
+    ok = ok && info.channel_count <= MAX_CHANNELS;
     exr_channel_target targets[MAX_CHANNELS];
     if (ok) {
         out->count = info.channel_count;
