@@ -327,8 +327,11 @@ typedef enum glint_format {
 /// albedo.R, albedo.G, albedo.B, normal.X, normal.Y, normal.Z and Z (32-bit float even with
 /// GLINT_FORMAT_EXR_HALF); the other formats hold the colour alone. An OpenEXR file of a region has the region
 /// as its data window inside the full image's display window. The PNG of a region (glint_render_options.region)
-/// holds a tEXt chunk "glint:region" = "X0,Y0,X1,Y1,W,H" (W x H: the full image) for glint_merge; PPM and PFM
-/// have no room for it and hold the region's pixels alone. A whole image's PNG has no such chunk. Writes an
+/// holds a tEXt chunk "glint:region" = "X0,Y0,X1,Y1,W,H" (W x H: the full image) for glint_merge. PFM has no room
+/// for it: the PFM of a region at PATH (and each AOV PFM of glint_image_write_aov) is followed by a region file
+/// PATH.region, two lines "glint:region=X0,Y0,X1,Y1,W,H" and "fnv1a64=" with the 64-bit FNV-1a hash of the PFM's
+/// bytes as 16 lowercase hex digits, written as images are (none for standard output). PPM and HDR hold the
+/// region's pixels alone. A whole image's PNG has no such chunk, nor its PFM a region file. Writes an
 /// unnamed temporary file (Linux O_TMPFILE; a named one where unsupported) and links it into place, so a
 /// failed or killed write leaves no file behind; writes through a symbolic link to the file it names, and
 /// refuses a read-only file ("PATH: cannot write: the file is read-only", GLINT_ERR_RENDER).
@@ -362,10 +365,21 @@ GLINT_API void glint_image_free(glint_image *img);
 GLINT_API glint_status glint_image_from_rgb(int width, int height, const float *rgb, const char *output_encoding,
                                             glint_image **out, glint_error *err);
 
-/// Assembles the PNG files of regions (written by glint_image_write, each with its "glint:region" chunk) into
-/// the full image and writes it to `output` (.png or .ppm: the parts' 8-bit values, unchanged). The parts must
-/// tile the full image exactly: GLINT_ERR_INPUT, naming the part, for a file that is no such PNG, parts of
-/// different full sizes, overlapping parts, or a pixel no part covers; GLINT_ERR_RENDER for I/O and memory.
+/// Assembles the files of regions (written by glint_image_write with glint_render_options.region) into the full
+/// image and writes it to `output`; the parts must tile it exactly, in any order:
+/// - 8-bit parts: PNG files (placed by their "glint:region" chunk) to .png or .ppm, the parts' bytes unchanged;
+/// - float parts: OpenEXR files (placed by their data windows; every channel glint writes: R, G, B and the AOV
+///   channels, the same in every part) and PFM files (placed by their region file PATH.region, which must be
+///   the one written with that PFM: its hash is checked) to .exr, .pfm or .hdr, with the parts' float values
+///   exactly: the merge equals the full render's file. An .exr holds every channel, as 16-bit halves when every
+///   part's colour (and albedo and normal) channels are halves, else as 32-bit floats (which hold halves
+///   exactly); a .pfm or .hdr holds the colour alone (HDR rounds it to RGBE). Grey PFM parts ("Pf", a depth AOV)
+///   merge to .pfm alone.
+/// GLINT_ERR_INPUT, naming the part, for a file that is no region part, 8-bit parts with float parts, a float
+/// output from 8-bit parts or an 8-bit output from float parts, parts of different full sizes or channels,
+/// overlapping parts, a pixel no part covers, an output that is one of the parts, and a damaged or truncated
+/// part; GLINT_ERR_RENDER for I/O and memory (a float merge holds the full image as 32-bit floats: 4 bytes a
+/// channel a pixel, plus 1).
 GLINT_API glint_status glint_merge(const char *output, const char *const *parts, size_t count, glint_error *err);
 
 /// Opaque: a timeline of the library's work, for seeing where the threads' time goes (load balance, stalls). It
