@@ -275,6 +275,11 @@ typedef struct glint_mesh_data {
 /// "transform": [...], "material": ...}; faces without a material of their own are grey unless the object gives
 /// one. GLINT_ERR_INPUT names the first bad value: "glint_scene_add_mesh: indices[7] (triangle 2) is 9, but the
 /// mesh has 8 vertices".
+///   float xyz[] = {0,0,0, 1,0,0, 0,1,0};  uint32_t tri[] = {0, 1, 2};
+///   glint_mesh_data m = {.vertex_count = 3, .positions = xyz, .triangle_count = 1, .indices = tri};
+///   glint_scene_add_mesh(s, "tri", &m, &err);
+///   glint_params_parse("{\"type\": \"mesh\", \"mesh\": \"tri\", \"material\": \"red\"}", &p, &err);
+///   glint_scene_add_object(s, p, &err);     (as many objects as instances are wanted, each with its transform)
 GLINT_API glint_status glint_scene_add_mesh(glint_scene *scene, const char *name, const glint_mesh_data *mesh,
                                             glint_error *err);
 /// Pixels in the caller's array, row 0 at the top, copied.
@@ -285,7 +290,9 @@ typedef struct glint_pixels {
     const uint8_t *bytes; ///< 8-bit values, decoded as the options' "encoding" says (default "srgb"), or NULL
 } glint_pixels;
 /// Adds a named image texture from pixels (exactly one of values and bytes); `options` (may be NULL) holds the
-/// image texture's "encoding" and "filter" (docs/scene-format.md, textures).
+/// image texture's "encoding" and "filter" (docs/scene-format.md, textures). Materials then name it:
+///   uint8_t rgb[] = {255,0,0, 0,0,255};  glint_pixels px = {2, 1, 3, NULL, rgb};
+///   glint_scene_add_image(s, "stripes", &px, NULL, &err);    // {"type": "lambertian", "albedo": "stripes"}
 GLINT_API glint_status glint_scene_add_image(glint_scene *scene, const char *name, const glint_pixels *pixels,
                                              const glint_params *options, glint_error *err);
 
@@ -361,7 +368,7 @@ GLINT_API void glint_image_rgb8(const glint_image *img, uint8_t *rgb);
 GLINT_API void glint_image_free(glint_image *img);
 /// An image of the caller's linear RGB values (width * height * 3 floats, row 0 at the top, copied), to write with
 /// glint_image_write in any format; output_encoding ("linear", "gamma2", "srgb"; NULL: "srgb") says how 8-bit
-/// formats encode them.
+/// formats encode them:  glint_image_from_rgb(w, h, rgb, NULL, &img, &err); glint_image_write(img, "x.png", 0, &err);
 GLINT_API glint_status glint_image_from_rgb(int width, int height, const float *rgb, const char *output_encoding,
                                             glint_image **out, glint_error *err);
 
