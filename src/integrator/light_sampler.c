@@ -24,7 +24,7 @@ void light_sampler_release(light_sampler *pl) {
 // which lights are chosen; 0 for one that emits nothing. Emission textures scale this, but any positive
 // choice stays unbiased.
 static double light_power(const material *m, double area) {
-    if (m->kind != MAT_DIFFUSE_LIGHT) return 0.0;
+    if (!material_emits(m)) return 0.0;
     double e = (double)m->emission.x + m->emission.y + m->emission.z;
     double p = e * area;
     return isfinite(p) && p > 0.0 ? p : 0.0;
@@ -39,7 +39,7 @@ static double quad_light_power(const glint_scene *s, const quad *q) {
 static double tri_light_make(const glint_scene *s, uint32_t ii, uint32_t tri, tri_light *out) {
     const instance *in = &s->instances[ii];
     const material *m = &s->materials[surface_mesh_material(&s->meshes[in->index], in, tri)];
-    if (m->kind != MAT_DIFFUSE_LIGHT) return 0.0; // most triangles: skip the transform
+    if (!material_emits(m)) return 0.0; // most triangles: skip the transform
     vec3 p0, p1, p2;
     mesh_triangle_positions(&s->meshes[in->index].geometry, tri, &p0, &p1, &p2);
     p0 = mat4_apply_point(&in->xf.m, p0);
