@@ -6,6 +6,7 @@
 #include "film/film.h"
 #include "io/exr_read.h"
 #include "io/image_write.h"
+#include "io/merge_float.h"
 #include "io/merge_parts.h"
 #include "io/pfm_region.h"
 

@@ -62,9 +62,4 @@ glint_status merge_cover_claim(merge_cover *c, const char *const *paths, size_t 
 /// GLINT_ERR_INPUT naming the first pixel (in row order) that no part covers, if any.
 glint_status merge_cover_check_gaps(const merge_cover *c, glint_error *err);
 
-/// Assembles float parts (the first of kind first_kind) into output, in format (IMAGE_FORMAT_EXR, _PFM or _HDR),
-/// as image_merge_limited says.
-glint_status merge_float(const char *output, image_format format, const char *const *paths, size_t count,
-                         merge_kind first_kind, size_t max_bytes, glint_error *err);
-
 #endif
