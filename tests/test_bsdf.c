@@ -98,14 +98,14 @@ static void test_furnace(void) {
         const char *name;
         material m;
         bool front;
-        bool gltf_model; ///< the glTF dielectric model is not energy-conserving by definition: reported only
+        bool report_only; ///< printed, not checked
     } cases[] = {
         {"conductor f0=1", conductor_f0(0, 1), true, false},
         {"rough_dielectric ior 1.5, entering", glass(0, 1.5f), true, false},
         {"rough_dielectric ior 1.5, leaving", glass(0, 1.5f), false, false},
         {"pbr metallic=1 base=1", pbr(0, 1, 0, v3s(1)), true, false},
         {"pbr transmission=1 base=1", pbr(0, 0, 1, v3s(1)), true, false},
-        {"pbr dielectric base=1 (glTF)", pbr(0, 0, 0, v3s(1)), true, true},
+        {"pbr dielectric base=1", pbr(0, 0, 0, v3s(1)), true, false},
     };
     printf("White furnace (albedo / F0 = 1, uniform unit environment): sample-weight mean over %d samples\n", N);
     printf("%-36s %5s |", "material", "rough");
@@ -127,7 +127,7 @@ static void test_furnace(void) {
                 printf(" %8.4f", e);
                 lo = fmin(lo, e0);
                 hi = fmax(hi, e0);
-                if (!cases[k].gltf_model) {
+                if (!cases[k].report_only) {
                     CHECK(fabs(e - 1.0) <= 0.01 + 3.0 * se);
                     CHECK(e0 <= 1.0 + 3.0 * se2 + 1e-4);
                 }

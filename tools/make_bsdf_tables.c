@@ -35,6 +35,42 @@ static double albedo(float mu, float a, float etap) {
     return sum / (GRID * GRID);
 }
 
+// The albedo of the GGX reflection lobe with Schlick's Fresnel from f0, split as f0 A + B (it is linear in f0):
+// A with the weight 1 - (1 - c)^5, B with (1 - c)^5, c = wo.h (as the split-sum tables of real-time renderers).
+static void schlick_albedo(float mu, float a, double *ea, double *eb) {
+    vec3 wo = v3(sqrtf(1.0f - mu * mu), 0.0f, mu);
+    double sa = 0.0, sb = 0.0;
+    for (int y = 0; y < GRID; y++)
+        for (int x = 0; x < GRID; x++) {
+            vec3 h = mf_sample_visible(wo, a, a, ((float)x + 0.5f) / GRID, ((float)y + 0.5f) / GRID);
+            vec3 wi = mf_reflect(wo, h);
+            if (!(wi.z > 0.0f)) continue;
+            double c = v3_dot(wo, h), w = pow(1.0 - (c < 1.0 ? c : 1.0), 5.0);
+            double g = mf_g2(wo, wi, a, a) / mf_g1(wo, a, a);
+            sa += (1.0 - w) * g;
+            sb += w * g;
+        }
+    *ea = sa / (GRID * GRID);
+    *eb = sb / (GRID * GRID);
+}
+
+// Prints a [ROUGH][MU] table and its hemispherical averages 2 int T mu dmu (trapezoids over the nodes).
+static void print_table(FILE *out, const char *name, const char *avg_name, double t[BSDF_TABLE_ROUGH][BSDF_TABLE_MU]) {
+    fprintf(out, "\nconst float %s[BSDF_TABLE_ROUGH][BSDF_TABLE_MU] = {\n", name);
+    for (int j = 0; j < BSDF_TABLE_ROUGH; j++) {
+        fprintf(out, "    {");
+        for (int i = 0; i < BSDF_TABLE_MU; i++) fprintf(out, "%s%.6ff", i ? (i % 8 ? ", " : ",\n     ") : "", t[j][i]);
+        fprintf(out, "},\n");
+    }
+    fprintf(out, "};\n\nconst float %s[BSDF_TABLE_ROUGH] = {\n", avg_name);
+    for (int j = 0; j < BSDF_TABLE_ROUGH; j++) {
+        double s = 0.0, h = 1.0 / (BSDF_TABLE_MU - 1);
+        for (int i = 0; i + 1 < BSDF_TABLE_MU; i++) s += 0.5 * h * (t[j][i] * i * h + t[j][i + 1] * (i + 1) * h);
+        fprintf(out, "%s%.6ff", j ? (j % 8 ? ", " : ",\n    ") : "    ", 2.0 * s);
+    }
+    fprintf(out, "\n};\n");
+}
+
 int main(int argc, char **argv) {
     FILE *out = argc > 1 ? fopen(argv[1], "w") : stdout;
     if (!out) {
@@ -74,5 +110,10 @@ int main(int argc, char **argv) {
         fprintf(out, "    },\n");
     }
     fprintf(out, "};\n");
+    static double ta[BSDF_TABLE_ROUGH][BSDF_TABLE_MU], tb[BSDF_TABLE_ROUGH][BSDF_TABLE_MU];
+    for (int j = 0; j < BSDF_TABLE_ROUGH; j++)
+        for (int i = 0; i < BSDF_TABLE_MU; i++) schlick_albedo(node_mu(i), node_alpha(j), &ta[j][i], &tb[j][i]);
+    print_table(out, "bsdf_table_schlick_a", "bsdf_table_schlick_a_avg", ta);
+    print_table(out, "bsdf_table_schlick_b", "bsdf_table_schlick_b_avg", tb);
     return out == stdout || fclose(out) == 0 ? 0 : 1;
 }

@@ -105,10 +105,10 @@ static inline bool shadow_unblocked(const integrator *it, const ray *r, vec3 *tr
     return true;
 }
 
-// Next-event estimation towards emissive sphere `index`: a direction in the cone the sphere subtends (a, b
-// uniform), its emission where that direction meets the sphere, a shadow ray, and the power-heuristic weight
-// against BSDF sampling; the same contract as sample_light.
-static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, uint32_t index, const nee_vertex *vx,
+// Next-event estimation towards emissive sphere `index`, chosen with probability `select`: a direction in the cone
+// the sphere subtends (a, b uniform), its emission where that direction meets the sphere, a shadow ray, and the
+// power-heuristic weight against BSDF sampling; the same contract as sample_light.
+static vec3 sample_sphere_light(const integrator *it, float select, uint32_t index, const nee_vertex *vx,
                                 const spawn_point *sp, float a, float b, thread_stats *ts) {
     const glint_scene *s = it->scene;
     const sphere *sph = &s->spheres[index];
@@ -118,7 +118,7 @@ static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, u
     float f;
     vec3 fc;
     if (!nee_response(vx, wi, &f, &fc)) return v3s(0.0f);
-    float pdf_light = pl->sphere_select_pdf[index] * cone_pdf;
+    float pdf_light = select * cone_pdf;
     if (!(pdf_light > 0.0f) || !isfinite(pdf_light)) return v3s(0.0f);
     // The side and texture coordinates a ray along wi sees there, as surface_at gives them.
     vec3 x = v3_fma(sp->p, wi, dist), q = v3_sub(x, sph->center);
@@ -145,16 +145,11 @@ static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, u
 static vec3 sample_light(const integrator *it, const light_sampler *pl, const nee_vertex *vx, const spawn_point *sp,
                          rng *r, thread_stats *ts) {
     const glint_scene *s = it->scene;
-    float xi = rng_float(r), a = rng_float(r), b = rng_float(r);
-    size_t lo = 0, hi = pl->count - 1; // the first light whose cdf exceeds xi
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (xi < pl->cdf[mid]) hi = mid;
-        else lo = mid + 1;
-    }
-    float select = pl->cdf[lo] - (lo ? pl->cdf[lo - 1] : 0.0f); // as light_sampler_build recorded it
-    light_ref ref = pl->lights[lo];
-    if (ref.kind == LIGHT_REF_SPHERE) return sample_sphere_light(it, pl, ref.index, vx, sp, a, b, ts);
+    float xi = rng_float(r), a = rng_float(r), b = rng_float(r), select;
+    size_t chosen = light_sampler_choose(pl, sp->p, xi, &select);
+    if (chosen == SIZE_MAX) return v3s(0.0f); // no light can reach the point
+    light_ref ref = pl->lights[chosen];
+    if (ref.kind == LIGHT_REF_SPHERE) return sample_sphere_light(it, select, ref.index, vx, sp, a, b, ts);
     vec3 x, n;
     float area;
     const tri_light *tl = NULL;
@@ -196,7 +191,7 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
     vec3 fc;
     bool scatters = nee_response(vx, wi, &f, &fc);
     if (!(cos_l > 0.0f) || !scatters) return v3s(0.0f);
-    float pdf_light = (q ? pl->select_pdf[ref.index] : select) * d2 / (cos_l * area);
+    float pdf_light = select * d2 / (cos_l * area);
     if (!(pdf_light > 0.0f) || !isfinite(pdf_light)) return v3s(0.0f);
     // Stop short of the light by a relative margin (pbrt's shadow epsilon) so that it does not occlude itself.
     ray shadow = spawn_ray(sp, wi, 0.0f, dist * (1.0f - 1e-4f));
@@ -801,11 +796,11 @@ static void path_release(integrator *it) {
     free(pi);
 }
 
-integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_lights, bool light_sampling_only,
-                        glint_error *err) {
+integrator *path_create(const glint_scene *s, const accel *a, const integrator_options *o, glint_error *err) {
+    bool sample_area_lights = !(o && o->no_light_sampling);
     path_integrator *pi = malloc(sizeof *pi);
     // The index of emissive surfaces depends only on the scene: built once per render, before the threads start.
-    if (!pi || !light_sampler_build(&pi->lights, s)) {
+    if (!pi || !light_sampler_build(&pi->lights, s, !(o && o->no_light_tree))) {
         free(pi);
         snprintf(err->message, sizeof err->message, "%s: out of memory while indexing the emissive surfaces", s->path);
         return NULL;
@@ -815,7 +810,7 @@ integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_l
     pi->base.render_tile = path_render_tile;
     pi->base.release = path_release;
     pi->sampled = sample_area_lights && pi->lights.count > 0 ? &pi->lights : NULL;
-    pi->light_only = light_sampling_only;
+    pi->light_only = o && o->light_sampling_only;
     // The environment's distribution, when it is the background (a black map has none: nothing to sample).
     pi->env_sampled = NULL;
     memset(&pi->environment, 0, sizeof pi->environment);

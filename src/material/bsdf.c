@@ -57,6 +57,21 @@ static float dielectric_e(float etap, float rough, float mu) {
     return v[0] + (v[1] - v[0]) * fe;
 }
 
+// A [ROUGH][MU] table, bilinear, and its [ROUGH] average, linear.
+static float table2(const float t[BSDF_TABLE_ROUGH][BSDF_TABLE_MU], float rough, float mu) {
+    float fr, fm;
+    int j = table_cell(rough * (BSDF_TABLE_ROUGH - 1), BSDF_TABLE_ROUGH, &fr);
+    int i = table_cell(mu * (BSDF_TABLE_MU - 1), BSDF_TABLE_MU, &fm);
+    float a = t[j][i] + (t[j][i + 1] - t[j][i]) * fm, b = t[j + 1][i] + (t[j + 1][i + 1] - t[j + 1][i]) * fm;
+    return a + (b - a) * fr;
+}
+
+static float table1(const float t[BSDF_TABLE_ROUGH], float rough) {
+    float fr;
+    int j = table_cell(rough * (BSDF_TABLE_ROUGH - 1), BSDF_TABLE_ROUGH, &fr);
+    return t[j] + (t[j + 1] - t[j]) * fr;
+}
+
 // Kulla and Conty's colour of the multiple-scattering lobe for a Fresnel whose hemispherical average is f_avg:
 // the energy of the second and later bounces, F_avg^2 E_avg / (1 - F_avg (1 - E_avg)), per channel.
 static vec3 ms_colour(vec3 f_avg, float e_avg) {
@@ -186,6 +201,7 @@ void bsdf_init(bsdf *b, const material *m, const texture *textures, vec3 albedo,
     b->f0_dielectric = r0 * r0;
     b->ms_metal = ms_colour(schlick_average(albedo), b->e_avg);
     b->ms_dielectric = ms_colour(schlick_average(v3s(b->f0_dielectric)), b->e_avg);
+    b->layer_avg = b->f0_dielectric * table1(bsdf_table_schlick_a_avg, b->rough) + table1(bsdf_table_schlick_b_avg, b->rough);
     b->flags = BSDF_REFLECTION | BSDF_GLOSSY;
     if (b->metallic < 1.0f && b->transmission < 1.0f) b->flags |= BSDF_DIFFUSE;
     if (b->metallic < 1.0f && b->transmission > 0.0f)
@@ -330,11 +346,23 @@ static bool glass_sample(const bsdf *b, vec3 wo, vec3 tint, rng *r, bsdf_sample_
     return s->pdf > 0.0f && isfinite(s->pdf);
 }
 
+// The albedo of pbr's dielectric specular layer at cos theta = mu: Schlick's single scattering (f0 A + B) and, with
+// compensation, its multiple-scattering lobe's share ms (1 - E(mu)); at most 1.
+static float layer_albedo(const bsdf *b, float mu) {
+    float e = b->f0_dielectric * table2(bsdf_table_schlick_a, b->rough, mu) + table2(bsdf_table_schlick_b, b->rough, mu);
+    if (b->compensate) e += b->ms_dielectric.x * (1.0f - conductor_e(b->rough, mu));
+    return fminf(e, 1.0f);
+}
+
 // ---------------------------------------------------------------------------------------------
 // pbr: glTF 2.0's metallic-roughness model (appendix B), with KHR_materials_transmission and _ior:
 //   mix(fresnel_mix(ior, mix(diffuse, transmission, transmission weight), specular), metal, metallic)
 // where the metal is the specular lobe times Schlick's Fresnel from the base colour and fresnel_mix weighs the
-// specular lobe by Schlick's F from f0 = ((ior - 1) / (ior + 1))^2 and the base by 1 - F (F at wo.h). The
+// specular lobe by Schlick's F from f0 = ((ior - 1) / (ior + 1))^2. The specification weighs the base by 1 - F at
+// wo.h, which is not energy-conserving (a white base reflects up to 1.7 at grazing angles: more light than it
+// gets); the base here gets what the layer does not reflect, by albedo scaling (Kulla and Conty 2017's layering,
+// as Cycles' Principled BSDF and OpenPBR do): base / pi (1 - E_l(mu_o)) (1 - E_l(mu_i)) / (1 - E_l,avg), E_l the
+// layer's albedo, so that a white base and the layer reflect exactly 1 (reciprocal, as the lobe must be). The
 // transmission is the rough dielectric's lobe tinted by the base colour.
 
 // The lobes' weights: metal, the opaque dielectric (specular layer over the Lambertian base) and glass.
@@ -369,7 +397,11 @@ static vec3 pbr_eval(const bsdf *b, vec3 wo, vec3 wi) {
         if (wd > 0.0f) {
             float fd = mf_fresnel_schlick(v3s(b->f0_dielectric), c).x;
             vec3 layer = v3_add(v3s(fd * single), v3_scale(b->ms_dielectric, ms));
-            vec3 opaque = v3_add(layer, v3_scale(b->base, (1.0f - fd) * inv_pi));
+            // The layer's hemispherical albedo: its single scattering's, and the multiple-scattering lobe's share.
+            float avg = fminf(b->layer_avg + (b->compensate ? b->ms_dielectric.x * (1.0f - b->e_avg) : 0.0f), 1.0f);
+            float under = avg < 1.0f ? (1.0f - layer_albedo(b, wo.z)) * (1.0f - layer_albedo(b, wi.z)) / (1.0f - avg)
+                                     : 0.0f;
+            vec3 opaque = v3_add(layer, v3_scale(b->base, under * inv_pi));
             f = v3_add(f, v3_scale(opaque, wd));
         }
     }
@@ -527,7 +559,7 @@ bsdf_whitted bsdf_whitted_view(const bsdf *b, float cos_o) {
         pbr_weights(b, &wm, &wd, &wg);
         float fd = mf_fresnel_schlick(v3s(b->f0_dielectric), c).x;
         w.mirror = v3_add(v3_scale(mf_fresnel_schlick(b->base, c), wm), v3s((wd + wg) * fd));
-        w.diffuse = v3_scale(b->base, wd * (1.0f - fd));
+        w.diffuse = v3_scale(b->base, wd * (1.0f - layer_albedo(b, c)));
         break;
     }
     default: w.diffuse = b->base; break;

@@ -54,6 +54,7 @@ typedef struct bsdf {
     vec3 ms_metal;    ///< Kulla–Conty colour F_avg^2 E_avg / (1 - F_avg (1 - E_avg)) of the conductor or metal lobe
     vec3 ms_dielectric; ///< the same for pbr's dielectric specular layer
     float e_avg;      ///< E_avg at this roughness
+    float layer_avg;  ///< pbr: the hemispherical albedo of the dielectric specular layer's single scattering
     bool front;       ///< arrived on the outward side
     bool compensate;  ///< energy compensation (on; the tests turn it off to see the single-scattering lobes)
     unsigned flags;   ///< the bsdf_flags of its lobes

@@ -18,5 +18,10 @@ extern const float bsdf_table_conductor_e_avg[BSDF_TABLE_ROUGH];
 /// The albedo, reflection plus transmission with exact Fresnel, of the single-scattering rough dielectric
 /// (Walter et al. 2007) seen from the side where the other medium's index over this one's is etap.
 extern const float bsdf_table_dielectric_e[BSDF_TABLE_ETA][BSDF_TABLE_ROUGH][BSDF_TABLE_MU];
+/// The albedo of the single-scattering GGX reflection lobe with Schlick's Fresnel from f0 is f0 A(mu, r) + B(mu, r)
+/// (linear in f0): A weighs each reflection by 1 - (1 - wo.h)^5, B by (1 - wo.h)^5. With their hemispherical
+/// averages, for pbr's specular layer over its base (bsdf.c, layer_albedo).
+extern const float bsdf_table_schlick_a[BSDF_TABLE_ROUGH][BSDF_TABLE_MU], bsdf_table_schlick_a_avg[BSDF_TABLE_ROUGH];
+extern const float bsdf_table_schlick_b[BSDF_TABLE_ROUGH][BSDF_TABLE_MU], bsdf_table_schlick_b_avg[BSDF_TABLE_ROUGH];
 
 #endif

@@ -149,11 +149,7 @@ static bool add_model_meshes(sf_loader *ld, jr_val file, model_file *model, cons
         if (!done[k]) {
             done[k] = true;
             if (model->materials[k].is_default) {
-                material m = material_default(MAT_LAMBERTIAN);
-                long f = ld->fallback_material >= 0 ? ld->fallback_material
-                                                    : (ld->fallback_material = scene_add_material(ld->scene, &m, NULL));
-                ok = f >= 0 || sf_fail_oom(ld);
-                if (ok) materials[k] = (uint32_t)f;
+                ok = sf_fallback_material(ld, &materials[k]);
             } else {
                 ok = sf_model_material(ld, file, model, k, &materials[k]);
             }
