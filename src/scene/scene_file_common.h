@@ -153,6 +153,10 @@ bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const ch
 /// would make samples NaN); otherwise writes "<what> reaches <x> on the <axis> axis; ..." at `offset`.
 bool sf_check_extent(sf_loader *ld, size_t offset, const char *what, bounds3 b);
 
+/// The grey Lambertian of faces without a material (meshes from any file or array), created on first use; false
+/// when out of memory.
+bool sf_fallback_material(sf_loader *ld, uint32_t *index);
+
 // scene_file_warnings.c: what a loaded scene will not show
 
 /// Warns about what the loaded scene will not show: no light at all, and what paper mode drops.
@@ -196,8 +200,6 @@ bool sf_read_light(sf_loader *ld, jr_val v, size_t i);
 /// A "mesh" object: its OBJ file loaded once (materials mapped to scene materials), or a mesh a program added
 /// ("mesh": its name), placed as an instance.
 bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what);
-/// The grey Lambertian of faces without a material, created on first use; false when out of memory.
-bool sf_fallback_material(sf_loader *ld, uint32_t *index);
 /// The glint material of an MTL material's values (the policy: docs/scene-format.md, "Meshes").
 material sf_mtl_material(const mtl_values *v);
 

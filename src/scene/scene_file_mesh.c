@@ -90,16 +90,6 @@ static bool has_obj_extension(const char *path) {
     return e[0] == '.' && (e[1] | 0x20) == 'o' && (e[2] | 0x20) == 'b' && (e[3] | 0x20) == 'j';
 }
 
-// The shared grey Lambertian of faces that have no material of their own.
-bool sf_fallback_material(sf_loader *ld, uint32_t *index) {
-    if (ld->fallback_material < 0) {
-        material m = material_default(MAT_LAMBERTIAN);
-        if ((ld->fallback_material = scene_add_material(ld->scene, &m, NULL)) < 0) return sf_fail_oom(ld);
-    }
-    *index = (uint32_t)ld->fallback_material;
-    return true;
-}
-
 /// Turns the material slots of a loaded OBJ into scene materials ("file:name", map_Kd as an image texture)
 /// and fills the scene mesh's slot table; *needs_fallback tells whether some faces have no material.
 static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model, scene_mesh *sm, bool *needs_fallback) {
