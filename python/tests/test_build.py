@@ -250,4 +250,5 @@ def test_ten_thousand_scene_builds_keep_no_memory():
         build_one()
     grown = (rss_pages() - before) * os.sysconf("SC_PAGE_SIZE")
     assert (sys.getrefcount(MESH_P), sys.getrefcount(MESH_I)) == refs
-    assert grown < 1 << 20, "%d bytes more after 10,000 scene builds" % grown
+    # AddressSanitizer keeps freed memory in quarantine: the resident size says nothing there
+    assert grown < 1 << 20 or os.environ.get("GLINT_SANITIZE"), "%d bytes more after 10,000 scene builds" % grown

@@ -35,6 +35,7 @@ def test_renders_keep_no_memory():
     for _ in range(1000):
         render_one(progress)
     grown = (rss_pages() - before) * os.sysconf("SC_PAGE_SIZE")
-    assert grown < 1 << 20, "%d bytes more after 1,000 renders" % grown
+    # AddressSanitizer keeps freed memory in quarantine: the resident size says nothing there
+    assert grown < 1 << 20 or os.environ.get("GLINT_SANITIZE"), "%d bytes more after 1,000 renders" % grown
     assert sys.getrefcount(progress) == refs
     assert calls and calls[-1] == 1.0
