@@ -177,15 +177,16 @@ static bool read_noise(sf_loader *ld, const jr_obj *o, int variant, const char *
     return add_texture(ld, o, &t, name, index);
 }
 
+const char *const sf_image_encodings[2] = {"srgb", "linear"}, *const sf_image_filters[2] = {"bilinear", "nearest"};
+
 static bool read_image(sf_loader *ld, const jr_obj *o, int variant, const char *name, uint32_t *index) {
     (void)variant;
     char *path;
     sf_file_id id;
     jr_val where;
-    static const char *const encodings[] = {"srgb", "linear"}, *const filters[] = {"bilinear", "nearest"};
     int encoding = 0, filter = 0;
-    if (!jr_read_enum(&ld->r, o, "encoding", encodings, 2, &encoding) ||
-        !jr_read_enum(&ld->r, o, "filter", filters, 2, &filter))
+    if (!jr_read_enum(&ld->r, o, "encoding", sf_image_encodings, 2, &encoding) ||
+        !jr_read_enum(&ld->r, o, "filter", sf_image_filters, 2, &filter))
         return false;
     if (!sf_read_file_path(ld, o, "file", "image", &path, &id, &where)) return false;
     size_t before = ld->scene->texture_count;
