@@ -62,7 +62,6 @@ static PyObject *py_parse(PyObject *module, PyObject *args, PyObject *kwargs) {
     return glintpy_scene_wrap(scene);
 }
 
-#ifdef GLINTPY_SCENE_API
 // The formats glint.write names (None: the file name's extension chooses).
 static const struct {
     const char *name;
@@ -125,7 +124,6 @@ done:
     Py_DECREF(path);
     return result;
 }
-#endif
 
 PyArrayObject *glintpy_float_array(PyObject *value, const char *what, const char *name, int ndim) {
     PyArrayObject *a = (PyArrayObject *)PyArray_FROM_O(value);
@@ -156,12 +154,10 @@ static PyMethodDef MODULE_METHODS[] = {
     {"parse", (PyCFunction)(void (*)(void))py_parse, METH_VARARGS | METH_KEYWORDS,
      "parse(text, name='<scene>', *, threads=0) -> Scene\n\nReads a JSON scene from a str; name appears in "
      "messages and is the base of relative paths."},
-#ifdef GLINTPY_SCENE_API
     {"write", (PyCFunction)(void (*)(void))py_write, METH_VARARGS | METH_KEYWORDS,
      "write(path, image, encoding=None, *, format=None)\n\nWrites a float (H, W, 3) array of linear values as "
      "glint writes images: .png .ppm .pfm .exr .hdr by the extension, or format= png, ppm, ppm-ascii, pfm, exr, "
      "exr-half, hdr; encoding (linear, gamma2, srgb; None: srgb) is how 8-bit formats encode the values."},
-#endif
     {NULL, NULL, 0, NULL},
 };
 

@@ -356,15 +356,7 @@ PyObject *glintpy_scene_render(glintpy_scene *self, PyObject *args, PyObject *kw
             goto done;
         }
     }
-#ifdef GLINTPY_SCENE_API
     call.options.overrides = &ov; // this render only
-#else
-    // TODO(issue 34): glint_render_options.overrides once the scene API lands; until then they stay in the scene
-    if (glint_scene_override(self->scene, &ov, &err) != GLINT_OK) {
-        glintpy_raise(&err);
-        goto done;
-    }
-#endif
     if (!(call.options.cancel = glint_cancel_new())) {
         PyErr_NoMemory();
         goto done;

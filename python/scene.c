@@ -29,12 +29,7 @@ static PyObject *scene_new(PyTypeObject *type, PyObject *args, PyObject *kwargs)
     if (!PyArg_ParseTupleAndKeywords(args, kwargs, "|z:Scene", keywords, &name)) return NULL;
     glint_scene *scene = NULL;
     glint_error err;
-#ifdef GLINTPY_SCENE_API
     if (glint_scene_new(name, &scene, &err) != GLINT_OK) return glintpy_raise(&err);
-#else
-    // TODO(issue 34): glint_scene_new once the scene API lands; an empty scene file meanwhile
-    if (glint_scene_parse(name ? name : "<scene>", "{}", 2, &scene, &err) != GLINT_OK) return glintpy_raise(&err);
-#endif
     return glintpy_scene_wrap(scene);
 }
 
@@ -76,7 +71,6 @@ static PyObject *scene_render(glintpy_scene *self, PyObject *args, PyObject *kwa
     return glintpy_scene_render(self, args, kwargs);
 }
 
-#ifdef GLINTPY_SCENE_API
 // The parameters of a dict, through its JSON text; NULL with the error raised.
 static glint_params *params_of(PyObject *dict, const char *what) {
     char *json = glintpy_json(dict, what);
@@ -202,12 +196,14 @@ static PyArrayObject *float_rows(PyObject *value, const char *name, int columns,
 }
 
 static PyObject *scene_add_mesh(glintpy_scene *self, PyObject *args, PyObject *kwargs) {
-    static char *keywords[] = {"name", "positions", "indices", "normals", "uvs", "face_materials", "materials", NULL};
+    static char *keywords[] = {"name", "positions", "indices", "normals", "uvs", "face_materials", "materials", "flat",
+                               NULL};
     const char *name;
     PyObject *positions_in, *indices_in, *normals_in = Py_None, *uvs_in = Py_None, *faces_in = Py_None,
                                          *materials_in = Py_None;
-    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "sOO|OOOO:add_mesh", keywords, &name, &positions_in, &indices_in,
-                                     &normals_in, &uvs_in, &faces_in, &materials_in))
+    int flat = 0;
+    if (!PyArg_ParseTupleAndKeywords(args, kwargs, "sOO|OOOOp:add_mesh", keywords, &name, &positions_in, &indices_in,
+                                     &normals_in, &uvs_in, &faces_in, &materials_in, &flat))
         return NULL;
     if (glintpy_scene_check_idle(self, "add_mesh") < 0) return NULL;
     PyObject *result = NULL;
@@ -262,6 +258,7 @@ static PyObject *scene_add_mesh(glintpy_scene *self, PyObject *args, PyObject *k
         .face_materials = faces,
         .materials = material_names,
         .material_count = (size_t)material_count,
+        .flat = flat != 0,
     };
     glint_error err;
     if (glint_scene_add_mesh(self->scene, name, &mesh, &err) != GLINT_OK) {
@@ -334,14 +331,12 @@ done:
     Py_DECREF(a);
     return result;
 }
-#endif
 
 #define METHOD(name, doc) {#name, (PyCFunction)(void (*)(void))scene_##name, METH_VARARGS | METH_KEYWORDS, doc}
 static PyMethodDef SCENE_METHODS[] = {
     METHOD(render, "render(*, spp, threads, seed, width, height, max_depth, region, accel, output_encoding, "
                    "time_limit, aov, progress, checkpoint, resume, trace) -> float32 (H, W, 3) array, or (array, dict "
                    "of AOV arrays) when aov is given. Overrides apply to this render only."),
-#ifdef GLINTPY_SCENE_API
     METHOD(set_render, "set_render(dict or **keys): the scene file's \"render\" object"),
     METHOD(set_camera, "set_camera(dict or **keys): the scene file's \"camera\" object"),
     METHOD(add_texture, "add_texture(name, dict or **keys): a named texture, as in \"textures\""),
@@ -349,11 +344,10 @@ static PyMethodDef SCENE_METHODS[] = {
     METHOD(add_object, "add_object(dict or **keys): one element of \"objects\""),
     METHOD(add_light, "add_light(dict or **keys): one element of \"lights\""),
     METHOD(add_mesh, "add_mesh(name, positions, indices, normals=None, uvs=None, face_materials=None, "
-                     "materials=None): a named mesh from arrays (copied), placed by add_object({'type': 'mesh', "
+                     "materials=None, flat=False): a named mesh from arrays (copied), placed by add_object({'type': 'mesh', "
                      "'mesh': name, ...})"),
     METHOD(add_image, "add_image(name, pixels, *, encoding=None, filter=None): a named image texture from an "
                       "(H, W[, C]) array of uint8 or float32, row 0 at the top"),
-#endif
     {NULL, NULL, 0, NULL},
 };
 

@@ -133,7 +133,7 @@ def test_write_refuses():
 
 def test_dict_values_the_converter_refuses_name_the_key():
     scene = glint.Scene()
-    sphere = {"type": "sphere", "center": [0, 0, 0], "radius": 1}
+    sphere = {"type": "sphere", "center": [0, 0, 0], "radius": 1, "material": {"type": "lambertian", "albedo": 0.5}}
     with pytest.raises(TypeError, match=r"^add_object: key 'center\[2\]': expected a number, str, bool, list, "
                                         r"tuple, dict or NumPy array, got set$"):
         scene.add_object({**sphere, "center": [0, 0, {1}]})
@@ -155,7 +155,7 @@ def test_dict_values_the_converter_refuses_name_the_key():
         scene.add_object({**sphere, "center": nested})
     # the library's own validation: glint.Error with its message, naming the call
     with pytest.raises(glint.Error, match=r"^glint_scene_add_object: .*radius"):
-        scene.add_object({**sphere, "radius": -1})
+        scene.add_object({**sphere, "radius": 0})
     # nothing refused was added
     assert scene.render(width=4, height=4).max() == 0
 
@@ -200,6 +200,11 @@ def test_mesh_arrays_the_module_refuses():
             scene.add_mesh("m", **args)
     scene.add_material("red", type="lambertian", albedo=[0.8, 0.1, 0.1])
     scene.add_mesh("m", p, i, normals=p, uvs=p[:, :2], face_materials=[0], materials=["red"])
+    scene.add_mesh("flat", p, i, flat=True)
+    with pytest.raises(glint.Error, match=r"^glint_scene_add_mesh: .*normals"):
+        scene.add_mesh("flat2", p, i, normals=p, flat=True)
+    with pytest.raises(glint.Error, match=r"^glint_scene_add_mesh: duplicate mesh name \"m\""):
+        scene.add_mesh("m", p, i)  # the name is taken
 
 
 def test_image_textures_from_pixels():
