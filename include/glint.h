@@ -275,6 +275,11 @@ typedef struct glint_mesh_data {
 /// "transform": [...], "material": ...}; faces without a material of their own are grey unless the object gives
 /// one. GLINT_ERR_INPUT names the first bad value: "glint_scene_add_mesh: indices[7] (triangle 2) is 9, but the
 /// mesh has 8 vertices".
+///   float xyz[] = {0,0,0, 1,0,0, 0,1,0};  uint32_t tri[] = {0, 1, 2};
+///   glint_mesh_data m = {.vertex_count = 3, .positions = xyz, .triangle_count = 1, .indices = tri};
+///   glint_scene_add_mesh(s, "tri", &m, &err);
+///   glint_params_parse("{\"type\": \"mesh\", \"mesh\": \"tri\", \"material\": \"red\"}", &p, &err);
+///   glint_scene_add_object(s, p, &err);     (as many objects as instances are wanted, each with its transform)
 GLINT_API glint_status glint_scene_add_mesh(glint_scene *scene, const char *name, const glint_mesh_data *mesh,
                                             glint_error *err);
 /// Pixels in the caller's array, row 0 at the top, copied.
@@ -285,7 +290,9 @@ typedef struct glint_pixels {
     const uint8_t *bytes; ///< 8-bit values, decoded as the options' "encoding" says (default "srgb"), or NULL
 } glint_pixels;
 /// Adds a named image texture from pixels (exactly one of values and bytes); `options` (may be NULL) holds the
-/// image texture's "encoding" and "filter" (docs/scene-format.md, textures).
+/// image texture's "encoding" and "filter" (docs/scene-format.md, textures). Materials then name it:
+///   uint8_t rgb[] = {255,0,0, 0,0,255};  glint_pixels px = {2, 1, 3, NULL, rgb};
+///   glint_scene_add_image(s, "stripes", &px, NULL, &err);    // {"type": "lambertian", "albedo": "stripes"}
 GLINT_API glint_status glint_scene_add_image(glint_scene *scene, const char *name, const glint_pixels *pixels,
                                              const glint_params *options, glint_error *err);
 
@@ -327,8 +334,11 @@ typedef enum glint_format {
 /// albedo.R, albedo.G, albedo.B, normal.X, normal.Y, normal.Z and Z (32-bit float even with
 /// GLINT_FORMAT_EXR_HALF); the other formats hold the colour alone. An OpenEXR file of a region has the region
 /// as its data window inside the full image's display window. The PNG of a region (glint_render_options.region)
-/// holds a tEXt chunk "glint:region" = "X0,Y0,X1,Y1,W,H" (W x H: the full image) for glint_merge; PPM and PFM
-/// have no room for it and hold the region's pixels alone. A whole image's PNG has no such chunk. Writes an
+/// holds a tEXt chunk "glint:region" = "X0,Y0,X1,Y1,W,H" (W x H: the full image) for glint_merge. PFM has no room
+/// for it: the PFM of a region at PATH (and each AOV PFM of glint_image_write_aov) is followed by a region file
+/// PATH.region, two lines "glint:region=X0,Y0,X1,Y1,W,H" and "fnv1a64=" with the 64-bit FNV-1a hash of the PFM's
+/// bytes as 16 lowercase hex digits, written as images are (none for standard output). PPM and HDR hold the
+/// region's pixels alone. A whole image's PNG has no such chunk, nor its PFM a region file. Writes an
 /// unnamed temporary file (Linux O_TMPFILE; a named one where unsupported) and links it into place, so a
 /// failed or killed write leaves no file behind; writes through a symbolic link to the file it names, and
 /// refuses a read-only file ("PATH: cannot write: the file is read-only", GLINT_ERR_RENDER).
@@ -358,14 +368,25 @@ GLINT_API void glint_image_rgb8(const glint_image *img, uint8_t *rgb);
 GLINT_API void glint_image_free(glint_image *img);
 /// An image of the caller's linear RGB values (width * height * 3 floats, row 0 at the top, copied), to write with
 /// glint_image_write in any format; output_encoding ("linear", "gamma2", "srgb"; NULL: "srgb") says how 8-bit
-/// formats encode them.
+/// formats encode them:  glint_image_from_rgb(w, h, rgb, NULL, &img, &err); glint_image_write(img, "x.png", 0, &err);
 GLINT_API glint_status glint_image_from_rgb(int width, int height, const float *rgb, const char *output_encoding,
                                             glint_image **out, glint_error *err);
 
-/// Assembles the PNG files of regions (written by glint_image_write, each with its "glint:region" chunk) into
-/// the full image and writes it to `output` (.png or .ppm: the parts' 8-bit values, unchanged). The parts must
-/// tile the full image exactly: GLINT_ERR_INPUT, naming the part, for a file that is no such PNG, parts of
-/// different full sizes, overlapping parts, or a pixel no part covers; GLINT_ERR_RENDER for I/O and memory.
+/// Assembles the files of regions (written by glint_image_write with glint_render_options.region) into the full
+/// image and writes it to `output`; the parts must tile it exactly, in any order:
+/// - 8-bit parts: PNG files (placed by their "glint:region" chunk) to .png or .ppm, the parts' bytes unchanged;
+/// - float parts: OpenEXR files (placed by their data windows; every channel glint writes: R, G, B and the AOV
+///   channels, the same in every part) and PFM files (placed by their region file PATH.region, which must be
+///   the one written with that PFM: its hash is checked) to .exr, .pfm or .hdr, with the parts' float values
+///   exactly: the merge equals the full render's file. An .exr holds every channel, as 16-bit halves when every
+///   part's colour (and albedo and normal) channels are halves, else as 32-bit floats (which hold halves
+///   exactly); a .pfm or .hdr holds the colour alone (HDR rounds it to RGBE). Grey PFM parts ("Pf", a depth AOV)
+///   merge to .pfm alone.
+/// GLINT_ERR_INPUT, naming the part, for a file that is no region part, 8-bit parts with float parts, a float
+/// output from 8-bit parts or an 8-bit output from float parts, parts of different full sizes or channels,
+/// overlapping parts, a pixel no part covers, an output that is one of the parts, and a damaged or truncated
+/// part; GLINT_ERR_RENDER for I/O and memory (a float merge holds the full image as 32-bit floats: 4 bytes a
+/// channel a pixel, plus 1).
 GLINT_API glint_status glint_merge(const char *output, const char *const *parts, size_t count, glint_error *err);
 
 /// Opaque: a timeline of the library's work, for seeing where the threads' time goes (load balance, stalls). It

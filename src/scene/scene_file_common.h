@@ -81,6 +81,7 @@ typedef enum sf_object_kind {
 typedef struct sf_loader {
     json_reader r; ///< the document, positions and the message of a failure
     glint_scene *scene;
+    bool linear_images; ///< inline image textures default to "encoding": "linear" (data maps: normals, metallic...)
     sf_names materials;
     sf_names textures;
     sf_mesh_entry *meshes;
