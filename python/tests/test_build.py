@@ -91,6 +91,13 @@ def test_the_bunny_as_arrays_renders_the_obj_bytes():
     assert same_bits(again.render(**settings), loaded.render(**settings))
 
 
+def test_a_scene_name_is_the_base_of_relative_paths():
+    scene = glint.Scene(scene_path("bunny.json"))
+    scene.add_object(type="mesh", file="meshes/stanford-bunny/stanford-bunny.obj", material={"type": "lambertian", "albedo": 0.5})
+    with pytest.raises(glint.Error, match=r"meshes/stanford-bunny/stanford-bunny\.obj"):
+        glint.Scene().add_object(type="mesh", file="meshes/stanford-bunny/stanford-bunny.obj")
+
+
 def test_overrides_apply_to_one_render_only():
     scene = glint.load(scene_path("cornell-box.json"))
     assert scene.render(width=8, height=6, spp=1).shape == (6, 8, 3)

@@ -56,7 +56,12 @@ def test_a_scene_being_rendered_refuses_a_second_render():
         scene.render(width=4, height=4)
         assert False, "a second render of a busy scene ran"
     except glint.Error as e:
-        assert "being rendered on another thread" in str(e)
+        assert str(e) == "render: the scene is being rendered on another thread"
+    try:
+        scene.add_light(type="ambient", intensity=1)
+        assert False, "a busy scene was changed"
+    except glint.Error as e:
+        assert str(e) == "add_light: the scene is being rendered on another thread"
     stop.set()
     t.join(20)
     assert not t.is_alive() and not errors
