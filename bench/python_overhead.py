@@ -40,8 +40,9 @@ for _ in range(runs):
 
 def row(name, cli, py):
     c, p = statistics.median(cli), statistics.median(py)
-    print("%-14s CLI %.3f s  Python %.3f s  %+.1f %%   (CLI %s; Python %s)" % (
-        name, c, p, 100 * (p - c) / c, " ".join("%.3f" % x for x in cli), " ".join("%.3f" % x for x in py)))
+    print("%-14s medians: CLI %.3f s, Python %.3f s, %+.1f %%; minima: %.3f s, %.3f s, %+.1f %%" % (
+        name, c, p, 100 * (p - c) / c, min(cli), min(py), 100 * (min(py) - min(cli)) / min(cli)))
+    print("%-14s CLI %s; Python %s" % ("", " ".join("%.3f" % x for x in cli), " ".join("%.3f" % x for x in py)))
 
 
 print("%s, %s, %d runs each, alternating; load %s" % (scene, flags, runs, os.getloadavg()))
