@@ -9,11 +9,7 @@ import numpy as np
 import pytest
 
 import glint
-from conftest import cli_render, read_pfm, scene_path
-
-pytestmark = pytest.mark.skipif(not hasattr(glint.Scene, "add_object"),
-                                reason="glint.h has no scene API yet (issue 34, item 1)")
-
+from conftest import cli_render, scene_path
 
 def same_bits(a, b):
     return a.shape == b.shape and a.dtype == b.dtype and a.tobytes() == b.tobytes()

@@ -3,13 +3,9 @@
 import os
 import re
 
-import pytest
-
-import glint
 from conftest import SOURCE_DIR
 
 
-@pytest.mark.skipif(not hasattr(glint.Scene, "add_object"), reason="glint.h has no scene API yet (issue 34, item 1)")
 def test_examples_of_docs_python_md_run(tmp_path, monkeypatch, capsys):
     with open(os.path.join(SOURCE_DIR, "docs", "python.md")) as f:
         blocks = re.findall(r"```python\n(.*?)```", f.read(), re.S)
