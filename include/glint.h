@@ -58,6 +58,7 @@ typedef struct glint_overrides {
     long long seed;
     const char *accel; ///< "bvh" (default), "bvh2" or "none"
     const char *output_encoding; ///< how 8-bit output encodes linear values: "linear", "gamma2" or "srgb"
+    const char *sampler; ///< the path tracer's random numbers: "sobol" (default) or "independent"
 } glint_overrides;
 
 /// Sets every field of *o to "not overridden".

@@ -8,6 +8,7 @@
 #include "glint.h"
 #include "camera/camera.h"
 #include "core/rng.h"
+#include "integrator/integrator_common.h"
 #include "film/film.h"
 #include "scene/scene.h"
 
@@ -44,7 +45,8 @@ static const float *plane(const glint_image *img, glint_aov aov) { return glint_
 // A sample's camera ray as the integrator makes it: the path tracer's jittered one, or (spp 1, Whitted) the
 // pixel centre's; for the paper's viewport camera, the ray from the eye through the pixel's viewport point.
 static ray sample_ray(const camera *cam, const glint_scene *s, bool centre, int x, int y, int k) {
-    rng r = rng_for_sample(s->settings.seed, (uint64_t)y * W + (uint64_t)x, (uint64_t)k);
+    uint64_t key = rng_pixel_key(s->settings.seed, (uint64_t)y * W + (uint64_t)x);
+    rng r = rng_for_stream(integrator_stream(&s->settings), key, (uint64_t)k);
     if (cam->kind == CAMERA_VIEWPORT) {
         double v[3];
         camera_viewport_point(cam, (double)x, (double)y + 1.0, v); // pixel (x, y) is film point (x, y + 1)

@@ -407,7 +407,7 @@ static void test_refused(void) {
         {-1, 40, "a.cut: corrupt checkpoint (header checksum mismatch)"},
         {-1, size - 100, "a.cut: corrupt checkpoint (data checksum mismatch)"},
         {-1, 0, "a.cut: not a glint checkpoint"},
-        {-1, 8, "a.cut: checkpoint of format version 17, this glint reads version 1"},
+        {-1, 8, "a.cut: checkpoint of format version 18, this glint reads version 2"},
     };
     for (size_t i = 0; i < sizeof broken / sizeof broken[0]; i++) {
         CHECK(copy_cut(tmp_path("a.ckp"), tmp_path("a.cut"), broken[i].keep, broken[i].flip));

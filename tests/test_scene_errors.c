@@ -79,7 +79,7 @@ static const bad_scene cases[] = {
      "objects, lights"},
     {__LINE__, TEXT("{\"render\": {\"samples\": 4}}"),
      "bad.json:1:13: unknown key \"samples\" in render; expected one of: width, height, spp, max_depth, seed, "
-     "integrator, background, output, accel, presplit"},
+     "sampler, integrator, background, output, accel, presplit"},
     {__LINE__, TEXT("{\"camera\": {\"type\": \"viewport\", \"vfov\": 40}}"),
      "bad.json:1:33: unknown key \"vfov\" in camera (viewport); expected one of: type, position, viewport, distance, "
      "shutter"},

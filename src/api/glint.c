@@ -33,6 +33,7 @@ void glint_overrides_init(glint_overrides *o) {
     o->seed = -1;
     o->accel = NULL;
     o->output_encoding = NULL;
+    o->sampler = NULL;
 }
 
 // "scene load" on the calling thread's trace row, from `began` to now.
@@ -77,7 +78,8 @@ glint_status glint_scene_parse_with(const char *name, const char *text, size_t l
 
 glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err) {
     glint_error scratch;
-    scene_overrides so = {o->width, o->height, o->spp, o->max_depth, o->seed, o->accel, o->output_encoding};
+    scene_overrides so = {o->width, o->height, o->spp,          o->max_depth,
+                          o->seed,  o->accel,  o->output_encoding, o->sampler};
     return scene_override(scene, &so, err ? err : &scratch);
 }
 

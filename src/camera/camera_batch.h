@@ -1,5 +1,5 @@
 // camera_batch.h — camera rays sixteen samples at a time, for the path tracer's tile loop: every lane computes
-// exactly what rng_for_key and camera_sample_ray compute for one sample (the same operations in the same
+// exactly what rng_for_stream and camera_sample_ray compute for one sample (the same operations in the same
 // order, so the same bits), in loops over the lanes that the compiler turns into vector instructions.
 #ifndef GLINT_CAMERA_BATCH_H
 #define GLINT_CAMERA_BATCH_H
@@ -7,6 +7,7 @@
 #include "camera/camera.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/sobol.h"
 
 #include <stdint.h>
 #include <string.h>
@@ -41,6 +42,11 @@ static inline void batch_float(uint64_t st[CAMERA_BATCH], uint64_t inc, float ou
     for (int i = 0; i < CAMERA_BATCH; i++) out[i] = (float)(u[i] >> 8) * 0x1.0p-24f;
 }
 
+// The Sobol' sampler's value of dimension `dim` (a camera offset) in every lane.
+static inline void batch_sobol(const camera_batch *b, uint32_t dim, float out[CAMERA_BATCH]) {
+    for (int i = 0; i < CAMERA_BATCH; i++) out[i] = sobol_sampler_float(b->key[i], (uint32_t)b->sample[i], dim);
+}
+
 // sincos_turn in every lane. floorf(x + 0.5f) is the truncation of that non-negative number.
 static inline void batch_sincos_turn(const float u[CAMERA_BATCH], float c[CAMERA_BATCH], float s[CAMERA_BATCH]) {
     float cs[CAMERA_BATCH], sn[CAMERA_BATCH];
@@ -70,21 +76,30 @@ static inline void batch_sincos_turn(const float u[CAMERA_BATCH], float c[CAMERA
     memcpy(s, rs, sizeof rs);
 }
 
-/// Fills b->r, b->o, b->d and b->time from the inputs: lane i is rng_for_key(stream, key[i], sample[i]) followed
-/// by camera_sample_ray(c, x[i], y[i], &r).
+/// Fills b->r, b->o, b->d and b->time from the inputs: lane i is rng_for_stream(stream, key[i], sample[i])
+/// followed by camera_sample_ray(c, x[i], y[i], &r): PCG32's draws, or the Sobol' sampler's camera dimensions.
 // Always inlined into the tile loops: a call passes the whole batch through memory (gcc stopped inlining it once
 // the path tracer grew).
 static inline __attribute__((always_inline)) void camera_batch_make(const camera *c, uint64_t stream,
                                                                    camera_batch *b) {
     uint64_t st[CAMERA_BATCH];
-    for (int i = 0; i < CAMERA_BATCH; i++) {
-        // rng_for_key: state 0 stepped (to the stream), plus the mixed key, stepped again.
-        st[i] = (stream + rng_mix64(b->key[i] ^ (b->sample[i] + 0x2545f4914f6cdd1dULL))) * 6364136223846793005ULL +
-                stream;
-    }
+    bool sobol = stream == RNG_SOBOL_STREAM;
     float jx[CAMERA_BATCH], jy[CAMERA_BATCH];
-    batch_float(st, stream, jx);
-    batch_float(st, stream, jy);
+    if (sobol) {
+        memset(st, 0, sizeof st); // unused: the Sobol' sampler keeps no state of its own
+        batch_sobol(b, RNG_DIM_FILM, jx);
+        batch_sobol(b, RNG_DIM_FILM + 1, jy);
+    } else {
+        for (int i = 0; i < CAMERA_BATCH; i++) {
+            // rng_for_key: state 0 stepped (to the stream), plus the mixed key, stepped again.
+            st[i] = (stream + rng_mix64(b->key[i] ^ (b->sample[i] + 0x2545f4914f6cdd1dULL))) *
+                        6364136223846793005ULL +
+                    stream;
+        }
+        batch_float(st, stream, jx);
+        batch_float(st, stream, jy);
+    }
+    uint32_t next = RNG_DIM_FILM + 2; // the Sobol' sampler's offset after the camera's draws
     float tx[CAMERA_BATCH], ty[CAMERA_BATCH], tz[CAMERA_BATCH];
     for (int i = 0; i < CAMERA_BATCH; i++) {
         float fx = (float)b->x[i] + jx[i], fy = (float)b->y[i] + jy[i];
@@ -106,8 +121,14 @@ static inline __attribute__((always_inline)) void camera_batch_make(const camera
         }
         if (c->defocus_angle_degrees > 0.0f) { // sample_unit_disk, then the lens point
             float u1[CAMERA_BATCH], u2[CAMERA_BATCH], cs[CAMERA_BATCH], sn[CAMERA_BATCH];
-            batch_float(st, stream, u1);
-            batch_float(st, stream, u2);
+            if (sobol) {
+                batch_sobol(b, RNG_DIM_LENS, u1);
+                batch_sobol(b, RNG_DIM_LENS + 1, u2);
+                next = RNG_DIM_LENS + 2;
+            } else {
+                batch_float(st, stream, u1);
+                batch_float(st, stream, u2);
+            }
             batch_sincos_turn(u2, cs, sn);
             for (int i = 0; i < CAMERA_BATCH; i++) {
                 float rad = sqrtf(u1[i]), dx = rad * cs[i], dy = rad * sn[i];
@@ -123,12 +144,24 @@ static inline __attribute__((always_inline)) void camera_batch_make(const camera
     }
     if (camera_has_shutter(c)) { // rng_range(r, open, close), after the other draws
         float u[CAMERA_BATCH];
-        batch_float(st, stream, u);
+        if (sobol) {
+            batch_sobol(b, RNG_DIM_TIME, u);
+            next = RNG_DIM_TIME + 1;
+        } else {
+            batch_float(st, stream, u);
+        }
         for (int i = 0; i < CAMERA_BATCH; i++) b->time[i] = c->shutter_open + (c->shutter_close - c->shutter_open) * u[i];
     } else {
         for (int i = 0; i < CAMERA_BATCH; i++) b->time[i] = c->shutter_open;
     }
-    for (int i = 0; i < CAMERA_BATCH; i++) b->r[i] = (rng){st[i], stream};
+    if (sobol) {
+        for (int i = 0; i < CAMERA_BATCH; i++) {
+            b->r[i] = rng_sobol(b->key[i], b->sample[i]);
+            rng_decision(&b->r[i], (int)next);
+        }
+    } else {
+        for (int i = 0; i < CAMERA_BATCH; i++) b->r[i] = (rng){st[i], stream};
+    }
 }
 
 #endif

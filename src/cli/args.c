@@ -13,7 +13,7 @@
 
 typedef enum option_id {
     OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_TIME_LIMIT, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED,
-    OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_PREVIEW, OPT_CHECKPOINT, OPT_RESUME,
+    OPT_THREADS, OPT_ACCEL, OPT_SAMPLER, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_PREVIEW, OPT_CHECKPOINT, OPT_RESUME,
     OPT_TRACE, OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
@@ -38,6 +38,7 @@ static const option_spec OPTIONS[] = {
     {"threads", 0, true, OPT_THREADS, 0, 256}, // 0: all online CPUs, as the library counts them
     {"time-limit", 0, true, OPT_TIME_LIMIT, 1, 100000000},
     {"accel", 0, true, OPT_ACCEL, 1, 0},
+    {"sampler", 0, true, OPT_SAMPLER, 1, 0},
     {"output-encoding", 0, true, OPT_OUTPUT_ENCODING, 1, 0},
     {"region", 0, true, OPT_REGION, 1, 0},
     {"aov", 0, true, OPT_AOV, 1, 0},
@@ -107,6 +108,8 @@ static void print_usage(const cli_program *prog, FILE *f) {
             "                     (default: the scene's \"output\"; without it srgb, linear in paper mode)\n"
             "      --accel KIND   acceleration structure: bvh, bvh2 or none (brute force: every ray tests\n"
             "                     every object and triangle; a warning says so when there are meshes)\n"
+            "      --sampler S    the path tracer's random numbers: sobol (Owen-scrambled Sobol') or\n"
+            "                     independent (PCG32); the Whitted integrators ignore it\n"
             "      --region X0,Y0,X1,Y1\n"
             "                     render only the pixels X0 <= x < X1, Y0 <= y < Y1, each exactly as in the\n"
             "                     full image; the image written is (X1-X0)x(Y1-Y0), and a PNG records where\n"
@@ -271,6 +274,7 @@ static cli_action apply_option(const cli_program *prog, const option_spec *spec,
         // Checked by glint_scene_override, with the names the library knows (exit 2, the same message).
         o->overrides.accel = value;
         break;
+    case OPT_SAMPLER: o->overrides.sampler = value; break; // checked by glint_scene_override, as --accel
     case OPT_OUTPUT_ENCODING:
         o->overrides.output_encoding = value;
         break;

@@ -80,6 +80,12 @@ static inline rng rng_for_sample(uint64_t seed, uint64_t pixel, uint64_t sample)
 /// dimension.
 static inline rng rng_sobol(uint64_t key, uint64_t sample) { return (rng){key, (uint64_t)(uint32_t)sample << 32}; }
 
+/// The generator of sample `sample` of the pixel of key `key` in a render of stream `stream`: PCG32
+/// (rng_for_key), or the Sobol' sampler where the stream is RNG_SOBOL_STREAM.
+static inline rng rng_for_stream(uint64_t stream, uint64_t key, uint64_t sample) {
+    return stream == RNG_SOBOL_STREAM ? rng_sobol(key, sample) : rng_for_key(stream, key, sample);
+}
+
 /// Whether r is the Sobol' sampler (not PCG32).
 static inline bool rng_is_sobol(const rng *r) { return (r->inc & 1u) == 0; }
 
