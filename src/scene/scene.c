@@ -38,7 +38,7 @@ glint_scene *scene_new(const char *path) {
     rs->sky_zenith = v3(0.5f, 0.7f, 1.0f);
     rs->transform = TRANSFORM_LINEAR;
     rs->accel = ACCEL_BVH;
-    rs->sampler = SAMPLER_INDEPENDENT;
+    rs->sampler = SAMPLER_SOBOL; // the path tracer's default; the Whitted integrators draw PCG32 whatever it says
     s->camera = camera_default();
     return s;
 }
