@@ -232,8 +232,14 @@ glint_status scene_override(glint_scene *s, const scene_overrides *o, glint_erro
                  o->sampler);
         return GLINT_ERR_INPUT;
     }
+    if (o->noise_threshold >= 0 && !(o->noise_threshold <= SCENE_MAX_NOISE_THRESHOLD)) {
+        snprintf(err->message, sizeof err->message, "--noise-threshold: %g is out of range, expected a number in "
+                 "[0, %d]", o->noise_threshold, SCENE_MAX_NOISE_THRESHOLD);
+        return GLINT_ERR_INPUT;
+    }
     rs->transform = (output_transform)encoding;
     rs->sampler = (sampler_kind)sampler;
+    if (o->noise_threshold >= 0) rs->noise_threshold = (float)o->noise_threshold;
     if (o->width >= 0) rs->width = (int)o->width;
     if (o->height >= 0) rs->height = (int)o->height;
     if (o->spp >= 0) rs->spp = (int)o->spp;

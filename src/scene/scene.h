@@ -62,6 +62,7 @@ enum {
     SCENE_MAX_SPP = 1000000,
     SCENE_MAX_DEPTH = 10000,
     SCENE_MAX_NAME = 128,
+    SCENE_MAX_NOISE_THRESHOLD = 1000, ///< "noise_threshold", --noise-threshold: at most this
 };
 
 /// A mesh loaded from a file, shared by every instance that places it.
@@ -179,6 +180,7 @@ typedef struct scene_overrides {
     const char *accel;           ///< "bvh", "bvh2" or "none"
     const char *output_encoding; ///< "linear", "gamma2" or "srgb"
     const char *sampler;         ///< "sobol" or "independent"
+    double noise_threshold;      ///< adaptive sampling's threshold, 0 (off) to SCENE_MAX_NOISE_THRESHOLD; < 0: unset
 } scene_overrides;
 /// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise).
 glint_status scene_override(glint_scene *s, const scene_overrides *o, glint_error *err);
