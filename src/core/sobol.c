@@ -27,7 +27,7 @@ static const struct {
 // m_k = 2 a_1 m_(k-1) ^ 4 a_2 m_(k-2) ^ ... ^ 2^(s-1) a_(s-1) m_(k-s+1) ^ 2^s m_(k-s) ^ m_(k-s); column k - 1
 // (index bit k - 1) is m_k / 2^k as a 32-bit fraction.
 void sobol_matrix(int dim, uint32_t columns[32]) {
-    uint32_t m[33];
+    uint32_t m[33] = {0};
     if (dim == 0) {
         for (int k = 1; k <= 32; k++) m[k] = 1;
     } else {
