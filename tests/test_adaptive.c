@@ -121,8 +121,8 @@ static void test_rule(const char *sampler) {
 
 // A render at 32 spp kept in a checkpoint, resumed to 64: the 64-spp render, bit for bit (its converged pixels
 // stay stopped, the others go on from their sums).
-static void test_resume_to_more(void) {
-    glint_scene *s32 = load(32, NULL), *s64 = load(SPP, NULL);
+static void test_resume_to_more(const char *sampler) {
+    glint_scene *s32 = load(32, sampler), *s64 = load(SPP, sampler);
     if (!s32 || !s64) return;
     glint_image *ref = render(s64, 2, NULL, NULL);
     glint_image *part = render(s32, 2, tmp_path("a.ckp"), NULL);
@@ -139,7 +139,8 @@ int main(void) {
     if (!tmpdir_make("glint-adaptive")) return 1;
     test_rule("sobol");
     test_rule("independent");
-    test_resume_to_more();
+    test_resume_to_more("sobol");
+    test_resume_to_more("independent");
     tmpdir_remove();
     return check_summary();
 }
