@@ -28,13 +28,16 @@ enum rng_dimension {
     RNG_DIM_FILM = 0,        ///< camera: the film point in the pixel (2-D)
     RNG_DIM_LENS = 2,        ///< camera: the point on the lens (2-D)
     RNG_DIM_TIME = 4,        ///< camera: the time in the shutter
-    RNG_DIM_BSDF = 0,        ///< bounce: the material's direction (2-D; a lobe choice first where it has one,
-                             ///< then up to offset 2) or the phase function's
-    RNG_DIM_LIGHT = 3,       ///< bounce: the light chosen, then the point on it (2-D: 4, 5)
-    RNG_DIM_ENVIRONMENT = 6, ///< bounce: the environment's direction (2-D)
-    RNG_DIM_IMPORTANCE = 8,  ///< bounce: book 3's mixture: its choice, the sphere, the direction (2-D: 10, 11)
-    RNG_DIM_MEDIUM = 12,     ///< bounce: the path's hero channel (once a path), one free flight a medium crossed
+    RNG_DIM_BSDF = 0,        ///< bounce: the material's sampling, up to six numbers (a lobe choice, then the
+                             ///< direction's: 2-D at 0, 1 where it draws no choice) or the phase function's (2-D)
+    RNG_DIM_LIGHT = 7,       ///< bounce: the light chosen, then the point on it (2-D: 8, 9)
+    RNG_DIM_ENVIRONMENT = 10, ///< bounce: the environment's direction (2-D)
+    RNG_DIM_IMPORTANCE = 12, ///< bounce: book 3's mixture: its choice, the sphere, the direction (2-D: 14, 15)
+    RNG_DIM_MEDIUM = 16,     ///< bounce: the path's hero channel (once a path), one free flight a medium crossed
 };
+_Static_assert(RNG_DIM_FILM % 2 == 0 && RNG_DIM_LENS % 2 == 0 && (RNG_DIM_LIGHT + 1) % 2 == 0 &&
+                   RNG_DIM_ENVIRONMENT % 2 == 0 && (RNG_DIM_IMPORTANCE + 2) % 2 == 0,
+               "every 2-D decision starts a pair of dimensions");
 
 /// PCG32's next 32 bits (a PCG32 generator only: rng_for_key, rng_for_sample).
 static inline uint32_t rng_u32(rng *r) {
