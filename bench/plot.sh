@@ -12,6 +12,7 @@
 #   meshscale.dat -> scale-nsray.svg    ns per ray against triangles (log x), one thread
 #                    scale-build.svg    BVH build seconds against triangles (log-log)
 #                    scale-memory.svg   peak memory per triangle against triangles (log x)
+#   cycles.dat    -> cycles-SCENE.svg   RMSE against render time (log-log), glint and Cycles at each thread count
 # The data files' columns are named on their first line ("# ..."); nan marks a figure not measured.
 set -euo pipefail
 export LC_ALL=C
@@ -124,4 +125,30 @@ if rows "$DIR/meshscale.dat"; then
     scale_plot scale-nsray.svg "Cost per ray against triangles: the bunny, one thread" "ns per ray" 4 0 "top left"
     scale_plot scale-build.svg "BVH build time against triangles, one thread" "build seconds (log scale)" 5 1 "top left"
     scale_plot scale-memory.svg "Peak memory per triangle (peak RSS / triangles)" "bytes per triangle" 8 0 "top right"
+fi
+
+# --- equal error: RMSE against render time, glint and Cycles ------------------------------------------
+if rows "$DIR/cycles.dat"; then
+    for scene in $(awk '!/^#/ { print $1 }' "$DIR/cycles.dat" | sort -u); do
+        {
+            head_of "$TMP/out.svg" "RMSE against render time: $scene (lower left is better)" "top right"
+            echo "set logscale xy; set xlabel 'render seconds (log scale)'; set ylabel 'RMSE (log scale)'"
+            sep='plot '
+            for th in $(awk -v s="$scene" '!/^#/ && $1 == s { print $2 }' "$DIR/cycles.dat" | sort -nu); do
+                for r in glint cycles; do
+                    awk -v s="$scene" -v t="$th" -v r="$r" '!/^#/ && $1 == s && $2 == t && $3 == r' "$DIR/cycles.dat" |
+                        sort -g -k5 >"$TMP/cy-$r-$th"
+                    [ -s "$TMP/cy-$r-$th" ] || continue
+                    colour=$([ $r = glint ] && echo '#d95f02' || echo '#7570b3')
+                    dash=$([ "$th" = 1 ] && echo 1 || echo 2)
+                    col=$(awk 'NR == 1 { print ($8 == "nan" ? 7 : 8) }' "$TMP/cy-$r-$th")
+                    printf '%s"%s" using 5:%s with linespoints lw 2 dt %s pt 7 lc rgb "%s" title "%s, %s thread%s"' \
+                        "$sep" "$TMP/cy-$r-$th" "$col" "$dash" "$colour" "$r" "$th" "$([ "$th" = 1 ] || echo s)"
+                    sep=', '
+                done
+            done
+            echo
+        } >"$TMP/plot.gp"
+        draw "cycles-$scene.svg"
+    done
 fi

@@ -9,7 +9,7 @@
 #   --runs N      runs per measurement (alternating pairs against a yardstick); the tables show
 #                 medians (default 5, quick 3)
 #   --only LIST   comma-separated sections: rtiow, howard, paper, scaling, mesh, meshyard,
-#                 meshscale (default: all)
+#                 meshscale, cycles (default: all)
 #   --threads LIST  comma-separated thread counts for rtiow and meshyard (default: 1 and the
 #                 number of online CPUs); counts above it are run and marked oversubscribed
 #   --mesh-spp N  samples per pixel of the meshyard and meshscale renders (400x300, depth 50)
@@ -19,19 +19,23 @@
 #   --no-embree   skip the Embree-based yardsticks even when they are found
 #   --no-plots    do not draw the SVG plots (bench/plot.sh, gnuplot)
 #   --glint PATH  measure this binary instead of building one
+#   --cycles-scenes LIST  comma-separated scene files (relative to the repository) of the cycles section
+#                 (default scenes/cornell-box.json; envmap-bunny and bench/scenes/many-lights.json also work)
 # Environment: CMAKE_BUILD_PARALLEL_LEVEL for the build; GLINT_BENCH_BUILD for the build directory.
 # The yardsticks are separate tools, not part of this repository: GLINT_EMBREE_PROBE names the
 # embree-probe's run_book1.sh (rtiow), GLINT_EMBREE_MESH the embree-mesh directory (its run.sh,
-# scene_args.sh; meshyard, and the Embree rows of meshscale). Without them the suite runs and says
-# which yardstick was skipped.
+# scene_args.sh; meshyard, and the Embree rows of meshscale), GLINT_CYCLES_YARDSTICK the cycles-yardstick
+# directory (its run_cornell.sh, with Debian's blender and python3-numpy: the cycles section, equal-error time
+# against Blender's Cycles). Without them the suite runs and says which yardstick was skipped.
 # Results: bench/results/DATE-COMMIT[-quick].md, and beside it a directory of the same name with the
 # data files (.dat) and their plots (.svg) when a section wrote data.
 set -euo pipefail
 export LC_ALL=C # decimal points in awk, printf and EPOCHREALTIME
 
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
-SECTIONS=rtiow,howard,paper,scaling,mesh,meshyard,meshscale
+SECTIONS=rtiow,howard,paper,scaling,mesh,meshyard,meshscale,cycles
 QUICK=0 RUNS='' ONLY=$SECTIONS EMBREE=1 PLOTS=1 GLINT='' THREADS='' MESH_SPP='' MESH_MAX=5000000
+CYCLES_SCENES=scenes/cornell-box.json
 usage_error() { echo "bench/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -44,6 +48,7 @@ while [ $# -gt 0 ]; do
     --no-embree) EMBREE=0 ;;
     --no-plots) PLOTS=0 ;;
     --glint) GLINT=${2:?--glint needs a path}; shift ;;
+    --cycles-scenes) CYCLES_SCENES=${2:?--cycles-scenes needs a list}; shift ;;
     -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
     *) usage_error "unknown option '$1' (try --help)" ;;
     esac
@@ -215,6 +220,7 @@ data() {
         */meshyard.dat) echo "# scene triangles threads oversubscribed embree_mrays glint_mrays glint_over_embree" \
             "embree_build_s glint_build_s embree_load_build_render_s glint_process_s embree_runsh_s process_embree_over_glint" ;;
         */meshscale.dat) echo "# mesh triangles renderer ns_per_ray build_s load_s peak_rss_mb bytes_per_triangle" ;;
+        */cycles.dat) echo "# scene threads renderer spp render_s wall_s rmse rmse_corrected" ;;
         esac >"$f"
     fi
     printf '%s\n' "$@" >>"$f"
@@ -608,6 +614,56 @@ meshscale_bench() {
     emit ""
 }
 if want meshscale; then meshscale_bench; fi
+
+# --- 8. equal error in less time: glint against Blender's Cycles ------------------------------------------
+# The cycles-yardstick (GLINT_CYCLES_YARDSTICK) builds each scene in Blender with matched settings, renders
+# references of both, and times both renderers at 8..256 spp, alternating, at each thread count; its analyze.py
+# gives the RMSE of every image against the references and the time each renderer needs for the same RMSE. The
+# ratio Cycles' time / glint's time at equal error (> 1: glint is faster to a clean image) is the figure.
+cycles_bench() {
+    local yard=${GLINT_CYCLES_YARDSTICK:-}
+    emit "## Equal error in less time: glint against Blender's Cycles (CPU)"
+    emit ""
+    if [ ! -f "$yard/run_cornell.sh" ] || ! command -v "${BLENDER:-blender}" >/dev/null; then
+        emit "(skipped: GLINT_CYCLES_YARDSTICK names no cycles-yardstick directory, or blender is not installed)"
+        emit ""
+        return
+    fi
+    local ref_spp ref_parts spp_list scene tag out t th
+    ref_spp=$([ $QUICK = 1 ] && echo 256 || echo 1024)
+    ref_parts=$([ $QUICK = 1 ] && echo 2 || echo 4)
+    spp_list=$([ $QUICK = 1 ] && echo 8,32,128 || echo 8,16,32,64,128,256)
+    emit "| scene | threads | equal-error ratio, render time (geometric mean over glint's spp) | the same, whole process | pooled ratio (k_cycles / k_glint) |"
+    emit "|---|---:|---:|---:|---:|"
+    for scene in ${CYCLES_SCENES//,/ }; do
+        tag=$(basename "$scene" .json)
+        out=$WORK/cycles-$tag
+        mkdir -p "$out"
+        echo "cycles: $tag: Blender scene, references ($ref_parts x $ref_spp spp each), timed runs ..." >&2
+        local -a steps=(blend gref cref)
+        for th in $THREAD_LIST; do steps+=("t$th"); done
+        steps+=(report)
+        GLINT=$GLINT SCENE=$ROOT/$scene OUT=$out LOCK=$WORK/cpu.lock W=200 H=200 REF_SPP=$ref_spp REF_PARTS=$ref_parts \
+            CREF_PARTS=$ref_parts SPP=$spp_list TAG=$tag bash "$yard/run_cornell.sh" "${steps[@]}" >"$out/log" 2>&1 ||
+            { echo "cycles: the yardstick failed on $scene" >&2; tail -n 20 "$out/log" >&2; exit 1; }
+        local md=$out/$tag-report-bothref.md
+        for th in $THREAD_LIST; do
+            # The error measure: against each renderer's own reference, its noise removed (the first table).
+            local line pooled
+            line=$(grep -m 1 "^threads $th: geometric mean ratio" "$md" || true)
+            pooled=$(grep -m 1 "^threads $th, error rmse_own_c: " "$md" | sed -n 's/.*ratio \([0-9.]*\).*/\1/p' || true)
+            emit "| $tag | $th | $(echo "$line" | sed -n 's/.*render \([0-9.]*\),.*/\1/p') | $(echo "$line" | sed -n 's/.*wall \([0-9.]*\) .*/\1/p') | ${pooled:-nan} |"
+        done
+        # Every timed image: its render time and RMSE, for the plot of RMSE against time.
+        awk -F'|' -v tag="$tag" 'NF == 15 && $2 ~ /[0-9]/ { gsub(/ /, ""); print tag, $2, $3, $4, $6, $5, $9, ($13 == "-" ? "nan" : $13) }' \
+            "$md" | while read -r row; do data cycles.dat "$row"; done
+        cp "$md" "$DATA/cycles-$tag-report.md"
+    done
+    emit ""
+    emit "- 200x200 pixels, the scene's depth; glint and Cycles (Blender $("${BLENDER:-blender}" -v 2>/dev/null | head -n 1 | awk '{ print $2 }')) alternately at spp $spp_list; references: $ref_parts renders of $ref_spp spp of each, averaged. Error: RMSE against each renderer's own reference with the reference's noise removed; ratio = the time Cycles needs for glint's RMSE (log-log interpolation) / glint's time, geometric mean over glint's points. The yardstick's full report for each scene is kept beside the data (cycles-SCENE-report.md)."
+    emit ""
+}
+if want cycles; then cycles_bench; fi
 
 # --- results, data and plots -------------------------------------------------------------------------
 mkdir -p "$ROOT/bench/results"

@@ -15,7 +15,8 @@
 //   glint_image_free(image); glint_scene_free(scene);
 //   Build: cc prog.c $(pkg-config --cflags --libs glint)     (add --static for libglint.a)
 //
-// Scenes are built from JSON text (docs/scene-format.md): there is no public call to add objects one by one.
+// Scenes come from JSON text (docs/scene-format.md) or are built call by call (glint_scene_new, then
+// glint_scene_add_*: see "Scenes built in code" below), or both: a loaded scene can be extended by calls.
 // A scene can be rendered any number of times, from one thread at a time; each render builds what it needs
 // (BVH, light index, camera) from the scene as it is then, so overrides made between renders take effect.
 #ifndef GLINT_H
@@ -29,9 +30,9 @@
 extern "C" {
 #endif
 
-#define GLINT_VERSION "0.2.0"
+#define GLINT_VERSION "0.3.0"
 #define GLINT_VERSION_MAJOR 0
-#define GLINT_VERSION_MINOR 2
+#define GLINT_VERSION_MINOR 3
 #define GLINT_VERSION_PATCH 0
 
 /// Marks the public API: the library is built with hidden visibility, so libglint.so exports these alone.
@@ -133,6 +134,13 @@ typedef struct glint_render_options {
     /// may have a token of its own, so that renders in one process are stopped one by one; a token already
     /// requested stops the render at once. NULL: the render runs to its end.
     glint_cancel *cancel;
+    /// Not NULL: values that replace the scene's settings for this render only (the scene is not changed), checked
+    /// as glint_scene_override checks them. Several renders of one scene may each have their own.
+    const glint_overrides *overrides;
+    /// Not NULL: the caller's buffer of width * height * 3 floats (the rendered image's size: the region's when
+    /// there is one), which receives the image's linear RGB values (row 0 at the top) when glint_render returns
+    /// GLINT_OK or GLINT_ERR_INTERRUPTED; glint_render's `out` may then be NULL (no image is kept).
+    float *rgb_out;
 } glint_render_options;
 
 /// A value struct: counters of one render, filled by glint_render.
@@ -185,6 +193,116 @@ GLINT_API bool glint_scene_reads_file(const glint_scene *scene, const char *path
 /// Frees a scene (NULL is allowed).
 GLINT_API void glint_scene_free(glint_scene *scene);
 
+// ---------------------------------------------------------------------------------------------------------------
+// Scenes built in code
+//
+// A scene file's every part can be given by calls instead: the render settings, the camera, named textures and
+// materials, objects and lights, each as a glint_params: named values, exactly the keys and values of the JSON
+// object the scene format documents for it (docs/scene-format.md). Each call hands its value to the scene file's
+// own reader, so a scene built in code is checked by the same code and fails with the same message as a file,
+// opened by the call's name instead of "file:line:col": "glint_scene_add_object: object 0 (sphere): "radius" must
+// be a finite non-zero number, got 0". A call that fails leaves the scene as it was. Triangle meshes and images,
+// which a file names by path, come from the caller's arrays (glint_scene_add_mesh, glint_scene_add_image), copied.
+//
+//   glint_scene *s; glint_error err;
+//   glint_scene_new("my scene", &s, &err);
+//   glint_params *p = glint_params_new();
+//   glint_params_string(p, "type", "lambertian"); glint_params_numbers(p, "albedo", (double[]){0.8, 0.3, 0.3}, 3);
+//   glint_scene_add_material(s, "red", p, &err);   glint_params_free(p);
+//   p = glint_params_new();
+//   glint_params_string(p, "type", "sphere"); glint_params_numbers(p, "center", (double[]){0, 0, -1}, 3);
+//   glint_params_number(p, "radius", 0.5); glint_params_string(p, "material", "red");
+//   if (glint_scene_add_object(s, p, &err) != GLINT_OK) puts(err.message);
+//   glint_params_free(p);
+//
+// A scene is changed from one thread at a time, and not while it renders.
+
+/// Opaque: named values, one JSON object of the scene format (a material, an object, the camera...).
+typedef struct glint_params glint_params;
+/// New, empty parameters; NULL when out of memory. Free with glint_params_free.
+GLINT_API glint_params *glint_params_new(void);
+/// Frees parameters (NULL is allowed).
+GLINT_API void glint_params_free(glint_params *p);
+// The setters replace a value the key had. A setter that runs out of memory marks p, and the call given p then
+// fails with GLINT_ERR_RENDER: the setters themselves need no checks.
+/// key: a number (JSON number; the scene format checks its range and, where it wants one, that it is an integer).
+GLINT_API void glint_params_number(glint_params *p, const char *key, double value);
+/// key: an array of n numbers (a vector or colour: n = 3; a matrix: 16; shutter [open, close]: 2).
+GLINT_API void glint_params_numbers(glint_params *p, const char *key, const double *values, size_t n);
+/// key: a string (a type, a material or texture name, a file path); NULL sets JSON null.
+GLINT_API void glint_params_string(glint_params *p, const char *key, const char *value);
+/// key: true or false.
+GLINT_API void glint_params_bool(glint_params *p, const char *key, bool value);
+/// key: an object (a copy of `value`): an inline material, texture or background.
+GLINT_API void glint_params_object(glint_params *p, const char *key, const glint_params *value);
+/// Appends a copy of `item` to the array `key` (made on first use): the operations of a "transform".
+GLINT_API void glint_params_append(glint_params *p, const char *key, const glint_params *item);
+/// key: any JSON value, from JSON text (a Perlin table, a whole transform); GLINT_ERR_INPUT ("glint_params_json:
+/// line:col: what is wrong") for text that is not JSON.
+GLINT_API glint_status glint_params_json(glint_params *p, const char *key, const char *json, glint_error *err);
+/// New parameters from the JSON text of an object; GLINT_ERR_INPUT for text that is not one.
+GLINT_API glint_status glint_params_parse(const char *json, glint_params **out, glint_error *err);
+
+/// A new scene with every setting at its documented default and nothing in it. `name` (NULL: "<scene>") stands
+/// for the scene file's name: relative file paths in values (textures, meshes, environment maps) resolve against
+/// its directory ("models/" or "models/x.json": models/; "x": the current directory).
+GLINT_API glint_status glint_scene_new(const char *name, glint_scene **out, glint_error *err);
+/// The "render" object: the keys given replace the scene's values (an absent "max_depth" follows the integrator, as
+/// in a file). Without "output", 8-bit output follows the integrator (paper mode linear, else sRGB).
+GLINT_API glint_status glint_scene_set_render(glint_scene *scene, const glint_params *render, glint_error *err);
+/// The "camera" object (a "lookat" or "viewport" camera): replaces the camera.
+GLINT_API glint_status glint_scene_set_camera(glint_scene *scene, const glint_params *camera, glint_error *err);
+/// A named texture, as in "textures" (name: 1 to 128 bytes, unused).
+GLINT_API glint_status glint_scene_add_texture(glint_scene *scene, const char *name, const glint_params *texture,
+                                               glint_error *err);
+/// A named material, as in "materials"; objects refer to it by name.
+GLINT_API glint_status glint_scene_add_material(glint_scene *scene, const char *name, const glint_params *material,
+                                                glint_error *err);
+/// An object, as an element of "objects" (sphere, quad, box, mesh, media). A "mesh" object places a mesh file
+/// ("file") or a mesh added with glint_scene_add_mesh ("mesh": its name), once per call: the instances of one mesh
+/// share its triangles.
+GLINT_API glint_status glint_scene_add_object(glint_scene *scene, const glint_params *object, glint_error *err);
+/// A light, as an element of "lights".
+GLINT_API glint_status glint_scene_add_light(glint_scene *scene, const glint_params *light, glint_error *err);
+/// A triangle mesh in the caller's arrays, copied by glint_scene_add_mesh (they may be freed after the call).
+typedef struct glint_mesh_data {
+    size_t vertex_count;
+    const float *positions;   ///< 3 floats a vertex, finite
+    const float *normals;     ///< 3 floats a vertex (need not be unit), or NULL: smooth normals are computed (as for
+                              ///< an OBJ file without normals: each vertex the area-weighted mean of its triangles')
+    const float *uvs;         ///< 2 floats a vertex (texture coordinates, v = 1 at an image's top row), or NULL
+    size_t triangle_count;    ///< at least 1
+    const uint32_t *indices;  ///< 3 vertex indices a triangle, each < vertex_count; counter-clockwise is the front
+    const uint32_t *face_materials; ///< a triangle's index into `materials`, or NULL: the placing object's material
+    const char *const *materials;   ///< names of materials added before (glint_scene_add_material)
+    size_t material_count;
+    bool flat; ///< shade each triangle with its geometric normal (as "face_normals": true); normals must be NULL
+} glint_mesh_data;
+/// Adds a mesh under `name` (1 to 128 bytes, unused) for "mesh" objects to place: {"type": "mesh", "mesh": name,
+/// "transform": [...], "material": ...}; faces without a material of their own are grey unless the object gives
+/// one. GLINT_ERR_INPUT names the first bad value: "glint_scene_add_mesh: indices[7] (triangle 2) is 9, but the
+/// mesh has 8 vertices".
+///   float xyz[] = {0,0,0, 1,0,0, 0,1,0};  uint32_t tri[] = {0, 1, 2};
+///   glint_mesh_data m = {.vertex_count = 3, .positions = xyz, .triangle_count = 1, .indices = tri};
+///   glint_scene_add_mesh(s, "tri", &m, &err);
+///   glint_params_parse("{\"type\": \"mesh\", \"mesh\": \"tri\", \"material\": \"red\"}", &p, &err);
+///   glint_scene_add_object(s, p, &err);     (as many objects as instances are wanted, each with its transform)
+GLINT_API glint_status glint_scene_add_mesh(glint_scene *scene, const char *name, const glint_mesh_data *mesh,
+                                            glint_error *err);
+/// Pixels in the caller's array, row 0 at the top, copied.
+typedef struct glint_pixels {
+    int width, height; ///< at most 2^24 pixels in all, as for image files
+    int channels;      ///< 1 (grey), 3 (RGB) or 4 (RGBA; alpha is ignored)
+    const float *values;  ///< linear values >= 0, or NULL
+    const uint8_t *bytes; ///< 8-bit values, decoded as the options' "encoding" says (default "srgb"), or NULL
+} glint_pixels;
+/// Adds a named image texture from pixels (exactly one of values and bytes); `options` (may be NULL) holds the
+/// image texture's "encoding" and "filter" (docs/scene-format.md, textures). Materials then name it:
+///   uint8_t rgb[] = {255,0,0, 0,0,255};  glint_pixels px = {2, 1, 3, NULL, rgb};
+///   glint_scene_add_image(s, "stripes", &px, NULL, &err);    // {"type": "lambertian", "albedo": "stripes"}
+GLINT_API glint_status glint_scene_add_image(glint_scene *scene, const char *name, const glint_pixels *pixels,
+                                             const glint_params *options, glint_error *err);
+
 /// Renders the scene: builds what the render needs from it (BVH, light index, camera), renders every sample
 /// of opt->region (the whole image by default) on opt->threads threads (opt may be NULL), frees what it built;
 /// a region that is empty or not inside the image is GLINT_ERR_INPUT, its message naming --region. progress
@@ -223,8 +341,11 @@ typedef enum glint_format {
 /// albedo.R, albedo.G, albedo.B, normal.X, normal.Y, normal.Z and Z (32-bit float even with
 /// GLINT_FORMAT_EXR_HALF); the other formats hold the colour alone. An OpenEXR file of a region has the region
 /// as its data window inside the full image's display window. The PNG of a region (glint_render_options.region)
-/// holds a tEXt chunk "glint:region" = "X0,Y0,X1,Y1,W,H" (W x H: the full image) for glint_merge; PPM and PFM
-/// have no room for it and hold the region's pixels alone. A whole image's PNG has no such chunk. Writes an
+/// holds a tEXt chunk "glint:region" = "X0,Y0,X1,Y1,W,H" (W x H: the full image) for glint_merge. PFM has no room
+/// for it: the PFM of a region at PATH (and each AOV PFM of glint_image_write_aov) is followed by a region file
+/// PATH.region, two lines "glint:region=X0,Y0,X1,Y1,W,H" and "fnv1a64=" with the 64-bit FNV-1a hash of the PFM's
+/// bytes as 16 lowercase hex digits, written as images are (none for standard output). PPM and HDR hold the
+/// region's pixels alone. A whole image's PNG has no such chunk, nor its PFM a region file. Writes an
 /// unnamed temporary file (Linux O_TMPFILE; a named one where unsupported) and links it into place, so a
 /// failed or killed write leaves no file behind; writes through a symbolic link to the file it names, and
 /// refuses a read-only file ("PATH: cannot write: the file is read-only", GLINT_ERR_RENDER).
@@ -252,11 +373,27 @@ GLINT_API const float *glint_image_aov(const glint_image *img, glint_aov aov, in
 GLINT_API void glint_image_rgb8(const glint_image *img, uint8_t *rgb);
 /// Frees an image (NULL is allowed).
 GLINT_API void glint_image_free(glint_image *img);
+/// An image of the caller's linear RGB values (width * height * 3 floats, row 0 at the top, copied), to write with
+/// glint_image_write in any format; output_encoding ("linear", "gamma2", "srgb"; NULL: "srgb") says how 8-bit
+/// formats encode them:  glint_image_from_rgb(w, h, rgb, NULL, &img, &err); glint_image_write(img, "x.png", 0, &err);
+GLINT_API glint_status glint_image_from_rgb(int width, int height, const float *rgb, const char *output_encoding,
+                                            glint_image **out, glint_error *err);
 
-/// Assembles the PNG files of regions (written by glint_image_write, each with its "glint:region" chunk) into
-/// the full image and writes it to `output` (.png or .ppm: the parts' 8-bit values, unchanged). The parts must
-/// tile the full image exactly: GLINT_ERR_INPUT, naming the part, for a file that is no such PNG, parts of
-/// different full sizes, overlapping parts, or a pixel no part covers; GLINT_ERR_RENDER for I/O and memory.
+/// Assembles the files of regions (written by glint_image_write with glint_render_options.region) into the full
+/// image and writes it to `output`; the parts must tile it exactly, in any order:
+/// - 8-bit parts: PNG files (placed by their "glint:region" chunk) to .png or .ppm, the parts' bytes unchanged;
+/// - float parts: OpenEXR files (placed by their data windows; every channel glint writes: R, G, B and the AOV
+///   channels, the same in every part) and PFM files (placed by their region file PATH.region, which must be
+///   the one written with that PFM: its hash is checked) to .exr, .pfm or .hdr, with the parts' float values
+///   exactly: the merge equals the full render's file. An .exr holds every channel, as 16-bit halves when every
+///   part's colour (and albedo and normal) channels are halves, else as 32-bit floats (which hold halves
+///   exactly); a .pfm or .hdr holds the colour alone (HDR rounds it to RGBE). Grey PFM parts ("Pf", a depth AOV)
+///   merge to .pfm alone.
+/// GLINT_ERR_INPUT, naming the part, for a file that is no region part, 8-bit parts with float parts, a float
+/// output from 8-bit parts or an 8-bit output from float parts, parts of different full sizes or channels,
+/// overlapping parts, a pixel no part covers, an output that is one of the parts, and a damaged or truncated
+/// part; GLINT_ERR_RENDER for I/O and memory (a float merge holds the full image as 32-bit floats: 4 bytes a
+/// channel a pixel, plus 1).
 GLINT_API glint_status glint_merge(const char *output, const char *const *parts, size_t count, glint_error *err);
 
 /// Opaque: a timeline of the library's work, for seeing where the threads' time goes (load balance, stalls). It

@@ -153,7 +153,9 @@ static void test_merge(void) {
         CHECK(strcmp(err.message, "no part covers pixel (0, 0) of the 24x16 image (160 pixels missing)") == 0);
         CHECK(glint_merge("regions-merged.pfm", parts, 2, &err) == GLINT_ERR_INPUT);
         CHECK(strcmp(err.message,
-                     "regions-merged.pfm: merge writes the parts' 8-bit values, expected .png or .ppm") == 0);
+                     "regions-merged.pfm: regions-right.png is an 8-bit PNG part: its bytes are display-encoded, not "
+                     "linear light, so 8-bit parts merge to .png or .ppm alone (render .exr or .pfm parts for a float "
+                     "merge)") == 0);
         remove("regions-full.png");
         remove("regions-left.png");
         remove("regions-right.png");

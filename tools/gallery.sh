@@ -27,4 +27,6 @@ rtiow2-bouncing-spheres 400 225 64
 cornell-smoke 300 300 128
 rtiow2-final 300 300 64
 envmap-bunny 320 240 64
+material-spheres 240 240 32
+bunny-rough 320 180 32
 LIST

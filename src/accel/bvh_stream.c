@@ -19,6 +19,7 @@ typedef struct stream_ray {
 static inline bool stream_ray_start(const bvh *b, const ray *r, stream_ray *q, bool triangles) {
     if (!simd_setup(r, &q->sr, triangles)) return false;
     q->tc.ready = false;
+    q->stri.tr = NULL; // a mixed tree's triangle constants: made at the ray's first triangle packet
     if (triangles) {
         tri_for(&q->tc, r);
         simd_tri_setup(&q->tc.tr, r->tmin, r->tmax, &q->stri);

@@ -120,29 +120,22 @@ static inline bool leaf_scalar(const bvh *b, uint32_t ref, const ray *r, tri_cac
 }
 
 #if BVH_SIMD
-/// A packet of triangles in SIMD (triangles_simd), its hits offered lane by lane.
-static __attribute__((noinline, unused)) hit triangle_packet_simd(const bvh_triangle_packet *p, const ray *r,
-                                                                  tri_cache *tc, hit best, uint32_t inst_id,
-                                                                  bool any, bool *hit_any) {
-    _Alignas(32) float t[BVH_PACKET], b1[BVH_PACKET], b2[BVH_PACKET];
-    simd_tri st;
-    simd_tri_setup(tri_for(tc, r), r->tmin, r->tmax, &st);
-    unsigned mask = triangles_simd(p, &st, t, b1, b2);
-    *hit_any = mask != 0;
-    if (!mask || any) return best;
-    do {
-        int k = __builtin_ctz(mask);
-        mask &= mask - 1;
-        offer_triangle(&best, p, k, t[k], b1[k], b2[k], inst_id);
-    } while (mask);
-    return best;
+/// A packet of triangles in SIMD (triangles_simd) in a leaf of mixed kinds: the lanes hit, their t and barycentrics
+/// in the caller's arrays, for the caller to offer. Out of line (the sphere path around it stays small), it sets
+/// up the ray's triangle constants in *st on the ray's first triangle packet (st->tr NULL until then) and keeps
+/// them for the next: a ray through a mixed tree meets several.
+static __attribute__((noinline, unused)) unsigned triangle_packet_lanes(const bvh_triangle_packet *p, const ray *r,
+                                                                        tri_cache *tc, simd_tri *st, float *t,
+                                                                        float *b1, float *b2) {
+    if (!st->tr) simd_tri_setup(tri_for(tc, r), r->tmin, r->tmax, st);
+    return triangles_simd(p, st, t, b1, b2);
 }
 
 /// Tests one leaf: spheres and triangles in SIMD packets, everything else one at a time. True when something was hit.
 /// In a triangle-only BVH the triangle test is inlined here, the out-of-line calls (around which every vector
 /// register is saved) left out.
 static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32_t ref, const ray *r,
-                                                            const simd_ray *s, const simd_tri *st, tri_cache *tc,
+                                                            const simd_ray *s, simd_tri *st, tri_cache *tc,
                                                             hit *best,
                                                             uint32_t inst_id, bool any, int leaves) {
     const bvh_slot *slot = &b->slots[ref & ~BVH_LEAF];
@@ -178,13 +171,22 @@ static inline __attribute__((always_inline)) bool leaf_simd(const bvh *b, uint32
                     if (m) _mm_prefetch((const char *)&m->triangles[best->prim], _MM_HINT_T0);
                 }
             }
+        } else if (hd->kind == PRIM_TRIANGLE || hd->kind == PRIM_QUAD) {
+            const bvh_triangle_packet *p = (const bvh_triangle_packet *)(const void *)slot;
+            _Alignas(32) float t[BVH_PACKET], b1[BVH_PACKET], b2[BVH_PACKET];
+            unsigned mask = triangle_packet_lanes(p, r, tc, st, t, b1, b2);
+            if (mask) {
+                found = true;
+                if (any) return true;
+                do {
+                    int k = __builtin_ctz(mask);
+                    mask &= mask - 1;
+                    offer_triangle(best, p, k, t[k], b1[k], b2[k], inst_id);
+                } while (mask);
+            }
         } else {
             bool h;
-            if (hd->kind == PRIM_TRIANGLE || hd->kind == PRIM_QUAD)
-                *best = triangle_packet_simd((const bvh_triangle_packet *)(const void *)slot, r, tc, *best, inst_id,
-                                             any, &h);
-            else
-                *best = bvh_packet_hit(b, (const bvh_index_packet *)(const void *)slot, r, tc, *best, inst_id, any,
+            *best = bvh_packet_hit(b, (const bvh_index_packet *)(const void *)slot, r, tc, *best, inst_id, any,
                                    MODE_WIDE_SIMD, &h);
             if (h) {
                 found = true;
@@ -242,9 +244,10 @@ typedef struct simd_ray {
     trav_ray tr;
 } simd_ray;
 
-/// The triangle-test constants in registers: none without SIMD (the tri_cache holds them).
+/// The triangle-test constants in registers: none without SIMD (the tri_cache holds them); `tr` as the SIMD one has
+/// it, set and never read.
 typedef struct simd_tri {
-    char unused;
+    const tri_ray *tr;
 } simd_tri;
 
 /// The huge spheres tested before the tree: never without SIMD (they are tested after it, as a leaf).
@@ -274,7 +277,7 @@ static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, fl
 }
 
 /// The scalar leaf test under leaf_simd's name.
-static inline bool leaf_simd(const bvh *b, uint32_t ref, const ray *r, const simd_ray *s, const simd_tri *st,
+static inline bool leaf_simd(const bvh *b, uint32_t ref, const ray *r, const simd_ray *s, simd_tri *st,
                              tri_cache *tc, hit *best, uint32_t inst_id, bool any, int leaves) {
     (void)s;
     (void)st;
@@ -319,7 +322,7 @@ enum { STEP_MORE, STEP_DONE, STEP_FOUND };
 /// picks the next reference. STEP_DONE when nothing is left, STEP_FOUND when an any-hit query found one.
 /// The scalar path reads tr, the SIMD path sr; *found records whether anything was hit.
 static inline __attribute__((always_inline)) int wide_step(const bvh *b, const ray *r, const trav_ray *tr,
-                                                          const simd_ray *sr, const simd_tri *stri, tri_cache *tc,
+                                                          const simd_ray *sr, simd_tri *stri, tri_cache *tc,
                                                           stack_entry *stack,
                                                           walk *w, hit *best, uint32_t inst_id, bool *found,
                                                           bool any, bool simd, int leaves) {
@@ -403,6 +406,7 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
         tr = trav_setup(r);
     }
     tri_cache tc = {.ready = false};
+    stri.tr = NULL; // a mixed tree's triangle constants: made at its first triangle packet (triangle_packet_lanes)
     // A triangle-only BVH tests triangles in nearly every leaf: their constants are made once, up front.
     if (simd && leaves == LEAVES_TRIANGLES) {
         tri_for(&tc, r);

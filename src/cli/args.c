@@ -60,8 +60,11 @@ const cli_program CLI_GLINT = {
              "\n"
              "Renders the JSON scene file SCENE (- reads it from standard input) and writes the image.\n"
              "Options override the scene file's \"render\" settings.\n"
-             "glint merge assembles the PNG files of regions (--region) into the full image OUT (.png or\n"
-             ".ppm), with the parts' pixels unchanged; they must tile it exactly: no overlap, no gap.\n"
+             "glint merge assembles the files of regions (--region) into the full image OUT, with the\n"
+             "parts' values unchanged; they must tile it exactly: no overlap, no gap. 8-bit PNG parts merge\n"
+             "to .png or .ppm; float parts (OpenEXR, placed by their data windows, or PFM, placed by the\n"
+             "PART.region file glint writes beside each) to .exr (every channel), .pfm or .hdr (the colour).\n"
+             "8-bit and float parts together, or an output of the other kind, are refused (exit 2).\n"
              "(To render a scene file named merge, write ./merge.)\n",
     .stopping = "Ctrl-C (SIGINT), SIGTERM or SIGHUP stops the render within a second and writes the image\n"
                 "rendered so far (each pixel the mean of its completed samples; nothing if no sample was\n"
@@ -116,8 +119,9 @@ static void print_usage(const cli_program *prog, FILE *f) {
             "                     difference, Cycles' measure) is below T takes no more samples (0.01: fine)\n"
             "      --region X0,Y0,X1,Y1\n"
             "                     render only the pixels X0 <= x < X1, Y0 <= y < Y1, each exactly as in the\n"
-            "                     full image; the image written is (X1-X0)x(Y1-Y0), and a PNG records where\n"
-            "                     it lies (a glint:region text chunk) for glint merge\n",
+            "                     full image; the image written is (X1-X0)x(Y1-Y0) and records where it lies\n"
+            "                     for glint merge: a PNG in a glint:region text chunk, an OpenEXR as its data\n"
+            "                     window, a PFM in the file NAME.pfm.region written beside it\n",
             cpus);
     // In parts: ISO C promises string literals of 4095 bytes, no more.
     fprintf(f,

@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <strings.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -59,24 +60,38 @@ static cli_preview *open_preview(const cli_options *opt, const glint_scene *scen
 // Why `path` (--checkpoint, --trace) cannot be written: one of the files the render reads or writes, which
 // would be lost; NULL when it is none of them.
 static const char *clobbers(const char *path, const cli_options *opt, const char *const *outputs, int output_count) {
+    int images = 1; // the image and its AOV files come first, then the region files beside them
+    for (int i = 0; i < CLI_AOV_COUNT; i++) images += opt->aov_output[i][0] != '\0';
     for (int i = 0; i < output_count; i++)
-        if (glint_path_same_target(path, outputs[i])) return i == 0 ? "the output image" : "an AOV file";
+        if (glint_path_same_target(path, outputs[i]))
+            return i == 0 ? "the output image" : i < images ? "an AOV file" : "a region file";
     if (cli_output_is_scene(path, opt->scene_path)) return "the scene file";
     return NULL;
 }
 
-// Every file the render will write (the image, the AOV files beside a PFM, the checkpoint, the trace) checked
-// before the render, not after it: a typo in -o must not cost a long render. Fills outputs (the image and AOV
-// files, *count of them); -1 when all is well, else the exit status, the message printed.
+// Every file the render will write (the image, the AOV files beside a PFM, the region files beside a region's
+// PFMs, the checkpoint, the trace) checked before the render, not after it: a typo in -o must not cost a long
+// render. Fills outputs (the image, AOV and region files, *count of them, at most 2 * (1 + CLI_AOV_COUNT));
+// -1 when all is well, else the exit status, the message printed.
 static int check_outputs(const cli_options *opt, glint_format format, const char **outputs, int *count) {
     glint_error err;
     int output_count = 0;
     outputs[output_count++] = opt->output;
     for (int i = 0; i < CLI_AOV_COUNT; i++)
         if (opt->aov_output[i][0]) outputs[output_count++] = opt->aov_output[i];
+    int images = output_count;
+    // A region's PFM (and each AOV PFM beside it) is followed by NAME.pfm.region, that glint merge places it by.
+    static char region_files[1 + CLI_AOV_COUNT][sizeof opt->aov_output[0] + sizeof ".region"];
+    size_t out_len = strlen(opt->output);
+    bool pfm = out_len > 4 && strcasecmp(opt->output + out_len - 4, ".pfm") == 0;
+    for (int i = 0; pfm && opt->region[2] > 0 && i < images; i++) {
+        snprintf(region_files[i], sizeof region_files[i], "%s.region", outputs[i]);
+        outputs[output_count++] = region_files[i];
+    }
     *count = output_count;
     for (int i = 0; i < output_count; i++) {
-        glint_status st = glint_image_check_path(outputs[i], i == 0 ? format : GLINT_FORMAT_PFM, &err);
+        glint_status st = i < images ? glint_image_check_path(outputs[i], i == 0 ? format : GLINT_FORMAT_PFM, &err)
+                                     : GLINT_OK;
         if (st != GLINT_OK) {
             fprintf(stderr, "glint: %s\n", err.message);
             return exit_code(st);
@@ -159,7 +174,7 @@ static int run(const cli_options *opt, glint_trace *trace, glint_cancel *cancel)
     glint_format format = opt->ascii_ppm ? GLINT_FORMAT_PPM_ASCII
                           : opt->half    ? GLINT_FORMAT_EXR_HALF
                                          : GLINT_FORMAT_AUTO;
-    const char *outputs[1 + CLI_AOV_COUNT];
+    const char *outputs[2 * (1 + CLI_AOV_COUNT)];
     int output_count = 0;
     int code = check_outputs(opt, format, outputs, &output_count);
     if (code >= 0) return code;

@@ -10,7 +10,7 @@
 integrator *integrator_create(const glint_scene *s, const accel *a, const integrator_options *o, glint_error *err) {
     switch (s->settings.integrator) {
     case INTEGRATOR_WHITTED: return whitted_create(s, a, err);
-    case INTEGRATOR_PATH: return path_create(s, a, !(o && o->no_light_sampling), err);
+    case INTEGRATOR_PATH: return path_create(s, a, o, err);
     }
     return NULL;
 }

@@ -10,11 +10,6 @@
 
 #include <stdbool.h>
 
-/// Choices of a render that are not part of the scene.
-typedef struct integrator_options {
-    bool no_light_sampling; ///< path tracer: no next-event estimation towards area lights (tests compare both)
-} integrator_options;
-
 /// The integrator the scene's settings choose, reading s and a (both must outlive it). NULL, with a message
 /// in *err, when out of memory.
 integrator *integrator_create(const glint_scene *s, const accel *a, const integrator_options *o, glint_error *err);

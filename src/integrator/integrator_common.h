@@ -69,4 +69,12 @@ static inline bool tile_pass_stopping(const tile_pass *tp) {
     return atomic_load_explicit(tp->stop, memory_order_relaxed) != 0;
 }
 
+/// Choices of a render that are not part of the scene.
+typedef struct integrator_options {
+    bool no_light_sampling; ///< path tracer: no next-event estimation towards area lights (tests compare both)
+    bool no_light_tree;     ///< path tracer: lights chosen by power alone however many there are (tests compare both)
+    bool light_sampling_only; ///< path tracer (tests of MIS): next-event estimation unweighted, and BSDF samples that
+                              ///< hit a light it samples add nothing (the estimator of light sampling alone)
+} integrator_options;
+
 #endif

@@ -14,6 +14,9 @@ void light_sampler_release(light_sampler *pl) {
     free(pl->tri_base);
     free(pl->tri_select_pdf);
     free(pl->sphere_select_pdf);
+    free(pl->quad_light);
+    free(pl->sphere_light);
+    light_tree_release(&pl->tree);
     memset(pl, 0, sizeof *pl);
 }
 
@@ -21,7 +24,7 @@ void light_sampler_release(light_sampler *pl) {
 // which lights are chosen; 0 for one that emits nothing. Emission textures scale this, but any positive
 // choice stays unbiased.
 static double light_power(const material *m, double area) {
-    if (m->kind != MAT_DIFFUSE_LIGHT) return 0.0;
+    if (!material_emits(m)) return 0.0;
     double e = (double)m->emission.x + m->emission.y + m->emission.z;
     double p = e * area;
     return isfinite(p) && p > 0.0 ? p : 0.0;
@@ -36,7 +39,7 @@ static double quad_light_power(const glint_scene *s, const quad *q) {
 static double tri_light_make(const glint_scene *s, uint32_t ii, uint32_t tri, tri_light *out) {
     const instance *in = &s->instances[ii];
     const material *m = &s->materials[surface_mesh_material(&s->meshes[in->index], in, tri)];
-    if (m->kind != MAT_DIFFUSE_LIGHT) return 0.0; // most triangles: skip the transform
+    if (!material_emits(m)) return 0.0; // most triangles: skip the transform
     vec3 p0, p1, p2;
     mesh_triangle_positions(&s->meshes[in->index].geometry, tri, &p0, &p1, &p2);
     p0 = mat4_apply_point(&in->xf.m, p0);
@@ -75,7 +78,68 @@ static float add_light(light_sampler *pl, light_ref ref, double p, double *sum, 
     return select;
 }
 
-bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
+// The light tree's view of a triangle light: which side emits. The side is the shading record's (as
+// light_sampler_tri_emitted finds it); where the corners disagree, or the material emits on both, both.
+static void tri_light_item(const glint_scene *s, const tri_light *tl, light_tree_item *it) {
+    const instance *in = &s->instances[tl->instance];
+    const mesh *m = &s->meshes[in->index].geometry;
+    static const float corners[3][2] = {{0.0f, 0.0f}, {1.0f, 0.0f}, {0.0f, 1.0f}};
+    int front = 0, back = 0;
+    for (int k = 0; k < 3; k++) { // the shading normal is interpolated linearly: its side at the corners decides
+        tri_hit th = {0.0f, 1.0f - corners[k][0] - corners[k][1], corners[k][0], corners[k][1]};
+        vec3 ng = mat4_apply_normal(&in->xf.inv, mesh_shade(m, tl->tri, &th).ng);
+        float side = v3_dot(ng, tl->n);
+        front += side > 0.0f;
+        back += side < 0.0f;
+    }
+    bool one_side = !s->materials[tl->material].two_sided && (front == 3 || back == 3);
+    it->axis = front == 3 ? tl->n : v3_neg(tl->n);
+    it->cos_o = one_side ? 1.0f : -1.0f;
+    it->bounds = bounds3_add(bounds3_add(bounds3_add(bounds3_empty(), tl->p0), v3_add(tl->p0, tl->e1)),
+                             v3_add(tl->p0, tl->e2));
+}
+
+// The light tree over the indexed lights, and the maps from scene quads and spheres to their entries; false when
+// out of memory.
+static bool build_tree(light_sampler *pl, const glint_scene *s) {
+    light_tree_item *items = malloc(pl->count * sizeof *items);
+    pl->quad_light = calloc(s->quad_count ? s->quad_count : 1, sizeof *pl->quad_light);
+    pl->sphere_light = calloc(s->sphere_count ? s->sphere_count : 1, sizeof *pl->sphere_light);
+    bool ok = items && pl->quad_light && pl->sphere_light;
+    for (size_t i = 0; ok && i < pl->count; i++) {
+        light_ref ref = pl->lights[i];
+        light_tree_item *it = &items[i];
+        it->cos_e = 0.0f; // flat emitters and spheres: cosine-weighted, over a hemisphere about each normal
+        double power;
+        if (ref.kind == LIGHT_REF_QUAD) {
+            const quad *q = &s->quads[ref.index];
+            it->bounds = bounds3_add(bounds3_add(bounds3_add(bounds3_add(bounds3_empty(), q->q), v3_add(q->q, q->u)),
+                                                 v3_add(q->q, q->v)), v3_add(q->q, v3_add(q->u, q->v)));
+            it->axis = q->normal;
+            it->cos_o = s->materials[q->material].two_sided ? -1.0f : 1.0f;
+            power = quad_light_power(s, q);
+            pl->quad_light[ref.index] = (uint32_t)i;
+        } else if (ref.kind == LIGHT_REF_TRIANGLE) {
+            const tri_light *tl = &pl->tris[ref.index];
+            tri_light_item(s, tl, it);
+            power = light_power(&s->materials[tl->material], tl->area);
+        } else {
+            const sphere *sp = &s->spheres[ref.index];
+            vec3 r = v3s(fabsf(sp->radius));
+            it->bounds = (bounds3){v3_sub(sp->center, r), v3_add(sp->center, r)};
+            it->axis = v3(0.0f, 0.0f, 1.0f);
+            it->cos_o = -1.0f;
+            power = sphere_light_power(s, sp);
+            pl->sphere_light[ref.index] = (uint32_t)i;
+        }
+        it->power = (float)power;
+    }
+    ok = ok && light_tree_build(&pl->tree, items, pl->count);
+    free(items);
+    return ok;
+}
+
+bool light_sampler_build(light_sampler *pl, const glint_scene *s, bool tree) {
     memset(pl, 0, sizeof *pl);
     size_t count = 0, tri_count = 0, tri_slots = 0;
     double total = 0.0;
@@ -132,6 +196,7 @@ bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
         pl->select_pdf[i] = add_light(pl, (light_ref){LIGHT_REF_QUAD, (uint32_t)i}, p, &sum, total, count, &prev);
     }
     pl->quad_count = s->quad_count;
+    pl->quad_lights = pl->count;
     size_t slot = 0;
     for (size_t i = 0; tri_count && i < s->instance_count; i++) {
         const instance *in = &s->instances[i];
@@ -160,7 +225,23 @@ bool light_sampler_build(light_sampler *pl, const glint_scene *s) {
             add_light(pl, (light_ref){LIGHT_REF_SPHERE, (uint32_t)i}, p, &sum, total, count, &prev);
     }
     if (sphere_lights) pl->sphere_count = s->sphere_count;
+    if (tree && pl->count >= LIGHT_TREE_MIN_LIGHTS && !build_tree(pl, s)) {
+        light_sampler_release(pl);
+        return false;
+    }
     return true;
+}
+
+size_t light_sampler_choose(const light_sampler *pl, vec3 p, float xi, float *select) {
+    if (pl->tree.node_count) return light_tree_sample(&pl->tree, p, xi, select);
+    size_t lo = 0, hi = pl->count - 1; // the first light whose cdf exceeds xi
+    while (lo < hi) {
+        size_t mid = lo + (hi - lo) / 2;
+        if (xi < pl->cdf[mid]) hi = mid;
+        else lo = mid + 1;
+    }
+    *select = pl->cdf[lo] - (lo ? pl->cdf[lo - 1] : 0.0f); // as light_sampler_build recorded it
+    return lo;
 }
 
 // The cone a sphere subtends from a point at squared distance d2 from its centre: 1 - cos(theta_max), in the
@@ -214,6 +295,7 @@ float light_sampler_pdf(const light_sampler *pl, const glint_scene *s, const sur
     if (sf->kind == HIT_SPHERE) {
         if (sf->instance != HIT_NO_INSTANCE || sf->prim >= pl->sphere_count) return 0.0f;
         float select = pl->sphere_select_pdf[sf->prim];
+        if (select > 0.0f && pl->tree.node_count) select = light_tree_pmf(&pl->tree, o, pl->sphere_light[sf->prim]);
         return select > 0.0f ? select * light_sphere_pdf(&s->spheres[sf->prim], o) : 0.0f;
     }
     if (sf->kind == HIT_TRIANGLE) {
@@ -229,12 +311,15 @@ float light_sampler_pdf(const light_sampler *pl, const glint_scene *s, const sur
             else hi = mid;
         }
         const tri_light *tl = &pl->tris[lo];
+        // Triangles come after the quads among the lights, in the same order as tris.
+        if (pl->tree.node_count && !((select = light_tree_pmf(&pl->tree, o, pl->quad_lights + lo)) > 0.0f)) return 0.0f;
         float cos_l = fabsf(v3_dot(d, tl->n));
         if (!(cos_l > 0.0f)) return 0.0f;
         return select * t * t / (cos_l * tl->area);
     }
     if (sf->kind != HIT_QUAD || sf->instance != HIT_NO_INSTANCE || sf->prim >= pl->quad_count) return 0.0f;
     float select = pl->select_pdf[sf->prim];
+    if (select > 0.0f && pl->tree.node_count) select = light_tree_pmf(&pl->tree, o, pl->quad_light[sf->prim]);
     if (!(select > 0.0f)) return 0.0f;
     const quad *q = &s->quads[sf->prim];
     float cos_l = fabsf(v3_dot(d, q->normal));

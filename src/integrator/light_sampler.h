@@ -4,6 +4,7 @@
 #define GLINT_LIGHT_SAMPLER_H
 
 #include "core/vec.h"
+#include "integrator/light_tree.h"
 #include "integrator/surface.h"
 #include "scene/scene.h"
 
@@ -38,6 +39,7 @@ typedef struct light_sampler {
     float *select_pdf;      ///< per scene quad: probability of choosing it, 0 for a quad that is not a light
     size_t count;           ///< lights
     size_t quad_count;      ///< scene quads when indexed (select_pdf's length)
+    size_t quad_lights;     ///< lights that are quads: the first triangle light's entry in lights
     tri_light *tris;        ///< the emissive triangles
     size_t tri_count;
     size_t *tri_base;       ///< per scene instance: its first triangle's entry in tri_select_pdf, or SIZE_MAX
@@ -45,12 +47,24 @@ typedef struct light_sampler {
     size_t instance_count;  ///< scene instances when indexed (tri_base's length)
     float *sphere_select_pdf; ///< per world-space scene sphere: probability of choosing it, 0 when it is no light
     size_t sphere_count;    ///< scene spheres when indexed (sphere_select_pdf's length; 0 when none emits)
+    /// With many lights (LIGHT_TREE_MIN_LIGHTS), a light is chosen for each point by the light tree instead of by
+    /// power alone; the select arrays above then only say which quads, triangles and spheres are lights.
+    light_tree tree;
+    uint32_t *quad_light, *sphere_light; ///< with the tree: per scene quad and sphere, its entry in lights
 } light_sampler;
 
+/// Lights from which on the light tree chooses them (fewer are chosen by power: the tree's work per choice would
+/// cost more than it saves, and the scenes of the books keep their bytes).
+enum { LIGHT_TREE_MIN_LIGHTS = 64 };
+
+/// Chooses a light for next-event estimation at point p from xi uniform in [0, 1): its entry in ls->lights, and in
+/// *select the probability of that choice; SIZE_MAX when no light can reach p.
+size_t light_sampler_choose(const light_sampler *ls, vec3 p, float xi, float *select);
+
 /// Indexes the emissive quads, mesh-instance triangles and world-space spheres of s (spheres placed by
-/// instances are left to BSDF sampling). An empty sampler (count 0)
+/// instances are left to BSDF sampling), and with `tree` and many of them builds the light tree. An empty sampler (count 0)
 /// when nothing emits. False when out of memory (ls is then empty).
-bool light_sampler_build(light_sampler *ls, const glint_scene *s);
+bool light_sampler_build(light_sampler *ls, const glint_scene *s, bool tree);
 /// Frees what the sampler owns and leaves it empty.
 void light_sampler_release(light_sampler *ls);
 /// Probability density, per unit solid angle, with which next-event estimation would have chosen the point

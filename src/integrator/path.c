@@ -1,6 +1,7 @@
 // path.c — the path tracer of "Ray Tracing in One Weekend", iterative: a path traces at most max_depth
-// rays, each surface scatters it by its material (material/scatter.h), and escaping rays see the
-// background. At diffuse surfaces, point and directional lights are added by next-event estimation, and so
+// rays, each surface scatters it by its material (material/bsdf.h: the book's materials through their own fast
+// paths, material/scatter.h), and escaping rays see the background. At diffuse surfaces and at the glossy ones
+// of the microfacet materials, point and directional lights are added by next-event estimation, and so
 // are emissive quads, mesh triangles and spheres, combined with the BSDF samples that hit them by multiple
 // importance sampling. Participating media (medium/medium.h) scatter paths inside them, and the same lights
 // are sampled there with the phase function, their shadow rays carrying the media's transmittance.
@@ -9,7 +10,7 @@
 #include "integrator/sample_stream.h"
 #include "integrator/spawn.h"
 #include "integrator/surface.h"
-#include "material/scatter.h"
+#include "material/bsdf.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -25,6 +26,7 @@ typedef struct path_integrator {
     const light_sampler *sampled; ///< &lights when next-event estimation samples the emissive surfaces, else NULL
     envmap_sampler environment;
     const envmap_sampler *env_sampled; ///< &environment when next-event estimation samples the envmap, else NULL
+    bool light_only; ///< (tests) microfacet vertices: light sampling alone, no MIS (integrator_options)
 } path_integrator;
 
 // Power heuristic weight (beta = 2) of a strategy of density a against one of density b, a > 0: a^2 /
@@ -36,12 +38,15 @@ static float mis_weight(float a, float b) {
 
 /// What next-event estimation needs of the point it lights: a diffuse surface (sf: its normals; in_side = d.ng
 /// for the arriving ray d) or a point in a medium (sf NULL: the arriving ray's unit direction d and the phase
-/// function's g).
+/// function's g); at a microfacet material's surface also its BSDF (b, and wo = -d), else b is NULL.
 typedef struct nee_vertex {
     const surface *sf;
     float in_side;
     vec3 d;
     float g;
+    const bsdf *b;
+    vec3 wo;
+    bool light_only; ///< (tests) the light samples are not weighted against BSDF sampling
 } nee_vertex;
 
 // The density of scattering towards unit wi, cos/pi at the diffuse surface or the phase function in a medium,
@@ -55,6 +60,42 @@ static inline float nee_density(const nee_vertex *vx, vec3 wi) {
     return cos_s * inv_pi;
 }
 
+// At a vertex with a BSDF: f cos towards unit wi, and its BSDF sampling's density there into *pdf; zero where the
+// shading and geometric normals disagree on whether wi is reflected or transmitted (the sampled paths are absorbed
+// there too: path_crosses).
+static inline vec3 nee_bsdf(const nee_vertex *vx, vec3 wi, float *pdf) {
+    float cos_s = v3_dot(vx->b->n, wi);
+    bool reflected = v3_dot(wi, vx->sf->ng) * vx->in_side < 0.0f;
+    *pdf = 0.0f;
+    if (cos_s == 0.0f || (cos_s > 0.0f) != reflected) return v3s(0.0f);
+    *pdf = bsdf_pdf(vx->b, vx->wo, wi);
+    return v3_scale(bsdf_eval(vx->b, vx->wo, wi), fabsf(cos_s));
+}
+
+// How the vertex scatters towards unit wi: the density of its own sampling there (*f, for MIS) and, at a BSDF
+// vertex, f cos (*fc); false when it does not scatter there.
+static inline bool nee_response(const nee_vertex *vx, vec3 wi, float *f, vec3 *fc) {
+    if (vx->b) {
+        *fc = nee_bsdf(vx, wi, f);
+        return v3_max_comp(*fc) > 0.0f;
+    }
+    *fc = v3s(0.0f);
+    *f = nee_density(vx, wi);
+    return *f > 0.0f;
+}
+
+// A light sample's contribution: Le tr f / pdf_light, weighted against the vertex's own sampling (density f) by
+// the power heuristic; f cos at a BSDF vertex (fc), the density itself at diffuse surfaces and in media (whose
+// callers multiply by the albedo or the phase weight).
+static inline vec3 nee_contribution(const nee_vertex *vx, vec3 le, vec3 tr, float f, vec3 fc, float pdf_light) {
+    if (vx->b) {
+        float w = vx->light_only ? 1.0f : mis_weight(pdf_light, f);
+        return v3_mul(v3_mul(le, tr), v3_scale(fc, w / pdf_light));
+    }
+    float w = mis_weight(pdf_light, f);
+    return v3_scale(v3_mul(le, tr), f * w / pdf_light);
+}
+
 // Whether shadow ray r gets past every surface (glass included); *tr is then the transmittance of the media it
 // crosses (1 in a scene without media).
 static inline bool shadow_unblocked(const integrator *it, const ray *r, vec3 *tr) {
@@ -64,19 +105,20 @@ static inline bool shadow_unblocked(const integrator *it, const ray *r, vec3 *tr
     return true;
 }
 
-// Next-event estimation towards emissive sphere `index`: a direction in the cone the sphere subtends (a, b
-// uniform), its emission where that direction meets the sphere, a shadow ray, and the power-heuristic weight
-// against BSDF sampling; the same contract as sample_light.
-static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, uint32_t index, const nee_vertex *vx,
+// Next-event estimation towards emissive sphere `index`, chosen with probability `select`: a direction in the cone
+// the sphere subtends (a, b uniform), its emission where that direction meets the sphere, a shadow ray, and the
+// power-heuristic weight against BSDF sampling; the same contract as sample_light.
+static vec3 sample_sphere_light(const integrator *it, float select, uint32_t index, const nee_vertex *vx,
                                 const spawn_point *sp, float a, float b, thread_stats *ts) {
     const glint_scene *s = it->scene;
     const sphere *sph = &s->spheres[index];
     vec3 wi;
     float dist, cone_pdf;
     if (!light_sphere_sample(sph, sp->p, a, b, &wi, &dist, &cone_pdf)) return v3s(0.0f);
-    float f = nee_density(vx, wi);
-    if (!(f > 0.0f)) return v3s(0.0f);
-    float pdf_light = pl->sphere_select_pdf[index] * cone_pdf;
+    float f;
+    vec3 fc;
+    if (!nee_response(vx, wi, &f, &fc)) return v3s(0.0f);
+    float pdf_light = select * cone_pdf;
     if (!(pdf_light > 0.0f) || !isfinite(pdf_light)) return v3s(0.0f);
     // The side and texture coordinates a ray along wi sees there, as surface_at gives them.
     vec3 x = v3_fma(sp->p, wi, dist), q = v3_sub(x, sph->center);
@@ -93,8 +135,7 @@ static vec3 sample_sphere_light(const integrator *it, const light_sampler *pl, u
     ts->shadow_rays++;
     vec3 tr;
     if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
-    float w = mis_weight(pdf_light, f);
-    return v3_scale(v3_mul(le, tr), f * w / pdf_light);
+    return nee_contribution(vx, le, tr, f, fc, pdf_light);
 }
 
 // Next-event estimation towards the emissive quads and triangles at a diffuse surface point or a point in a
@@ -105,16 +146,11 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
                          rng *r, thread_stats *ts) {
     const glint_scene *s = it->scene;
     rng_decision(r, RNG_DIM_LIGHT);
-    float xi = rng_float(r), a = rng_float(r), b = rng_float(r);
-    size_t lo = 0, hi = pl->count - 1; // the first light whose cdf exceeds xi
-    while (lo < hi) {
-        size_t mid = lo + (hi - lo) / 2;
-        if (xi < pl->cdf[mid]) hi = mid;
-        else lo = mid + 1;
-    }
-    float select = pl->cdf[lo] - (lo ? pl->cdf[lo - 1] : 0.0f); // as light_sampler_build recorded it
-    light_ref ref = pl->lights[lo];
-    if (ref.kind == LIGHT_REF_SPHERE) return sample_sphere_light(it, pl, ref.index, vx, sp, a, b, ts);
+    float xi = rng_float(r), a = rng_float(r), b = rng_float(r), select;
+    size_t chosen = light_sampler_choose(pl, sp->p, xi, &select);
+    if (chosen == SIZE_MAX) return v3s(0.0f); // no light can reach the point
+    light_ref ref = pl->lights[chosen];
+    if (ref.kind == LIGHT_REF_SPHERE) return sample_sphere_light(it, select, ref.index, vx, sp, a, b, ts);
     vec3 x, n;
     float area;
     const tri_light *tl = NULL;
@@ -152,9 +188,11 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
         le = light_sampler_tri_emitted(s, tl, b1, b2, x, wi);
         if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return v3s(0.0f);
     }
-    float f = nee_density(vx, wi);
-    if (!(cos_l > 0.0f) || !(f > 0.0f)) return v3s(0.0f);
-    float pdf_light = (q ? pl->select_pdf[ref.index] : select) * d2 / (cos_l * area);
+    float f;
+    vec3 fc;
+    bool scatters = nee_response(vx, wi, &f, &fc);
+    if (!(cos_l > 0.0f) || !scatters) return v3s(0.0f);
+    float pdf_light = select * d2 / (cos_l * area);
     if (!(pdf_light > 0.0f) || !isfinite(pdf_light)) return v3s(0.0f);
     // Stop short of the light by a relative margin (pbrt's shadow epsilon) so that it does not occlude itself.
     ray shadow = spawn_ray(sp, wi, 0.0f, dist * (1.0f - 1e-4f));
@@ -162,8 +200,7 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
     vec3 tr;
     if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
     if (q) le = mat_emitted(&s->materials[q->material], s->textures, true, a, b, x);
-    float w = mis_weight(pdf_light, f);
-    return v3_scale(v3_mul(le, tr), f * w / pdf_light);
+    return nee_contribution(vx, le, tr, f, fc, pdf_light);
 }
 
 // Next-event estimation towards the environment map: a direction drawn in proportion to the map's brightness
@@ -176,15 +213,15 @@ static vec3 sample_environment(const integrator *it, const envmap_sampler *es, c
     vec3 wi, le;
     float pdf;
     if (!envmap_sample(es, &it->scene->environment, a, b, &wi, &pdf, &le)) return v3s(0.0f);
-    float f = nee_density(vx, wi);
-    if (!(f > 0.0f)) return v3s(0.0f);
+    float f;
+    vec3 fc;
+    if (!nee_response(vx, wi, &f, &fc)) return v3s(0.0f);
     if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return v3s(0.0f);
     ray shadow = spawn_ray(sp, wi, 0.0f, INFINITY);
     ts->shadow_rays++;
     vec3 tr;
     if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
-    float w = mis_weight(pdf, f);
-    return v3_scale(v3_mul(le, tr), f * w / pdf);
+    return nee_contribution(vx, le, tr, f, fc, pdf);
 }
 
 // Direct light from the scene's point and directional lights at a diffuse surface point (BRDF weight / pi
@@ -215,15 +252,24 @@ static vec3 direct_light(const integrator *it, const spawn_point *sp, const nee_
         } else {
             continue;
         }
-        float cos_l = vx->sf ? v3_dot(vx->sf->n, wl) : phase_hg(vx->g, v3_dot(vx->d, wl));
+        float cos_l, unused;
+        vec3 fc = v3s(0.0f);
+        if (vx->b) { // a BSDF vertex: f cos in place of the cosine
+            fc = nee_bsdf(vx, wl, &unused);
+            cos_l = v3_max_comp(fc);
+        } else {
+            cos_l = vx->sf ? v3_dot(vx->sf->n, wl) : phase_hg(vx->g, v3_dot(vx->d, wl));
+        }
         if (!(cos_l > 0.0f)) continue;
         // Stop just short of a point light: whatever lies beyond it casts no shadow.
         ray shadow = spawn_ray(sp, wl, 0.0f, dist * (1.0f - 0x1p-20f));
         ts->shadow_rays++;
         vec3 tr;
         if (!shadow_unblocked(it, &shadow, &tr)) continue;
-        sum = v3_add(sum, v3_mul(v3_scale(l->intensity, cos_l * falloff), tr));
+        if (vx->b) sum = v3_add(sum, v3_mul(v3_mul(v3_scale(l->intensity, falloff), fc), tr));
+        else sum = v3_add(sum, v3_mul(v3_scale(l->intensity, cos_l * falloff), tr));
     }
+    if (vx->b) return v3_mul(sum, weight);
     return vx->sf ? v3_scale(v3_mul(sum, weight), inv_pi) : v3_mul(sum, weight);
 }
 
@@ -398,7 +444,7 @@ static inline __attribute__((always_inline)) int path_medium_step(const path_int
     // It scatters in the medium: the lights are sampled as at a diffuse surface, with the phase function in place
     // of the BSDF (weight 1), and the next direction is drawn from the phase function.
     float g = s->media[me.index].g;
-    nee_vertex nv = {NULL, 0.0f, cur->d, g};
+    nee_vertex nv = {NULL, 0.0f, cur->d, g, NULL, v3s(0.0f), false};
     spawn_point mp = {me.p, v3s(0.0f), 0.0f, cur->time}; // no surface to step off; the path's time
     path_nee(pi, setup, ps, &nv, &mp, v3s(1.0f), 0.0f, ps->depth + 1 < s->settings.max_depth, r, ts);
     rng_decision(r, RNG_DIM_BSDF);
@@ -429,7 +475,7 @@ static inline __attribute__((always_inline)) int path_lean_sphere(const glint_sc
                                                                  const hit *h, rng *r, film_aov_sample *aov) {
     const sphere *sp = &s->spheres[h->prim];
     const material *m = &s->materials[sp->material];
-    if (m->kind == MAT_DIFFUSE_LIGHT || m->albedo_texture >= 0) return -1;
+    if (m->kind >= MAT_DIFFUSE_LIGHT || m->albedo_texture >= 0) return -1; // emitters and microfacet materials
     vec3 p, n;
     sphere_hit_frame(sp, cur, h->t, &p, &n);
     bool front = v3_dot(cur->d, n) < 0.0f;
@@ -479,6 +525,89 @@ static inline __attribute__((always_inline)) void path_emitter(const glint_scene
     ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, le));
 }
 
+// A tangent frame at sf for anisotropy and normal maps: along u and v on world quads, along increasing longitude
+// on world spheres (about the y axis, as sphere_uv), dp/du and dp/dv of a mesh triangle with texture coordinates
+// (per triangle: MikkTSpace's face tangents, not its per-vertex averages), none elsewhere (bsdf_init then takes
+// any).
+static void path_tangents(const glint_scene *s, const surface *sf, vec3 *t, vec3 *b) {
+    *t = *b = v3s(0.0f);
+    if (sf->kind == HIT_TRIANGLE && sf->instance < s->instance_count) {
+        const instance *in = &s->instances[sf->instance];
+        const mesh *mh = &s->meshes[in->index].geometry;
+        mesh_corners uc = mesh_triangle_uvs(mh, sf->prim);
+        if (!mesh_corners_complete(uc)) return;
+        vec3 p0, p1, p2;
+        mesh_triangle_positions(mh, sf->prim, &p0, &p1, &p2);
+        uv2 a = mh->uvs[uc.i[0]], bb = mh->uvs[uc.i[1]], c = mh->uvs[uc.i[2]];
+        vec3 e1 = v3_sub(p1, p0), e2 = v3_sub(p2, p0);
+        float du1 = bb.u - a.u, dv1 = bb.v - a.v, du2 = c.u - a.u, dv2 = c.v - a.v;
+        float det = du1 * dv2 - du2 * dv1;
+        if (!(fabsf(det) > 1e-20f)) return;
+        float inv = 1.0f / det;
+        *t = mat4_apply_vector(&in->xf.m, v3_scale(v3_sub(v3_scale(e1, dv2), v3_scale(e2, dv1)), inv));
+        *b = mat4_apply_vector(&in->xf.m, v3_scale(v3_sub(v3_scale(e2, du1), v3_scale(e1, du2)), inv));
+        return;
+    }
+    if (sf->instance != HIT_NO_INSTANCE) return;
+    if (sf->kind == HIT_QUAD) {
+        const quad *q = &s->quads[sf->prim];
+        *t = q->u;
+        *b = q->v;
+    } else if (sf->kind == HIT_SPHERE) {
+        vec3 out = sf->front ? sf->ng : v3_neg(sf->ng);
+        *t = v3(-out.z, 0.0f, out.x); // y x outward
+    }
+}
+
+// A path at a surface of a microfacet material (conductor, rough_dielectric, pbr), kept out of the fast vertex:
+// pbr's emission (weighted against the light sampling of the last vertex, as an emitter's), the material's BSDF
+// at the point, a direction sampled from it and, where it has glossy or diffuse lobes, next-event estimation
+// with MIS against that sample. Whether the path goes on.
+static __attribute__((noinline)) bool path_bsdf_vertex(const path_integrator *pi, path_setup setup, path_state *ps,
+                                                      ray *cur, const hit *h, const surface *sf, const material *m,
+                                                      rng *r, thread_stats *ts, film_aov_sample *aov) {
+    const glint_scene *s = pi->base.scene;
+    if (material_emits(m)) {
+        vec3 tp = surface_texture_point(s, sf, m->emission_texture);
+        vec3 le = mat_emitted(m, s->textures, sf->front, sf->u, sf->v, tp);
+        if (ps->light_sampled) {
+            float pdf_light = light_sampler_pdf(setup.pl, s, sf, cur->o, cur->d, h->t);
+            if (pdf_light > 0.0f) le = v3_scale(le, mis_weight(ps->bsdf_pdf, pdf_light));
+        }
+        ps->radiance = v3_add(ps->radiance, v3_mul(ps->throughput, le));
+    }
+    vec3 tp = surface_texture_point(s, sf, 0);
+    vec3 albedo = mat_albedo(m, s->textures, sf->u, sf->v, tp);
+    if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, albedo, sf->n, m);
+    bsdf_site site = {sf->n, v3s(0.0f), v3s(0.0f), sf->u, sf->v, tp, sf->front};
+    path_tangents(s, sf, &site.tangent, &site.bitangent);
+    bsdf b;
+    bsdf_init(&b, m, s->textures, albedo, &site);
+    vec3 wo = v3_neg(cur->d);
+    // The direction first, then the lights: next-event estimation counts whether or not the sample is absorbed
+    // (a rough lobe at a grazing angle loses many below the horizon, and the light they would have found is
+    // next-event estimation's to add).
+    bsdf_sample_record bs;
+    bool scattered = bsdf_sample(&b, wo, r, &bs);
+    spawn_point sp = spawn_point_of(s, sf);
+    float in_side = v3_dot(cur->d, sf->ng);
+    if (bsdf_has_nee(&b)) {
+        nee_vertex nv = {sf, in_side, cur->d, 0.0f, &b, wo, pi->light_only};
+        path_nee(pi, setup, ps, &nv, &sp, v3s(1.0f), scattered ? bs.pdf : 0.0f,
+                 ps->depth + 1 < s->settings.max_depth, r, ts);
+        if (!scattered) return false;
+        // A delta lobe's direction cannot be found by light sampling: what it hits counts in full. Light sampling
+        // alone (tests): what the BSDF's own samples hit adds nothing.
+        if (bs.flags & BSDF_DELTA) ps->light_sampled = ps->env_sampled = false;
+        else if (pi->light_only) ps->bsdf_pdf = 0.0f, ps->env_sampled = false;
+    } else {
+        ps->light_sampled = ps->env_sampled = false;
+        if (!scattered) return false;
+    }
+    if (path_crosses(sf, in_side, bs.wi, (bs.flags & BSDF_TRANSMISSION) != 0)) return false;
+    return path_continue(ps, cur, &sp, bs.weight, bs.wi);
+}
+
 // What the path does where its ray *cur ends, at hit *h (found; by address, as the query wrote it: a copy would
 // load it whole, which waits for the query's stores to retire) or in the background, at depth ps->depth:
 // gathers light into ps->radiance and makes the next ray. False when the path ends there. Lean paths (setup.lean)
@@ -517,6 +646,7 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
         path_emitter(s, setup, ps, cur, h, &sf, m, aov);
         return false;
     }
+    if (material_is_microfacet(m)) return path_bsdf_vertex(pi, setup, ps, cur, h, &sf, m, r, ts, aov);
     vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
     if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, albedo, sf.n, m);
     scatter_event ev;
@@ -530,7 +660,7 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
     if (ev.diffuse) {
         float dir_pdf = s->importance_sphere_count ? aim_diffuse(s, sp.p, sf.n, r, &ev)
                                                    : v3_dot(ev.dir, sf.n) * inv_pi;
-        nee_vertex nv = {&sf, in_side, cur->d, 0.0f};
+        nee_vertex nv = {&sf, in_side, cur->d, 0.0f, NULL, v3s(0.0f), false};
         path_nee(pi, setup, ps, &nv, &sp, ev.weight, dir_pdf, ps->depth + 1 < s->settings.max_depth, r, ts);
     } else {
         ps->light_sampled = ps->env_sampled = false;
@@ -671,10 +801,11 @@ static void path_release(integrator *it) {
     free(pi);
 }
 
-integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_lights, glint_error *err) {
+integrator *path_create(const glint_scene *s, const accel *a, const integrator_options *o, glint_error *err) {
+    bool sample_area_lights = !(o && o->no_light_sampling);
     path_integrator *pi = malloc(sizeof *pi);
     // The index of emissive surfaces depends only on the scene: built once per render, before the threads start.
-    if (!pi || !light_sampler_build(&pi->lights, s)) {
+    if (!pi || !light_sampler_build(&pi->lights, s, !(o && o->no_light_tree))) {
         free(pi);
         snprintf(err->message, sizeof err->message, "%s: out of memory while indexing the emissive surfaces", s->path);
         return NULL;
@@ -684,6 +815,7 @@ integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_l
     pi->base.render_tile = path_render_tile;
     pi->base.release = path_release;
     pi->sampled = sample_area_lights && pi->lights.count > 0 ? &pi->lights : NULL;
+    pi->light_only = o && o->light_sampling_only;
     // The environment's distribution, when it is the background (a black map has none: nothing to sample).
     pi->env_sampled = NULL;
     memset(&pi->environment, 0, sizeof pi->environment);

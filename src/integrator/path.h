@@ -7,7 +7,8 @@
 
 #include <stdbool.h>
 
-/// The path tracer; `sample_area_lights` false turns off next-event estimation towards emissive surfaces.
-integrator *path_create(const glint_scene *s, const accel *a, bool sample_area_lights, glint_error *err);
+/// The path tracer, as the render's options say (o may be NULL: the defaults; the tests' knobs in
+/// integrator_options).
+integrator *path_create(const glint_scene *s, const accel *a, const integrator_options *o, glint_error *err);
 
 #endif

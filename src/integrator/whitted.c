@@ -2,7 +2,7 @@
 #include "integrator/whitted.h"
 #include "integrator/sample_scheduler.h"
 #include "integrator/spawn.h"
-#include "material/scatter.h"
+#include "material/bsdf.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -469,6 +469,26 @@ static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thre
         color_origin co = color_origin_of(s, &sf);
         switch (m->kind) {
         case MAT_DIFFUSE_LIGHT: return sum; // handled above
+        case MAT_CONDUCTOR:
+        case MAT_PBR: {
+            // The microfacet materials as Whitted sees them (bsdf_whitted_view): a diffuse base lit by the
+            // lights (pbr), pbr's emission, and a mirror weighted by the Fresnel reflectance; roughness ignored.
+            vec3 tp = surface_texture_point(s, &sf, 0);
+            bsdf_site site = {sf.n, v3s(0.0f), v3s(0.0f), sf.u, sf.v, tp, sf.front};
+            bsdf b;
+            bsdf_init(&b, m, s->textures, albedo, &site);
+            bsdf_whitted view = bsdf_whitted_view(&b, -v3_dot(d, b.n));
+            vec3 local = mat_emitted(m, s->textures, sf.front, sf.u, sf.v, surface_texture_point(s, &sf, m->emission_texture));
+            if (v3_max_comp(view.diffuse) > 0.0f)
+                local = v3_add(local, color_local(it, m, view.diffuse, &co, &sf, v3_neg(d), ts));
+            sum = v3_add(sum, v3_mul(w, local));
+            if (!(v3_max_comp(view.mirror) > 0.0f) || depth <= 0) return sum;
+            w = v3_mul(w, view.mirror);
+            r = spawn(&co, v3_reflect(d, b.n));
+            depth--;
+            continue;
+        }
+        case MAT_KIND_COUNT:
         case MAT_LAMBERTIAN:
         case MAT_PHONG: {
             vec3 local = color_local(it, m, albedo, &co, &sf, v3_neg(d), ts);
@@ -488,7 +508,8 @@ static vec3 color_trace(const integrator *it, spawned r, int depth, vec3 w, thre
             r = spawn(&co, v3_reflect(d, sf.n));
             depth--;
             continue;
-        case MAT_DIELECTRIC: {
+        case MAT_DIELECTRIC:
+        case MAT_ROUGH_DIELECTRIC: { // rough glass is smooth glass here: Whitted traces no glossy lobes
             if (depth <= 0) return sum;
             depth--;
             float eta = sf.front ? 1.0f / m->ior : m->ior;

@@ -1,9 +1,14 @@
-// image_merge.c — glint merge: region PNGs (placed by their "glint:region" chunk) assembled into the full image.
+// image_merge.c — glint merge: the driver (the output, the kind of the parts), what both halves share (opening a
+// part, its region text, the map of covered pixels), and 8-bit region PNGs (placed by their "glint:region" chunk)
+// assembled into the full PNG or PPM. Float parts are io/merge_float.c's.
 #include "io/image_merge.h"
 #include "core/filepath.h"
 #include "film/film.h"
+#include "io/exr_read.h"
 #include "io/image_png.h"
 #include "io/image_write.h"
+#include "io/merge_float.h"
+#include "io/merge_parts.h"
 
 #include <errno.h>
 #include <limits.h>
@@ -17,8 +22,8 @@
 static const char EXPECTED_PART[] = "expected a PNG written by glint with --region";
 
 enum {
-    MAX_SIDE = 16384,       // the largest image width and height a scene renders at: a part cannot claim more
-    DEFLATE_MAX_RATIO = 1032 // the most bytes deflate (PNG's compression) makes of one byte of its stream
+    MAX_SIDE = MERGE_MAX_SIDE, // the largest image width and height a scene renders at: a part cannot claim more
+    DEFLATE_MAX_RATIO = 1032   // the most bytes deflate (PNG's compression) makes of one byte of its stream
 };
 
 // One part: where it lies in the full image, and its 8-bit RGB rows.
@@ -49,29 +54,6 @@ static void png_on_read(png_structp png, png_bytep data, size_t length) {
     if (ferror(r->f)) png_error(png, "read error");
     r->cut_short = true;
     png_error(png, "truncated");
-}
-
-// A decimal integer in [0, INT_MAX] at *p, advanced past it; false when there is none or it is larger.
-static bool parse_int(const char **p, int *out) {
-    if (**p < '0' || **p > '9') return false;
-    long long v = 0;
-    for (; **p >= '0' && **p <= '9'; (*p)++)
-        if ((v = v * 10 + (**p - '0')) > INT_MAX) return false;
-    *out = (int)v;
-    return true;
-}
-
-// Parses "X0,Y0,X1,Y1,W,H" strictly (six decimal integers, nothing else) into p; false when it is not that.
-static bool parse_region(const char *text, part *p) {
-    int v[6];
-    for (int i = 0; i < 6; i++)
-        if (!parse_int(&text, &v[i]) || *text++ != (i < 5 ? ',' : '\0')) return false;
-    memcpy(p->region, v, sizeof p->region);
-    p->full_width = v[4];
-    p->full_height = v[5];
-    const int *r = p->region;
-    return r[0] < r[2] && r[1] < r[3] && r[2] <= p->full_width && r[3] <= p->full_height &&
-           p->full_width <= MAX_SIDE && p->full_height <= MAX_SIDE;
 }
 
 // The text of the part's region chunk, before or after the image data; NULL with r->message set when there is
@@ -144,7 +126,7 @@ static bool png_decode_part(png_reader *r, part *p) {
     png_read_end(r->png, r->end);
     const char *where = region_text(r);
     if (!where) return false;
-    if (!parse_region(where, p)) {
+    if (!merge_parse_region(where, p->region, &p->full_width, &p->full_height)) {
         snprintf(r->message, sizeof r->message, "%s '%.64s' is not X0,Y0,X1,Y1,W,H of a region inside a W x H image "
                  "of at most %d pixels a side", IMAGE_REGION_KEY, where, MAX_SIDE);
         return false;
@@ -182,17 +164,11 @@ static bool chunks_fit(png_reader *r) {
     return true;
 }
 
-// Reads one part; GLINT_ERR_INPUT ("PATH: what is wrong") when it cannot be read or is no region PNG.
-static glint_status read_part(const char *path, part *p, glint_error *err) {
+// Reads the region PNG open as f (file_size bytes, at its start); GLINT_ERR_INPUT ("PATH: what is wrong") when it
+// is no region PNG. The file stays open.
+static glint_status read_png_part(FILE *f, const char *path, uint64_t file_size, part *p, glint_error *err) {
     memset(p, 0, sizeof *p);
-    struct stat st;
-    int problem = 0;
-    png_reader r = {.f = filepath_open_regular(path, &st, &problem)};
-    r.file_size = r.f ? (uint64_t)st.st_size : 0;
-    if (!r.f) {
-        snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, filepath_problem_text(problem));
-        return problem == ENOMEM ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
-    }
+    png_reader r = {.f = f, .file_size = file_size};
     uint8_t signature[8];
     bool ok = fread(signature, 1, sizeof signature, r.f) == sizeof signature && png_sig_cmp(signature, 0, 8) == 0;
     if (!ok) snprintf(r.message, sizeof r.message, "not a PNG file, %s", EXPECTED_PART);
@@ -218,7 +194,6 @@ static glint_status read_part(const char *path, part *p, glint_error *err) {
             snprintf(r.message, sizeof r.message, "truncated PNG: the file ends in %s", r.stage);
     }
     if (r.png) png_destroy_read_struct(&r.png, r.info ? &r.info : NULL, r.end ? &r.end : NULL);
-    fclose(r.f);
     if (ok) return GLINT_OK;
     free(p->rgb);
     p->rgb = NULL;
@@ -227,107 +202,109 @@ static glint_status read_part(const char *path, part *p, glint_error *err) {
     return strcmp(r.message, "out of memory") == 0 ? GLINT_ERR_RENDER : GLINT_ERR_INPUT;
 }
 
-static bool region_contains(const int r[4], int x, int y) { return x >= r[0] && x < r[2] && y >= r[1] && y < r[3]; }
+// ---- what both halves share ----
 
-// Copies part i into the full image's bytes (width w), marking its pixels in `covered`; GLINT_ERR_INPUT naming
-// the earlier part it overlaps.
-static glint_status place_part(const char *const *paths, const part *parts, size_t i, uint8_t *rgb, int width,
-                               uint8_t *covered, glint_error *err) {
-    const part *p = &parts[i];
-    size_t w = (size_t)(p->region[2] - p->region[0]);
-    for (int y = p->region[1]; y < p->region[3]; y++) {
-        size_t row = (size_t)y * (size_t)width;
-        for (int x = p->region[0]; x < p->region[2]; x++) {
-            if (!covered[row + (size_t)x]) continue;
-            size_t j = 0;
-            while (j < i && !region_contains(parts[j].region, x, y)) j++;
-            snprintf(err->message, sizeof err->message, "%s: overlaps %s at pixel (%d, %d)", paths[i], paths[j], x, y);
-            return GLINT_ERR_INPUT;
+// ---- 8-bit parts ----
+
+// Assembles region PNGs into the .png or .ppm output with their 8-bit values: 4 bytes a pixel of the full image
+// (its bytes and which pixels are covered) and 3 a pixel of the part being read.
+static glint_status merge_png(const char *output, const char *const *paths, size_t count, size_t max_bytes,
+                              glint_error *err) {
+    part p = {0};
+    merge_cover cover = {0};
+    uint8_t *rgb = NULL;
+    output_transform encoding = TRANSFORM_LINEAR;
+    glint_status st = GLINT_OK;
+    for (size_t i = 0; i < count && st == GLINT_OK; i++) {
+        struct stat sb;
+        merge_kind kind;
+        FILE *f = merge_open(paths[i], &sb, &kind, &st, err);
+        if (!f) break;
+        if (kind != MERGE_PNG) st = merge_wrong_kind(paths[i], kind, paths[0], MERGE_PNG, err);
+        if (st == GLINT_OK) st = read_png_part(f, paths[i], (uint64_t)sb.st_size, &p, err);
+        fclose(f);
+        if (st != GLINT_OK) break;
+        if (i == 0) {
+            encoding = p.encoding;
+            uint64_t need = (uint64_t)p.full_width * (uint64_t)p.full_height * 4u;
+            if (need > max_bytes) {
+                snprintf(err->message, sizeof err->message, "%s: a region of a %dx%d image, whose merge would take "
+                         "%llu bytes, more than the %zu allowed", paths[i], p.full_width, p.full_height,
+                         (unsigned long long)need, max_bytes);
+                st = GLINT_ERR_INPUT;
+            } else if (!merge_cover_init(&cover, p.full_width, p.full_height, count) ||
+                       !(rgb = malloc((size_t)p.full_width * (size_t)p.full_height * 3u))) {
+                snprintf(err->message, sizeof err->message, "merge: out of memory for a %dx%d image", p.full_width,
+                         p.full_height);
+                st = GLINT_ERR_RENDER;
+            }
+        } else if (p.encoding != encoding) {
+            snprintf(err->message, sizeof err->message, "%s: its bytes encode light otherwise than %s's (the parts were "
+                     "written with different --output-encoding)", paths[i], paths[0]);
+            st = GLINT_ERR_INPUT;
+        } else if (p.full_width != cover.width || p.full_height != cover.height) {
+            snprintf(err->message, sizeof err->message, "%s: a region of a %dx%d image, but %s is of a %dx%d image",
+                     paths[i], p.full_width, p.full_height, paths[0], cover.width, cover.height);
+            st = GLINT_ERR_INPUT;
         }
-        memset(covered + row + (size_t)p->region[0], 1, w);
-        memcpy(rgb + (row + (size_t)p->region[0]) * 3u, p->rgb + (size_t)(y - p->region[1]) * w * 3u, w * 3u);
+        if (st == GLINT_OK) st = merge_cover_claim(&cover, paths, i, p.region, err);
+        if (st == GLINT_OK) {
+            size_t w = (size_t)(p.region[2] - p.region[0]);
+            for (int y = p.region[1]; y < p.region[3]; y++)
+                memcpy(rgb + ((size_t)y * (size_t)cover.width + (size_t)p.region[0]) * 3u,
+                       p.rgb + (size_t)(y - p.region[1]) * w * 3u, w * 3u);
+        }
+        free(p.rgb);
+        p.rgb = NULL;
     }
-    return GLINT_OK;
+    if (st == GLINT_OK) st = merge_cover_check_gaps(&cover, err);
+    if (st == GLINT_OK) st = image_write_rgb8(rgb, cover.width, cover.height, encoding, output, err);
+    merge_cover_free(&cover);
+    free(rgb);
+    return st;
 }
 
-// GLINT_ERR_INPUT naming the first pixel (in row order) that no part covers, if any.
-static glint_status check_gaps(int width, int height, const uint8_t *covered, glint_error *err) {
-    size_t n = (size_t)width * (size_t)height, missing = 0, first = 0;
-    for (size_t i = n; i-- > 0;)
-        if (!covered[i]) {
-            missing++;
-            first = i;
-        }
-    if (missing == 0) return GLINT_OK;
-    snprintf(err->message, sizeof err->message, "no part covers pixel (%zu, %zu) of the %dx%d image (%zu pixels "
-             "missing)", first % (size_t)width, first / (size_t)width, width, height, missing);
-    return GLINT_ERR_INPUT;
-}
+// ---- the driver ----
 
-glint_status image_merge(const char *output, const char *const *parts_paths, size_t count, glint_error *err) {
+glint_status image_merge_limited(const char *output, const char *const *paths, size_t count, size_t max_bytes,
+                                 glint_error *err) {
     if (count == 0) {
-        snprintf(err->message, sizeof err->message, "merge: no parts given, expected one PNG per region");
+        snprintf(err->message, sizeof err->message, "merge: no parts given, expected one file per region");
         return GLINT_ERR_INPUT;
     }
     glint_status st = image_check_path(output, IMAGE_FORMAT_AUTO, err);
-    image_format format = image_format_of(output);
-    if (st == GLINT_OK && format != IMAGE_FORMAT_PNG && format != IMAGE_FORMAT_PPM) {
-        snprintf(err->message, sizeof err->message, "%s: merge writes the parts' 8-bit values, expected .png or .ppm",
-                 output);
-        st = GLINT_ERR_INPUT;
-    }
-    for (size_t i = 0; i < count && st == GLINT_OK; i++)
-        if (filepath_same_target(output, parts_paths[i])) {
-            snprintf(err->message, sizeof err->message, "%s: cannot write: it is the part %s, which would be lost",
-                     output, parts_paths[i]);
-            st = GLINT_ERR_INPUT;
-        }
     if (st != GLINT_OK) return st;
-    part *parts = calloc(count, sizeof *parts);
-    if (!parts) {
-        snprintf(err->message, sizeof err->message, "merge: out of memory");
-        return GLINT_ERR_RENDER;
-    }
-    // The merged image stays in the parts' 8 bits: 4 bytes a pixel with the map of covered pixels.
-    uint8_t *rgb = NULL, *covered = NULL;
-    int width = 0, height = 0;
-    output_transform encoding = TRANSFORM_LINEAR;
-    for (size_t i = 0; i < count && st == GLINT_OK; i++) {
-        st = read_part(parts_paths[i], &parts[i], err);
-        if (st != GLINT_OK) break;
-        const part *p = &parts[i];
-        if (i == 0) {
-            width = p->full_width;
-            height = p->full_height;
-            encoding = p->encoding;
-            rgb = malloc((size_t)width * (size_t)height * 3u);
-            covered = calloc((size_t)width * (size_t)height, 1);
-            if (!rgb || !covered) {
-                snprintf(err->message, sizeof err->message, "merge: out of memory for a %dx%d image", width, height);
-                st = GLINT_ERR_RENDER;
-                break;
-            }
-        } else if (p->encoding != encoding) {
-            snprintf(err->message, sizeof err->message, "%s: its bytes encode light otherwise than %s's (the parts were "
-                     "written with different --output-encoding)", parts_paths[i], parts_paths[0]);
-            st = GLINT_ERR_INPUT;
-            break;
-        } else if (p->full_width != width || p->full_height != height) {
-            snprintf(err->message, sizeof err->message, "%s: a region of a %dx%d image, but %s is of a %dx%d image",
-                     parts_paths[i], p->full_width, p->full_height, parts_paths[0], width, height);
-            st = GLINT_ERR_INPUT;
-            break;
+    for (size_t i = 0; i < count; i++)
+        if (filepath_same_target(output, paths[i])) {
+            snprintf(err->message, sizeof err->message, "%s: cannot write: it is the part %s, which would be lost",
+                     output, paths[i]);
+            return GLINT_ERR_INPUT;
         }
-        st = place_part(parts_paths, parts, i, rgb, width, covered, err);
-        // The pixels are in the image now; the region stays for the overlap message of a later part.
-        free(parts[i].rgb);
-        parts[i].rgb = NULL;
+    // The first part says whether the merge is of 8-bit or float values; the output must be of the same kind.
+    struct stat sb;
+    merge_kind first = MERGE_UNKNOWN;
+    FILE *f = merge_open(paths[0], &sb, &first, &st, err);
+    if (!f) return st;
+    fclose(f);
+    if (first != MERGE_PNG && !merge_kind_float(first))
+        return merge_wrong_kind(paths[0], first, paths[0], first, err);
+    image_format format = image_format_of(output);
+    bool eight_bit_output = format == IMAGE_FORMAT_PNG || format == IMAGE_FORMAT_PPM;
+    if (merge_kind_float(first) && eight_bit_output) {
+        snprintf(err->message, sizeof err->message, "%s: %s is %s: float parts merge to .exr, .pfm or .hdr, not to "
+                 "8-bit values (render PNG parts for an 8-bit merge)", output, paths[0], merge_kind_name(first));
+        return GLINT_ERR_INPUT;
     }
-    if (st == GLINT_OK) st = check_gaps(width, height, covered, err);
-    if (st == GLINT_OK) st = image_write_rgb8(rgb, width, height, encoding, output, err);
-    for (size_t i = 0; i < count; i++) free(parts[i].rgb);
-    free(parts);
-    free(covered);
-    free(rgb);
-    return st;
+    if (!merge_kind_float(first) && !eight_bit_output) {
+        snprintf(err->message, sizeof err->message, "%s: %s is %s: its bytes are display-encoded, not linear light, "
+                 "so 8-bit parts merge to .png or .ppm alone (render .exr or .pfm parts for a float merge)", output,
+                 paths[0], merge_kind_name(first));
+        return GLINT_ERR_INPUT;
+    }
+    if (merge_kind_float(first)) return merge_float(output, format, paths, count, first, max_bytes, err);
+    return merge_png(output, paths, count, max_bytes, err);
+}
+
+glint_status image_merge(const char *output, const char *const *paths, size_t count, glint_error *err) {
+    return image_merge_limited(output, paths, count, SIZE_MAX, err);
 }

@@ -4,10 +4,12 @@
 #define _GNU_SOURCE
 #include "io/image_write.h"
 #include "core/filepath.h"
+#include "core/hash.h"
 #include "core/trace.h"
 #include "film/film.h"
 #include "io/exr_write.h"
 #include "io/image_png.h"
+#include "io/pfm_region.h"
 
 #include <png.h>
 #include <stb_image_write.h>
@@ -108,13 +110,18 @@ static int write_ppm_ascii(FILE *f, const rows8 *src) {
 }
 
 // Portable float map of a plane of `channels` (3: "PF", RGB; 1: "Pf", grey) floats a pixel: little-endian
-// (scale -1.0), rows from the bottom up.
-static int write_pfm_plane(FILE *f, const glint_image *img, const float *plane, int channels) {
+// (scale -1.0), rows from the bottom up. *hash becomes the FNV-1a hash of the bytes written (for a region's
+// region file).
+static int write_pfm_plane(FILE *f, const glint_image *img, const float *plane, int channels, uint64_t *hash) {
     size_t n = (size_t)img->width * (size_t)channels;
     uint8_t *row = malloc(n * 4u);
     if (!row) return ENOMEM;
+    char header[64];
+    int len = snprintf(header, sizeof header, "P%c\n%d %d\n-1.0\n", channels == 1 ? 'f' : 'F', img->width,
+                       img->height);
+    *hash = hash_bytes(HASH_START, header, (size_t)len);
     errno = 0;
-    int rc = fprintf(f, "P%c\n%d %d\n-1.0\n", channels == 1 ? 'f' : 'F', img->width, img->height) < 0 ? fail_errno() : 0;
+    int rc = fwrite(header, 1, (size_t)len, f) != (size_t)len ? fail_errno() : 0;
     for (int y = img->height - 1; y >= 0 && rc == 0; y--) {
         const float *src = &plane[(size_t)y * n];
         for (size_t i = 0; i < n; i++) {
@@ -123,14 +130,12 @@ static int write_pfm_plane(FILE *f, const glint_image *img, const float *plane, 
             // Byte by byte, so the file is little-endian whatever the machine.
             for (unsigned b = 0; b < 4; b++) row[4 * i + b] = (uint8_t)(bits >> (8 * b));
         }
+        *hash = hash_bytes(*hash, row, n * 4u);
         if (fwrite(row, 4, n, f) != n) rc = fail_errno();
     }
     free(row);
     return rc;
 }
-
-// Portable float map of the image's linear RGB.
-static int write_pfm(FILE *f, const glint_image *img) { return write_pfm_plane(f, img, img->rgb, 3); }
 
 // libpng reports errors by longjmp; everything the error path needs lives here, outside the function
 // that calls setjmp, so nothing it reads can be clobbered.
@@ -219,14 +224,16 @@ static int write_hdr(FILE *f, const glint_image *img) {
     return out ? 0 : (errno ? errno : EIO);
 }
 
-// Writes the image in `format`, or, for aov >= 0 (FILM_AOV_*), that AOV plane as a PFM.
-static int write_format(FILE *f, const glint_image *img, image_format format, int aov, char *why, size_t why_size) {
-    if (aov >= 0) return write_pfm_plane(f, img, img->aov[aov], film_aov_channels(aov));
+// Writes the image in `format`, or, for aov >= 0 (FILM_AOV_*), that AOV plane as a PFM; a PFM's bytes are
+// hashed into *pfm_hash.
+static int write_format(FILE *f, const glint_image *img, image_format format, int aov, uint64_t *pfm_hash, char *why,
+                        size_t why_size) {
+    if (aov >= 0) return write_pfm_plane(f, img, img->aov[aov], film_aov_channels(aov), pfm_hash);
     rows8 src = rows8_of(img);
     switch (format) {
     case IMAGE_FORMAT_PNG: return write_png(f, &src, why, why_size);
     case IMAGE_FORMAT_PPM_ASCII: return write_ppm_ascii(f, &src);
-    case IMAGE_FORMAT_PFM: return write_pfm(f, img);
+    case IMAGE_FORMAT_PFM: return write_pfm_plane(f, img, img->rgb, 3, pfm_hash);
     case IMAGE_FORMAT_EXR: return exr_write(f, img, false, why, why_size);
     case IMAGE_FORMAT_EXR_HALF: return exr_write(f, img, true, why, why_size);
     case IMAGE_FORMAT_HDR: return write_hdr(f, img);
@@ -387,7 +394,8 @@ static int publish_unnamed(int fd, const char *target) {
 
 static glint_status write_stdout(const glint_image *img, image_format format, glint_error *err) {
     char why[300] = "";
-    int rc = write_format(stdout, img, format, -1, why, sizeof why);
+    uint64_t hash;
+    int rc = write_format(stdout, img, format, -1, &hash, why, sizeof why);
     errno = 0;
     if (rc == 0 && fflush(stdout) != 0) rc = fail_errno();
     return rc == 0 ? GLINT_OK : cannot_write("standard output", rc, why, err);
@@ -398,18 +406,46 @@ typedef struct image_job {
     const glint_image *img;
     image_format format;
     int aov;
+    uint64_t *pfm_hash; ///< receives the hash of a PFM's bytes
 } image_job;
 
 static int write_image_job(FILE *f, const void *user, char *why, size_t why_size) {
     const image_job *job = user;
-    return write_format(f, job->img, job->format, job->aov, why, why_size);
+    return write_format(f, job->img, job->format, job->aov, job->pfm_hash, why, why_size);
 }
 
-// Writes the image (aov < 0) or one AOV plane to the file path, through a temporary file.
+// The text of a region file, for image_write_file.
+static int write_text_job(FILE *f, const void *user, char *why, size_t why_size) {
+    (void)why;
+    (void)why_size;
+    size_t n = strlen(user);
+    errno = 0;
+    return fwrite(user, 1, n, f) == n ? 0 : fail_errno();
+}
+
+// Writes PATH.region beside the PFM of a region at path, whose bytes hash to `hash` (see io/pfm_region.h).
+static glint_status write_pfm_region(const glint_image *img, const char *path, uint64_t hash, glint_error *err) {
+    size_t n = strlen(path) + sizeof PFM_REGION_SUFFIX;
+    char *side = malloc(n), text[PFM_REGION_MAX_BYTES];
+    if (!side) return cannot_write(path, ENOMEM, "", err);
+    snprintf(side, n, "%s%s", path, PFM_REGION_SUFFIX);
+    int region[4] = {img->x0, img->y0, img->x0 + img->width, img->y0 + img->height};
+    pfm_region_text(text, sizeof text, region, img->full_width, img->full_height, hash);
+    glint_status st = image_write_file(side, write_text_job, text, err);
+    free(side);
+    return st;
+}
+
+// Writes the image (aov < 0) or one AOV plane to the file path, through a temporary file; the PFM of a region
+// is followed by its region file, PATH.region, that glint merge places it by.
 static glint_status write_file(const glint_image *img, const char *path, image_format format, int aov,
                                glint_error *err) {
-    image_job job = {img, format, aov};
-    return image_write_file(path, write_image_job, &job, err);
+    uint64_t hash = 0;
+    image_job job = {img, format, aov, &hash};
+    glint_status st = image_write_file(path, write_image_job, &job, err);
+    bool pfm = aov >= 0 || format == IMAGE_FORMAT_PFM;
+    if (st == GLINT_OK && pfm && film_image_is_region(img)) st = write_pfm_region(img, path, hash, err);
+    return st;
 }
 
 glint_status image_write_file(const char *path, image_file_writer fill, const void *user, glint_error *err) {

@@ -5,6 +5,7 @@
 #include <float.h>
 #include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
 #include <string.h>
 
 // ---------------------------------------------------------------------------------------------
@@ -14,10 +15,14 @@ size_t jr_offset(const json_reader *rd, uint32_t tok) { return rd->ix->tok[tok].
 
 void jr_vformat(const json_reader *rd, char *buf, size_t size, size_t offset, const char *label, const char *fmt,
                 va_list ap) {
-    size_t line, col;
-    json_line_col(rd->text, rd->len, offset, &line, &col);
     char prefix[400];
-    snprintf(prefix, sizeof prefix, "%s:%zu:%zu: %s", rd->name, line, col, label);
+    if (rd->call) {
+        snprintf(prefix, sizeof prefix, "%s: %s", rd->name, label);
+    } else {
+        size_t line, col;
+        json_line_col(rd->text, rd->len, offset, &line, &col);
+        snprintf(prefix, sizeof prefix, "%s:%zu:%zu: %s", rd->name, line, col, label);
+    }
     status_vformat(buf, size, prefix, fmt, ap);
 }
 
@@ -79,11 +84,67 @@ const char *jr_describe_path(const json_reader *rd, jr_val v, char *buf, size_t 
     return buf;
 }
 
+void jr_number_text(double x, char *buf, size_t size) {
+    if (!isfinite(x)) { // JSON has no infinity: the number a file would write for one, which reads back as it
+        snprintf(buf, size, isnan(x) ? "\"NaN\"" : x > 0 ? "1e999" : "-1e999");
+        return;
+    }
+    int digits = 1;
+    while (digits < 17) {
+        snprintf(buf, size, "%.*g", digits, x);
+        if (strtod(buf, NULL) == x) break;
+        digits++;
+    }
+    // Plain digits where a person writes them (180, -10, 123456), an exponent for the very large: 1e39.
+    int e = x != 0.0 ? (int)floor(log10(fabs(x))) : 0;
+    if (e >= digits && e < 17) digits = e + 1;
+    snprintf(buf, size, "%.*g", digits, x);
+    char *at = strchr(buf, 'e'); // 1e+39 -> 1e39, 1e-07 -> 1e-7
+    if (!at) return;
+    char *d = at + 1 + (at[1] == '+' || at[1] == '-');
+    size_t zeros = 0;
+    while (d[zeros] == '0' && d[zeros + 1]) zeros++;
+    memmove(at[1] == '+' ? at + 1 : d, d + zeros, strlen(d + zeros) + 1);
+}
+
+// Appends v to buf (at *n) as a person writes JSON: "[1, 0.5, [2, 3]]", numbers at their shortest; false for an
+// object inside, or when it no longer fits.
+static bool describe_canonical(const cJSON *v, char *buf, size_t size, size_t *n) {
+    char part[64];
+    if (cJSON_IsArray(v)) {
+        if (*n + 1 >= size) return false;
+        buf[(*n)++] = '[';
+        for (const cJSON *e = v->child; e; e = e->next) {
+            if (e != v->child) {
+                if (*n + 2 >= size) return false;
+                buf[(*n)++] = ',', buf[(*n)++] = ' ';
+            }
+            if (!describe_canonical(e, buf, size, n)) return false;
+        }
+        if (*n + 1 >= size) return false;
+        buf[(*n)++] = ']';
+        buf[*n] = '\0';
+        return true;
+    }
+    if (cJSON_IsNumber(v)) jr_number_text(v->valuedouble, part, sizeof part);
+    else if (cJSON_IsString(v) || cJSON_IsObject(v) || cJSON_IsRaw(v)) return false;
+    else snprintf(part, sizeof part, "%s", cJSON_IsTrue(v) ? "true" : cJSON_IsFalse(v) ? "false" : "null");
+    int w = snprintf(buf + *n, size - *n, "%s", part);
+    if (w < 0 || (size_t)w >= size - *n) return false;
+    *n += (size_t)w;
+    return true;
+}
+
 /// The value as the file spells it, for "got ..." clauses: "abc", 1e999, [1, 2], or "an object".
 const char *jr_describe(const json_reader *rd, jr_val v, char *buf, size_t size) {
     size_t p = jr_offset(rd, v.tok), len = rd->len;
     const cJSON *it = v.item;
     if (cJSON_IsObject(it)) return "an object";
+    if (cJSON_IsArray(it) && rd->call) {
+        // A call's value was printed without spaces: quote a short array as a file usually spells one.
+        size_t n = 0;
+        if (describe_canonical(it, buf, size, &n) && n <= 40) return buf;
+    }
     if (cJSON_IsArray(it)) {
         // Short one-line arrays are quoted as written; others are summarised.
         int depth = 0;
@@ -216,6 +277,8 @@ bool jr_open(json_reader *rd, jr_val v, const char *what, const char *const *key
         }
         for (size_t i = 0; i < o->count; i++) {
             if (strcmp(o->m[i].key, key) != 0) continue;
+            if (rd->call) // no position in a value a program passed means anything to it
+                return jr_fail_at(rd, 0, "duplicate key %s in %s", jr_key_source(rd, kt, src, sizeof src), what);
             size_t line, col;
             json_line_col(rd->text, rd->len, jr_offset(rd, o->m[i].key_tok), &line, &col);
             return jr_fail_at(rd, jr_offset(rd, kt), "duplicate key %s in %s (first given at %zu:%zu)",

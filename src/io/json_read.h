@@ -39,6 +39,9 @@ typedef struct json_reader {
     const json_index *ix;  ///< json_scan's token index of text
     glint_error *err;      ///< receives the message of the first failure
     glint_status status;   ///< what a failure returns: GLINT_ERR_INPUT (set by jr_fail_at) unless a caller says otherwise
+    /// The document is one value a program passed to a call (the scene API), not a file: messages open with
+    /// "name: " (the call's name), as no line or column would mean anything to the caller.
+    bool call;
 } json_reader;
 
 /// A value: its cJSON node and its token in the position index.
@@ -112,6 +115,9 @@ bool jr_fail_internal(json_reader *rd, uint32_t tok);
 /// The document's root value; false (message written) when the index and the tree disagree about it.
 bool jr_root(json_reader *rd, const cJSON *root, jr_val *out);
 
+/// The shortest decimal that reads back as x, as a person writes JSON (0.5, 1e39; 1e999 for infinity, "NaN"
+/// quoted, as no JSON number is one).
+void jr_number_text(double x, char *buf, size_t size);
 /// The value as the file spells it, for "got ..." clauses: "abc", 1e999, [1, 2], or "an object".
 const char *jr_describe(const json_reader *rd, jr_val v, char *buf, size_t size);
 /// Bytes of a long file name that messages show: its end, after "...".

@@ -71,10 +71,11 @@ static inline vec3 mat_dielectric_dir(vec3 d, vec3 n, float eta, float xi, bool 
     return v3_unit(v3_refract(d, n, eta));
 }
 
-/// Radiance a material emits towards a ray that met it on its front (outward-normal) side or its back, at
-/// surface coordinates (u, v) and point p: `emission`, times its emission texture's value when it has one.
+/// Radiance a material (diffuse_light, or pbr's emission) emits towards a ray that met it on its front
+/// (outward-normal) side or its back, at surface coordinates (u, v) and point p: `emission`, times its
+/// emission texture's value when it has one.
 static inline vec3 mat_emitted(const material *m, const texture *textures, bool front, float u, float v, vec3 p) {
-    if (m->kind != MAT_DIFFUSE_LIGHT || !(front || m->two_sided)) return v3s(0.0f);
+    if ((m->kind != MAT_DIFFUSE_LIGHT && m->kind != MAT_PBR) || !(front || m->two_sided)) return v3s(0.0f);
     if (m->emission_texture < 0) return m->emission;
     return v3_mul(m->emission, texture_value(&textures[m->emission_texture], u, v, p));
 }
@@ -117,6 +118,14 @@ static inline __attribute__((always_inline)) bool mat_scatter(const material *m,
         ev->diffuse = true;
         return true;
     case MAT_DIFFUSE_LIGHT: return false;
+    case MAT_CONDUCTOR: // placeholder: diffuse until the BSDF interface takes the microfacet materials
+    case MAT_ROUGH_DIELECTRIC:
+    case MAT_PBR:
+    case MAT_KIND_COUNT:
+        ev->dir = mat_lambertian_dir(n, sample_sphere_uniform(r));
+        ev->weight = albedo;
+        ev->diffuse = true;
+        return true;
     }
     return false;
 }

@@ -267,8 +267,41 @@ geometry_arrays scene_geometry(const glint_scene *s, const mesh **meshes) {
                              .time1 = s->camera.shutter_close};
 }
 
+scene_mark scene_mark_now(const glint_scene *s) {
+    return (scene_mark){s->material_count,        s->sphere_count,         s->light_count,     s->quad_count,
+                        s->texture_count,         s->mesh_count,           s->instance_sphere_count,
+                        s->instance_count,        s->moving_sphere_count,  s->motion_count,
+                        s->importance_sphere_count, s->medium_count,       s->input_count,     s->warning_count};
+}
+
+void scene_rollback(glint_scene *s, const scene_mark *mark) {
+    for (size_t i = mark->materials; i < s->material_count; i++) free(s->material_names[i]);
+    for (size_t i = mark->textures; i < s->texture_count; i++) {
+        texture_free(&s->textures[i]);
+        free(s->texture_names[i]);
+    }
+    for (size_t i = mark->meshes; i < s->mesh_count; i++) scene_mesh_free(&s->meshes[i]);
+    for (size_t i = mark->inputs; i < s->input_count; i++) free(s->inputs[i].path);
+    for (size_t i = mark->warnings; i < s->warning_count; i++) free(s->warnings[i]);
+    s->material_count = mark->materials;
+    s->sphere_count = mark->spheres;
+    s->light_count = mark->lights;
+    s->quad_count = mark->quads;
+    s->texture_count = mark->textures;
+    s->mesh_count = mark->meshes;
+    s->instance_sphere_count = mark->instance_spheres;
+    s->instance_count = mark->instances;
+    s->moving_sphere_count = mark->moving_spheres;
+    s->motion_count = mark->motions;
+    s->importance_sphere_count = mark->importance_spheres;
+    s->medium_count = mark->media;
+    s->input_count = mark->inputs;
+    s->warning_count = mark->warnings;
+}
+
 void scene_free(glint_scene *s) {
     if (!s) return;
+    if (s->session) s->session_free(s->session);
     for (size_t i = 0; i < s->material_count; i++) free(s->material_names[i]);
     free(s->material_names);
     free(s->materials);

@@ -129,6 +129,11 @@ struct glint_scene {
     char **warnings;         ///< problems the loader worked around ("file:line: warning: ..."); never printed by the library
     size_t warning_count;
 
+    /// The scene file reader's state kept for a scene built or extended call by call (scene/scene_calls.h): the
+    /// names defined so far; NULL until the first call. Freed by session_free.
+    struct scene_session *session;
+    void (*session_free)(struct scene_session *session);
+
     /// Room allocated in each array above (core/array.h), in elements; the counts say how many are used.
     struct {
         size_t materials, material_names, spheres, lights, quads, textures, texture_names, meshes, instance_spheres,
@@ -197,6 +202,16 @@ glint_status scene_file_load(const char *path, int threads, glint_scene **out, g
 geometry_arrays scene_geometry(const glint_scene *s, const mesh **meshes);
 /// Frees the scene and everything it owns (NULL is allowed).
 void scene_free(glint_scene *s);
+/// How many of each item a scene holds at one moment, so that a call that fails part-way can take back what it
+/// added (scene_rollback): a scene built call by call stays as it was before the failed call.
+typedef struct scene_mark {
+    size_t materials, spheres, lights, quads, textures, meshes, instance_spheres, instances, moving_spheres, motions,
+        importance_spheres, media, inputs, warnings;
+} scene_mark;
+/// The scene's counts now.
+scene_mark scene_mark_now(const glint_scene *s);
+/// Frees and drops every item added since `mark`.
+void scene_rollback(glint_scene *s, const scene_mark *mark);
 
 /// The background radiance seen along unit direction d.
 static inline vec3 scene_background(const glint_scene *s, vec3 d) {

@@ -21,38 +21,42 @@
 // ---------------------------------------------------------------------------------------------
 // The material and texture name tables, filled as their collections are read
 
-static bool names_add(sf_names *t, const char *name, uint32_t index, uint32_t tok) {
+bool sf_names_add(sf_names *t, const char *name, uint32_t index, uint32_t tok) {
+    size_t n = strlen(name) + 1;
+    char *copy = malloc(n);
+    if (!copy) return false;
+    memcpy(copy, name, n);
     if (!array_reserve((void **)&t->list, &t->cap, t->count + 1, sizeof *t->list) ||
-        !strmap_put(&t->map, name, strlen(name), t->count))
+        !strmap_put(&t->map, copy, n - 1, t->count)) {
+        free(copy);
         return false;
-    t->list[t->count++] = (sf_name){name, index, tok};
+    }
+    t->list[t->count++] = (sf_name){copy, index, tok};
     return true;
 }
 
-static void names_free(sf_names *t) {
+void sf_names_free(sf_names *t) {
+    for (size_t i = 0; i < t->count; i++) free(t->list[i].name);
     strmap_free(&t->map);
     free(t->list);
 }
 
-/// Checks the key at kt as a new name for `map`: 1 to SCENE_MAX_NAME bytes, no control characters, unused.
-static bool check_new_name(sf_loader *ld, const sf_names *map, uint32_t kt, const char *name, const char *kind) {
-    char got[96];
+bool sf_check_new_name(sf_loader *ld, const sf_names *map, size_t offset, const char *name, const char *shown,
+                       const char *kind) {
     size_t n = strlen(name);
     if (n == 0 || n > SCENE_MAX_NAME)
-        return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "%s name %s must be 1 to %d bytes long", kind,
-                          jr_key_source(&ld->r, kt, got, sizeof got), SCENE_MAX_NAME);
+        return jr_fail_at(&ld->r, offset, "%s name %s must be 1 to %d bytes long", kind, shown, SCENE_MAX_NAME);
     for (size_t i = 0; i < n; i++)
         if ((unsigned char)name[i] < 0x20)
-            return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "%s name %s must not contain control characters", kind,
-                              jr_key_source(&ld->r, kt, got, sizeof got));
+            return jr_fail_at(&ld->r, offset, "%s name %s must not contain control characters", kind, shown);
     const sf_name *prev = sf_names_find(map, name);
-    if (prev) {
-        size_t line, col;
-        json_line_col(ld->r.text, ld->r.len, jr_offset(&ld->r, prev->tok), &line, &col);
-        return jr_fail_at(&ld->r, jr_offset(&ld->r, kt), "duplicate %s name \"%s\" (first defined at %zu:%zu)", kind, name, line,
-                          col);
-    }
-    return true;
+    if (!prev) return true;
+    // A name defined by an earlier call of the scene API has no place in this call's text.
+    if (ld->r.call || prev->tok == UINT32_MAX)
+        return jr_fail_at(&ld->r, offset, "duplicate %s name \"%s\" (defined by an earlier call)", kind, name);
+    size_t line, col;
+    json_line_col(ld->r.text, ld->r.len, jr_offset(&ld->r, prev->tok), &line, &col);
+    return jr_fail_at(&ld->r, offset, "duplicate %s name \"%s\" (first defined at %zu:%zu)", kind, name, line, col);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -74,11 +78,13 @@ static bool read_named(sf_loader *ld, jr_val v, const char *kind, sf_names *map,
     while ((r = jr_iter_next(&ld->r, &it, &kt, &val)) > 0) {
         // The key string lives in the cJSON tree for the whole parse: the map may point at it.
         const char *name = val.item->string;
-        if (!check_new_name(ld, map, kt, name, kind)) return false;
+        char shown[96];
+        if (!sf_check_new_name(ld, map, jr_offset(&ld->r, kt), name, jr_key_source(&ld->r, kt, shown, sizeof shown), kind))
+            return false;
         snprintf(what, sizeof what, "%s \"%s\"", kind, name);
         uint32_t index;
         if (!read(ld, val, what, name, &index)) return false;
-        if (!names_add(map, name, index, kt)) return sf_fail_oom(ld);
+        if (!sf_names_add(map, name, index, kt)) return sf_fail_oom(ld);
     }
     return r == 0;
 }
@@ -193,7 +199,7 @@ static bool read_viewport(sf_loader *ld, const jr_obj *o, camera *c) {
     return jr_read_double(&ld->r, o, "distance", false, &JR_POSITIVE_DOUBLE, &c->distance);
 }
 
-static bool read_camera(sf_loader *ld, jr_val v) {
+bool sf_read_camera(sf_loader *ld, jr_val v) {
     size_t t;
     if (!jr_open_typed(&ld->r, v, "camera", camera_types, 2, sizeof camera_types[0], &t)) return false;
     char typed[64];
@@ -337,7 +343,7 @@ static bool read_background(sf_loader *ld, jr_val v, render_settings *rs) {
            jr_read_color(&ld->r, &o, "zenith", false, &JR_NONNEG, &rs->sky_zenith);
 }
 
-static bool read_render(sf_loader *ld, jr_val v) {
+bool sf_read_render(sf_loader *ld, jr_val v) {
     jr_obj o;
     if (!jr_open(&ld->r, v, "render", render_keys, &o)) return false;
     render_settings *rs = &ld->scene->settings;
@@ -391,19 +397,27 @@ static bool read_scene(sf_loader *ld, jr_val root) {
     const jr_member *m;
     // Textures before materials before objects, so that each can refer to the one before it whatever the
     // key order in the file.
-    if ((m = jr_get(&o, "render")) && !read_render(ld, m->val)) return false;
-    if ((m = jr_get(&o, "camera")) && !read_camera(ld, m->val)) return false;
+    if ((m = jr_get(&o, "render")) && !sf_read_render(ld, m->val)) return false;
+    if ((m = jr_get(&o, "camera")) && !sf_read_camera(ld, m->val)) return false;
     if ((m = jr_get(&o, "textures")) && !read_named(ld, m->val, "texture", &ld->textures, sf_read_texture)) return false;
     if ((m = jr_get(&o, "materials")) && !read_named(ld, m->val, "material", &ld->materials, sf_read_material))
         return false;
     if ((m = jr_get(&o, "objects")) && !read_array(ld, m->val, "objects", sf_read_object)) return false;
     if ((m = jr_get(&o, "lights")) && !read_array(ld, m->val, "lights", sf_read_light)) return false;
+    return sf_finish(ld);
+}
+
+void sf_default_output(sf_loader *ld) {
     // Without "output", 8-bit images are sRGB (what displays and image viewers expect), except in paper mode,
     // whose program wrote its linear values as they are.
     render_settings *rs = &ld->scene->settings;
     if (!ld->output_given)
         rs->transform = rs->integrator == INTEGRATOR_WHITTED && rs->whitted_mode == WHITTED_PAPER ? TRANSFORM_LINEAR
                                                                                                   : TRANSFORM_SRGB;
+}
+
+bool sf_finish(sf_loader *ld) {
+    sf_default_output(ld);
     sf_warn_unseen(ld);
     if (ld->warnings_dropped) {
         char msg[256];
@@ -412,6 +426,23 @@ static bool read_scene(sf_loader *ld, jr_val root) {
         if (!scene_add_warning(ld->scene, msg)) ld->warning_oom = true;
     }
     return !ld->warning_oom || sf_fail_oom(ld);
+}
+
+void sf_loader_init(sf_loader *ld, glint_scene *scene, const char *name, int threads, glint_error *err) {
+    memset(ld, 0, sizeof *ld);
+    ld->r = (json_reader){name, "", 0, NULL, err, GLINT_ERR_INPUT, false};
+    ld->scene = scene;
+    ld->base = name;
+    ld->fallback_material = -1;
+    ld->mesh_threads = threads;
+}
+
+void sf_loader_release(sf_loader *ld) {
+    sf_names_free(&ld->materials);
+    sf_names_free(&ld->textures);
+    sf_names_free(&ld->api_meshes);
+    free(ld->meshes);
+    free(ld->images);
 }
 
 glint_status scene_file_parse(const char *name, const char *text, size_t length, int threads, glint_scene **out,
@@ -447,10 +478,10 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
         trace_add(lane, &(trace_event){"JSON parse", "load", began, trace_clock(), 1,
                                        {{"bytes", (int64_t)length, NULL}}});
     sf_loader ld;
-    memset(&ld, 0, sizeof ld);
-    ld.r = (json_reader){name, text, length, &ix, err, GLINT_ERR_INPUT};
-    ld.fallback_material = -1;
-    ld.mesh_threads = threads;
+    sf_loader_init(&ld, NULL, name, threads, err);
+    ld.r.text = text;
+    ld.r.len = length;
+    ld.r.ix = &ix;
     bool ok = false;
     jr_val top;
     if (!root) {
@@ -467,10 +498,7 @@ glint_status scene_file_parse(const char *name, const char *text, size_t length,
     } else {
         ok = read_scene(&ld, top);
     }
-    names_free(&ld.materials);
-    names_free(&ld.textures);
-    free(ld.meshes);
-    free(ld.images);
+    sf_loader_release(&ld);
     cJSON_Delete(root);
     json_index_free(&ix);
     if (!ok) {

@@ -60,8 +60,10 @@ bool sf_fail_undefined(sf_loader *ld, jr_val v, const sf_names *map, const char 
         listed++;
     }
     const char *what = jr_describe(&ld->r, v, got, sizeof got);
+    const char *plural = kind[strlen(kind) - 1] == 'h' ? "es" : "s"; // meshes
     if (map->count == 0)
-        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (no named %ss are defined)", kind, what, kind);
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (no named %s%s are defined)", kind,
+                          what, kind, plural);
     if (listed < map->count)
         return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok), "%s %s is not defined (defined: %s and %zu more)", kind, what, names,
                           map->count - listed);
@@ -74,7 +76,7 @@ bool sf_fail_undefined(sf_loader *ld, jr_val v, const sf_names *map, const char 
 /// `file` as a path usable from the current directory: absolute paths as they are, others joined to the
 /// scene file's directory. NULL when out of memory.
 static char *resolve_path(const sf_loader *ld, const char *file) {
-    return filepath_join(ld->r.name, filepath_dir_length(ld->r.name), file, strlen(file));
+    return filepath_join(ld->base, filepath_dir_length(ld->base), file, strlen(file));
 }
 
 // " (resolved/path)" when the path opened differs from the one written, else "".

@@ -29,9 +29,9 @@ enum {
 };
 
 
-/// A name defined in "materials" or "textures".
+/// A name defined in "materials" or "textures" (or by a call of the scene API).
 typedef struct sf_name {
-    const char *name; ///< owned by the cJSON tree, alive while the scene is read
+    char *name;       ///< owned: a scene built call by call outlives each call's value
     uint32_t index;   ///< the scene material or texture
     uint32_t tok;     ///< where it is defined
 } sf_name;
@@ -81,12 +81,15 @@ typedef enum sf_object_kind {
 typedef struct sf_loader {
     json_reader r; ///< the document, positions and the message of a failure
     glint_scene *scene;
+    bool linear_images; ///< inline image textures default to "encoding": "linear" (data maps: normals, metallic...)
     sf_names materials;
     sf_names textures;
     sf_mesh_entry *meshes;
     size_t mesh_count, mesh_cap;
     sf_image_entry *images;
     size_t image_count, image_cap;
+    const char *base;        ///< the path relative file names resolve against: the scene file's (its name)
+    sf_names api_meshes;     ///< meshes a program added by name (glint_scene_add_mesh); none in a file
     long fallback_material;  ///< the grey Lambertian of faces without a material, once created; else -1
     int mesh_threads;        ///< threads that read a large mesh file (0: all online CPUs)
     size_t warnings_dropped; ///< warnings past SF_MAX_WARNINGS
@@ -105,6 +108,27 @@ void sf_add_warning(sf_loader *ld, const char *message);
 JR_PRINTF(3, 4) void sf_warn_at(sf_loader *ld, size_t offset, const char *fmt, ...);
 /// The entry of a defined name, or NULL.
 const sf_name *sf_names_find(const sf_names *t, const char *name);
+/// Adds a name (copied) for `index`, defined at token tok; false when out of memory.
+bool sf_names_add(sf_names *t, const char *name, uint32_t index, uint32_t tok);
+/// Frees the table.
+void sf_names_free(sf_names *t);
+/// Checks `name` as a new name for `map` (1 to SCENE_MAX_NAME bytes, no control characters, unused), blaming the
+/// byte at `offset` ("material name ... must be ..."); `shown` is the name as the file spells it, quoted.
+bool sf_check_new_name(sf_loader *ld, const sf_names *map, size_t offset, const char *name, const char *shown,
+                       const char *kind);
+/// A loader for `scene` (name: messages and, as `base`, relative paths), its reader over nothing yet.
+void sf_loader_init(sf_loader *ld, glint_scene *scene, const char *name, int threads, glint_error *err);
+/// Frees what the loader holds but the scene.
+void sf_loader_release(sf_loader *ld);
+/// Without an "output" in the render settings, the integrator's encoding: linear in paper mode, else sRGB.
+void sf_default_output(sf_loader *ld);
+/// The scene's end: the default output encoding and the warnings about what will not be seen. False (message
+/// written) when memory ran out.
+bool sf_finish(sf_loader *ld);
+/// Reads the "render" object into the scene's settings (the keys it has; the others keep their values).
+bool sf_read_render(sf_loader *ld, jr_val v);
+/// Reads the "camera" object.
+bool sf_read_camera(sf_loader *ld, jr_val v);
 /// "material "blu" is not defined (defined: red, green)", pointing at v; false.
 bool sf_fail_undefined(sf_loader *ld, jr_val v, const sf_names *map, const char *kind);
 /// " (resolved/path)" when the path opened differs from the one written, else "".
@@ -130,6 +154,8 @@ void sf_warn_unseen(sf_loader *ld);
 /// blamed for failures, and `prefix` (may be "") opens their message.
 bool sf_load_image(sf_loader *ld, size_t where, const char *prefix, const char *written, const char *path,
                    sf_file_id id, image_decode decode, texture_filter filter, uint32_t *index);
+/// The image texture keys' values, in order ("srgb", "linear"; "bilinear", "nearest").
+extern const char *const sf_image_encodings[2], *const sf_image_filters[2];
 /// Reads a texture object and adds it to the scene (named, or anonymous when name is NULL).
 bool sf_read_texture(sf_loader *ld, jr_val v, const char *what, const char *name, uint32_t *index);
 /// Reads a material object and adds it to the scene (named, or anonymous when name is NULL).
@@ -157,8 +183,11 @@ bool sf_read_light(sf_loader *ld, jr_val v, size_t i);
 
 // scene_file_mesh.c: OBJ meshes placed by the scene
 
-/// A "mesh" object: its OBJ file loaded once (materials mapped to scene materials), placed as an instance.
+/// A "mesh" object: its OBJ file loaded once (materials mapped to scene materials), or a mesh a program added
+/// ("mesh": its name), placed as an instance.
 bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what);
+/// The grey Lambertian of faces without a material, created on first use; false when out of memory.
+bool sf_fallback_material(sf_loader *ld, uint32_t *index);
 /// The glint material of an MTL material's values (the policy: docs/scene-format.md, "Meshes").
 material sf_mtl_material(const mtl_values *v);
 

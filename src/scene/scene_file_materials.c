@@ -177,15 +177,16 @@ static bool read_noise(sf_loader *ld, const jr_obj *o, int variant, const char *
     return add_texture(ld, o, &t, name, index);
 }
 
+const char *const sf_image_encodings[2] = {"srgb", "linear"}, *const sf_image_filters[2] = {"bilinear", "nearest"};
+
 static bool read_image(sf_loader *ld, const jr_obj *o, int variant, const char *name, uint32_t *index) {
     (void)variant;
     char *path;
     sf_file_id id;
     jr_val where;
-    static const char *const encodings[] = {"srgb", "linear"}, *const filters[] = {"bilinear", "nearest"};
-    int encoding = 0, filter = 0;
-    if (!jr_read_enum(&ld->r, o, "encoding", encodings, 2, &encoding) ||
-        !jr_read_enum(&ld->r, o, "filter", filters, 2, &filter))
+    int encoding = ld->linear_images ? 1 : 0, filter = 0;
+    if (!jr_read_enum(&ld->r, o, "encoding", sf_image_encodings, 2, &encoding) ||
+        !jr_read_enum(&ld->r, o, "filter", sf_image_filters, 2, &filter))
         return false;
     if (!sf_read_file_path(ld, o, "file", "image", &path, &id, &where)) return false;
     size_t before = ld->scene->texture_count;
@@ -281,6 +282,10 @@ static const char *const metal_keys[] = {"type", "albedo", "fuzz", NULL};
 static const char *const dielectric_keys[] = {"type", "ior", "tint", NULL};
 static const char *const phong_keys[] = {"type", "color", "specular", "reflective", "specular_color", NULL};
 static const char *const diffuse_light_keys[] = {"type", "emission", "two_sided", NULL};
+static const char *const conductor_keys[] = {"type", "roughness", "anisotropy", "eta", "k", "metal", "f0", NULL};
+static const char *const rough_dielectric_keys[] = {"type", "ior", "roughness", "tint", NULL};
+static const char *const pbr_keys[] = {"type",         "base_color", "metallic",          "roughness", "ior",
+                                       "transmission", "emission",   "emission_strength", "normal_map", NULL};
 
 // Every colour parameter but Phong's specular_color may be a texture (read_material_color).
 static bool read_lambertian(sf_loader *ld, const jr_obj *o, material *m) {
@@ -315,6 +320,119 @@ static bool read_diffuse_light(sf_loader *ld, const jr_obj *o, material *m) {
            jr_read_bool(&ld->r, o, "two_sided", &m->two_sided);
 }
 
+// A texture given by name or inline for `key` of o (v): its scene index.
+static bool read_texture_ref(sf_loader *ld, const jr_obj *o, const char *key, jr_val v, uint32_t *index) {
+    if (cJSON_IsString(v.item)) {
+        const sf_name *s = sf_names_find(&ld->textures, v.item->valuestring);
+        if (!s) return sf_fail_undefined(ld, v, &ld->textures, "texture");
+        *index = s->index;
+        return true;
+    }
+    char what[96 + SCENE_MAX_NAME];
+    snprintf(what, sizeof what, "the texture \"%s\" of %s", key, o->what);
+    // Every texture given this way holds data, not colour (metallic, roughness, transmission, normals): linear.
+    ld->linear_images = true;
+    bool ok = sf_read_texture(ld, v, what, NULL, index);
+    ld->linear_images = false;
+    return ok;
+}
+
+/// A scalar material parameter in [0, 1]: a number (into *value), or a texture by name or inline whose `channel`
+/// (0 red, 1 green, 2 blue) gives it at each point (into *tex; *value becomes 1, the factor it multiplies).
+static bool read_material_scalar(sf_loader *ld, const jr_obj *o, const char *key, const char *channel, float *value,
+                                 int32_t *tex) {
+    const jr_member *m = jr_get(o, key);
+    if (!m) return true;
+    jr_val v = m->val;
+    if (cJSON_IsNumber(v.item)) return jr_read_float(&ld->r, o, key, false, &JR_UNIT, value);
+    char got[96];
+    if (!cJSON_IsString(v.item) && !cJSON_IsObject(v.item))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"%s\" must be a number in [0, 1], a texture name or a texture object (its %s channel), got %s",
+                          key, channel, jr_describe(&ld->r, v, got, sizeof got));
+    uint32_t index;
+    if (!read_texture_ref(ld, o, key, v, &index)) return false;
+    float peak = texture_peak(&ld->scene->textures[index]);
+    if (peak > 1.0f)
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"%s\" must stay in [0, 1], but this texture has colour components up to %g", key,
+                          (double)peak);
+    *value = 1.0f;
+    *tex = (int32_t)index;
+    return true;
+}
+
+// A conductor's Fresnel reflectance comes from one of: "metal" (a preset), "eta" with "k", or "f0"; by default
+// the "Al" preset (material_default).
+static bool read_conductor(sf_loader *ld, const jr_obj *o, material *m) {
+    if (!jr_read_float(&ld->r, o, "roughness", false, &JR_UNIT, &m->roughness)) return false;
+    static const jr_numspec below_one = {0.0, 1.0, JR_FLOAT | JR_HI_OPEN, "a number in [0, 1)"};
+    if (!jr_read_float(&ld->r, o, "anisotropy", false, &below_one, &m->anisotropy)) return false;
+    const jr_member *metal = jr_get(o, "metal"), *eta = jr_get(o, "eta"), *k = jr_get(o, "k"), *f0 = jr_get(o, "f0");
+    int ways = (metal != NULL) + (eta || k) + (f0 != NULL);
+    if (ways > 1)
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, o->self.tok),
+                          "a conductor takes one of \"metal\", \"eta\" with \"k\", or \"f0\", not several");
+    if (metal) {
+        char got[96], names[160] = "";
+        if (cJSON_IsString(metal->val.item) && material_conductor_preset(metal->val.item->valuestring, &m->eta, &m->k))
+            return true;
+        for (size_t i = 0; material_conductor_preset_name(i); i++) {
+            size_t n = strlen(names);
+            snprintf(names + n, sizeof names - n, "%s\"%s\"", i ? ", " : "", material_conductor_preset_name(i));
+        }
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, metal->val.tok), "\"metal\" must be one of %s, got %s", names,
+                          jr_describe(&ld->r, metal->val, got, sizeof got));
+    }
+    if (eta || k) {
+        if (!eta || !k)
+            return jr_fail_at(&ld->r, jr_offset(&ld->r, (eta ? eta : k)->val.tok),
+                              "a conductor's \"eta\" and \"k\" come together: \"%s\" is missing", eta ? "k" : "eta");
+        return jr_read_color(&ld->r, o, "eta", false, &JR_POSITIVE, &m->eta) &&
+               jr_read_color(&ld->r, o, "k", false, &JR_NONNEG, &m->k);
+    }
+    if (f0) {
+        m->fresnel = FRESNEL_SCHLICK_F0;
+        return jr_read_color(&ld->r, o, "f0", false, &JR_UNIT, &m->f0);
+    }
+    return true;
+}
+
+static bool read_rough_dielectric(sf_loader *ld, const jr_obj *o, material *m) {
+    return jr_read_float(&ld->r, o, "ior", false, &JR_POSITIVE, &m->ior) &&
+           jr_read_float(&ld->r, o, "roughness", false, &JR_UNIT, &m->roughness) &&
+           read_material_color(ld, o, "tint", &JR_UNIT, &m->albedo, &m->albedo_texture);
+}
+
+// glTF 2.0's metallic-roughness material: the textures' channels are glTF's (metallic B, roughness G, transmission R).
+static bool read_pbr(sf_loader *ld, const jr_obj *o, material *m) {
+    float strength = 1.0f;
+    if (!read_material_color(ld, o, "base_color", &JR_UNIT, &m->albedo, &m->albedo_texture) ||
+        !read_material_scalar(ld, o, "metallic", "blue", &m->metallic, &m->metallic_texture) ||
+        !read_material_scalar(ld, o, "roughness", "green", &m->roughness, &m->roughness_texture) ||
+        !jr_read_float(&ld->r, o, "ior", false, &JR_POSITIVE, &m->ior) ||
+        !read_material_scalar(ld, o, "transmission", "red", &m->transmission, &m->transmission_texture) ||
+        !read_material_color(ld, o, "emission", &JR_NONNEG, &m->emission, &m->emission_texture) ||
+        !jr_read_float(&ld->r, o, "emission_strength", false, &JR_NONNEG, &strength))
+        return false;
+    // A texture as "emission" scales the emission 1, as diffuse_light's; the strength scales both (glTF's
+    // KHR_materials_emissive_strength).
+    if (m->emission_texture >= 0 && v3_max_comp(m->emission) <= 0.0f) m->emission = v3s(1.0f);
+    m->emission = v3_scale(m->emission, strength);
+    const jr_member *nm = jr_get(o, "normal_map");
+    if (nm) {
+        char got[96];
+        if (!cJSON_IsString(nm->val.item) && !cJSON_IsObject(nm->val.item))
+            return jr_fail_at(&ld->r, jr_offset(&ld->r, nm->val.tok),
+                              "\"normal_map\" must be a texture name or a texture object, got %s",
+                              jr_describe(&ld->r, nm->val, got, sizeof got));
+        uint32_t index;
+        if (!read_texture_ref(ld, o, "normal_map", nm->val, &index)) return false;
+        m->normal_texture = (int32_t)index;
+    }
+    return true;
+}
+
 typedef bool (*material_reader)(sf_loader *ld, const jr_obj *o, material *m);
 
 static const struct material_type {
@@ -328,6 +446,9 @@ static const struct material_type {
     {"dielectric", MAT_DIELECTRIC, dielectric_keys, read_dielectric},
     {"phong", MAT_PHONG, phong_keys, read_phong},
     {"diffuse_light", MAT_DIFFUSE_LIGHT, diffuse_light_keys, read_diffuse_light},
+    {"conductor", MAT_CONDUCTOR, conductor_keys, read_conductor},
+    {"rough_dielectric", MAT_ROUGH_DIELECTRIC, rough_dielectric_keys, read_rough_dielectric},
+    {"pbr", MAT_PBR, pbr_keys, read_pbr},
 };
 #define MATERIAL_TYPES (sizeof material_types / sizeof material_types[0])
 

@@ -91,7 +91,7 @@ static bool has_obj_extension(const char *path) {
 }
 
 // The shared grey Lambertian of faces that have no material of their own.
-static bool fallback_material(sf_loader *ld, uint32_t *index) {
+bool sf_fallback_material(sf_loader *ld, uint32_t *index) {
     if (ld->fallback_material < 0) {
         material m = material_default(MAT_LAMBERTIAN);
         if ((ld->fallback_material = scene_add_material(ld->scene, &m, NULL)) < 0) return sf_fail_oom(ld);
@@ -115,7 +115,7 @@ static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model
         const obj_material *om = &model->materials[i];
         if (!om->defined) {
             *needs_fallback = true;
-            if (!fallback_material(ld, &sm->slot_material[i])) return false;
+            if (!sf_fallback_material(ld, &sm->slot_material[i])) return false;
             continue;
         }
         material m = sf_mtl_material(&om->mtl);
@@ -148,7 +148,7 @@ static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model
         if (k < 0) return sf_fail_oom(ld);
         sm->slot_material[i] = (uint32_t)k;
     }
-    if (*needs_fallback || sm->slot_count == 0) return fallback_material(ld, &sm->default_material);
+    if (*needs_fallback || sm->slot_count == 0) return sf_fallback_material(ld, &sm->default_material);
     sm->default_material = sm->slot_material[0];
     return true;
 }
@@ -214,9 +214,49 @@ static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id i
     return true;
 }
 
+// Places scene mesh `index` with the object's transform (and transform2) and, when it gives one (`override`), its
+// material `mat`; `where` names what is blamed for a mesh out of bounds ("file" or "mesh").
+static bool place_mesh(sf_loader *ld, const jr_obj *o, uint32_t index, bool override, uint32_t mat,
+                       const transform *xf, bool moved, const char *where) {
+    bounds3 ob = ld->scene->meshes[index].geometry.bounds;
+    if (!bounds3_is_empty(ob) &&
+        !sf_check_extent(ld, jr_member_offset(&ld->r, o, moved ? "transform" : where),
+                         moved ? "the transformed mesh" : "the mesh", mat4_apply_bounds(&xf->m, ob)))
+        return false;
+    uint32_t motion_ref;
+    if (!sf_read_motion(ld, o, xf, ob, "mesh", &motion_ref)) return false;
+    instance in = {.kind = INSTANCE_MESH, .index = index, .xf = *xf, .material = override ? (int32_t)mat : -1,
+                   .motion = motion_ref};
+    return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
+}
+
+// A mesh a program added by name (glint_scene_add_mesh), placed like a file's.
+static bool read_named_mesh(sf_loader *ld, const jr_obj *o, const char *what, const jr_member *named) {
+    char got[96];
+    if (jr_get(o, "file"))
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "file"),
+                          "%s has both \"file\" and \"mesh\"; give one: a mesh file, or a mesh added by name", what);
+    if (jr_get(o, "face_normals"))
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "face_normals"),
+                          "\"face_normals\" belongs to a mesh file; a mesh added by name is flat when it was added so");
+    if (!cJSON_IsString(named->val.item))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, named->val.tok),
+                          "\"mesh\" must be the name of a mesh added with glint_scene_add_mesh, got %s",
+                          jr_describe(&ld->r, named->val, got, sizeof got));
+    const sf_name *n = sf_names_find(&ld->api_meshes, named->val.item->valuestring);
+    if (!n) return sf_fail_undefined(ld, named->val, &ld->api_meshes, "mesh");
+    transform xf;
+    bool moved, override = jr_get(o, "material") != NULL;
+    uint32_t mat = 0;
+    if ((override && !sf_read_material_ref(ld, o, what, &mat)) || !sf_read_transform(ld, o, &xf, &moved)) return false;
+    return place_mesh(ld, o, n->index, override, mat, &xf, moved, "mesh");
+}
+
 // A mesh from a file, placed with its own transform; every mesh object is an instance of its file's mesh,
 // which is loaded once however often it is placed.
 bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
+    const jr_member *named = jr_get(o, "mesh");
+    if (named) return read_named_mesh(ld, o, what, named);
     char *path;
     sf_file_id id;
     jr_val file;
@@ -256,14 +296,5 @@ bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
                    "are grey Lambertian unless the object gives a \"material\"",
                    jr_describe_path(&ld->r, file, got, sizeof got));
     }
-    bounds3 ob = ld->scene->meshes[entry->mesh].geometry.bounds;
-    if (!bounds3_is_empty(ob) &&
-        !sf_check_extent(ld, jr_member_offset(&ld->r, o, moved ? "transform" : "file"),
-                         moved ? "the transformed mesh" : "the mesh", mat4_apply_bounds(&xf.m, ob)))
-        return false;
-    uint32_t motion_ref;
-    if (!sf_read_motion(ld, o, &xf, ob, "mesh", &motion_ref)) return false;
-    instance in = {.kind = INSTANCE_MESH, .index = entry->mesh, .xf = xf, .material = override ? (int32_t)mat : -1,
-                   .motion = motion_ref};
-    return scene_add_instance(ld->scene, in) || sf_fail_oom(ld);
+    return place_mesh(ld, o, entry->mesh, override, mat, &xf, moved, "file");
 }

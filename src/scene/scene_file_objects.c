@@ -160,7 +160,7 @@ static const char *const sphere_keys[] = {"type",      "center",     "center2", 
                                           "material",  "transform",  "transform2", "importance", NULL};
 static const char *const quad_keys[] = {"type", "q", "u", "v", "material", "transform", "transform2", NULL};
 static const char *const box_keys[] = {"type", "min", "max", "material", "transform", "transform2", NULL};
-static const char *const mesh_keys[] = {"type", "file", "material", "transform", "transform2", "face_normals", NULL};
+static const char *const mesh_keys[] = {"type", "file", "mesh", "material", "transform", "transform2", "face_normals", NULL};
 static const char *const constant_medium_keys[] = {"type", "boundary", "density", "albedo", "g", NULL};
 static const char *const homogeneous_medium_keys[] = {"type", "boundary", "sigma_a", "sigma_s", "g", NULL};
 

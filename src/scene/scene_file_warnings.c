@@ -8,6 +8,7 @@
 static bool emits(const glint_scene *s, int64_t m) {
     if (m < 0 || (size_t)m >= s->material_count) return false;
     const material *mt = &s->materials[m];
+    if (mt->kind == MAT_PBR) return v3_max_comp(mt->emission) > 0.0f;
     return mt->kind == MAT_DIFFUSE_LIGHT && (mt->emission_texture >= 0 || v3_max_comp(mt->emission) > 0.0f);
 }
 
@@ -92,7 +93,7 @@ static void warn_paper_mode(sf_loader *ld) {
     warn_paper(ld, placed, sees, "instanced sphere",
                "ignored (a transform that is not a similarity, or a transform with a textured material, makes a "
                "sphere an instance; neither seen nor casting shadows)");
-    size_t textured = 0, kinds[MAT_DIFFUSE_LIGHT + 1] = {0};
+    size_t textured = 0, kinds[MAT_KIND_COUNT] = {0};
     for (size_t i = 0; i < s->sphere_count; i++) {
         const material *m = &s->materials[s->spheres[i].material];
         textured += m->albedo_texture >= 0 || m->emission_texture >= 0;
@@ -104,6 +105,9 @@ static void warn_paper_mode(sf_loader *ld) {
                "made of dielectric (no refraction or reflection)");
     warn_paper(ld, kinds[MAT_DIFFUSE_LIGHT], "shades diffuse_light as a matte colour", "sphere",
                "made of diffuse_light (no emission)");
+    warn_paper(ld, kinds[MAT_CONDUCTOR] + kinds[MAT_ROUGH_DIELECTRIC] + kinds[MAT_PBR],
+               "shades the microfacet materials as a matte colour", "sphere",
+               "made of conductor, rough_dielectric or pbr (no reflection or refraction)");
     size_t tinted = 0;
     for (size_t i = 0; i < s->sphere_count; i++) tinted += s->materials[s->spheres[i].material].has_specular_color;
     warn_paper(ld, tinted, "makes highlights white", "sphere", "given a specular_color (it is not used)");

@@ -1,6 +1,6 @@
 # gallery.sh — the README's gallery is what tools/gallery.sh makes: every committed PNG of docs/gallery/ equals,
 # byte for byte, the render of its scene at the size and sample count the script gives (skipped under the
-# sanitizers, where the fifteen renders take many minutes).
+# sanitizers, where the seventeen renders take many minutes).
 source "$2/tests/cli/common.bash"
 
 if grep -qa __asan_init "$GLINT"; then
@@ -15,5 +15,5 @@ for png in "$TMP"/gallery/*.png; do
     check "docs/gallery/$name is what tools/gallery.sh makes" cmp -s "$png" "$SRC/docs/gallery/$name"
     count=$((count + 1))
 done
-check "the script made all 15 pictures (made $count)" test "$count" -eq 15
+check "the script made all 17 pictures (made $count)" test "$count" -eq 17
 summary

@@ -67,10 +67,10 @@ expect 2 "glint: $TMP/other.png: a region of a 41x30 image, but ${parts[0]} is o
     merge "$TMP/bad.png" "${parts[@]}" "$TMP/other.png"
 expect 2 "glint: $TMP/full.png: no glint:region chunk, expected a PNG written by glint with --region" \
     merge "$TMP/bad.png" "$TMP/full.png"
-expect 2 "glint: $TMP/part.ppm: not a PNG file, expected a PNG written by glint with --region" \
+expect 2 "glint: $TMP/part.ppm: a PPM, which has no room for where a region lies, expected a PNG, OpenEXR or PFM file written by glint with --region" \
     merge "$TMP/bad.png" "$TMP/part.ppm"
 expect 2 "glint: $TMP/none.png: cannot read: No such file or directory" merge "$TMP/bad.png" "$TMP/none.png"
-expect 2 "glint: $TMP/bad.pfm: merge writes the parts' 8-bit values, expected .png or .ppm" \
+expect 2 "glint: $TMP/bad.pfm: ${parts[0]} is an 8-bit PNG part: its bytes are display-encoded, not linear light, so 8-bit parts merge to .png or .ppm alone (render .exr or .pfm parts for a float merge)" \
     merge "$TMP/bad.pfm" "${parts[@]}"
 check "no image is written after an error" test ! -e "$TMP/bad.png" -a ! -e "$TMP/bad.pfm"
 expect 2 "glint: merge: expected OUT and at least one PART: glint merge OUT PART...
