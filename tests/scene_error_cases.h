@@ -147,9 +147,9 @@ static const bad_scene cases[] = {
      "bad.json:1:59: \"zenith\"[1] must be a finite number >= 0, got -0.7"},
     // --- camera ---
     {__LINE__, TEXT("{\"camera\": {\"type\": \"pinhole\"}}"),
-     "bad.json:1:21: \"type\" must be \"viewport\" or \"lookat\", got \"pinhole\""},
+     "bad.json:1:21: \"type\" must be \"viewport\", \"lookat\" or \"import\", got \"pinhole\""},
     {__LINE__, TEXT("{\"camera\": {\"lookfrom\": [0, 0, 1]}}"),
-     "bad.json:1:12: missing required key \"type\" in camera; expected one of \"viewport\" or \"lookat\""},
+     "bad.json:1:12: missing required key \"type\" in camera; expected one of \"viewport\", \"lookat\" or \"import\""},
     {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"lookfrom\": [1, 2, 3], \"lookat\": [1, 2, 3]}}"),
      "bad.json:1:64: \"lookfrom\" and \"lookat\" must be different points"},
     {__LINE__, TEXT("{\"camera\": {\"type\": \"lookat\", \"lookfrom\": [0, 5, 0], \"lookat\": [0, 0, 0]}}"),
@@ -230,13 +230,13 @@ static const bad_scene cases[] = {
      "bad.json:1:59: \"emission\" must be a finite number >= 0 or an array of 3 such numbers [r, g, b], got 1e999"},
     // --- objects ---
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"cube\", \"size\": 1}]}"),
-     "bad.json:1:23: \"type\" must be \"sphere\", \"quad\", \"box\", \"mesh\", \"constant_medium\" or "
-     "\"homogeneous_medium\", got \"cube\""},
+     "bad.json:1:23: \"type\" must be \"sphere\", \"quad\", \"box\", \"mesh\", \"constant_medium\", "
+     "\"homogeneous_medium\" or \"import\", got \"cube\""},
     {__LINE__, TEXT("{\"objects\": [\n  {\"type\": \"sphere\", \"radius\": 1, \"material\": \"m\"}\n]}"),
      "bad.json:2:3: missing required key \"center\" in object 0 (sphere)"},
     {__LINE__, TEXT("{\"objects\": [{\"center\": [0, 0, 0]}]}"),
      "bad.json:1:14: missing required key \"type\" in object 0; expected one of \"sphere\", \"quad\", \"box\", "
-     "\"mesh\", \"constant_medium\" or \"homogeneous_medium\""},
+     "\"mesh\", \"constant_medium\", \"homogeneous_medium\" or \"import\""},
     {__LINE__, TEXT("{\"objects\": [{\"type\": \"sphere\", \"center\": [0, 0, 0], \"radius\": 0, "
                     "\"material\": {\"type\": \"phong\"}}]}"),
      "bad.json:1:64: \"radius\" must be a finite non-zero number, got 0"},
@@ -497,8 +497,13 @@ static const bad_scene cases[] = {
      "bad.json:3:16: the transformed boundary reaches 2e+09 on the x axis; glint renders within [-1e9, 1e9] on "
      "every axis (beyond, squared distances overflow single precision and samples would be NaN)"},
     // --- lights ---
+    {__LINE__, TEXT("{\"lights\": [{\"type\": \"area\", \"intensity\": 1}]}"),
+     "bad.json:1:22: \"type\" must be \"ambient\", \"point\", \"directional\" or \"spot\", got \"area\""},
     {__LINE__, TEXT("{\"lights\": [{\"type\": \"spot\", \"intensity\": 1}]}"),
-     "bad.json:1:22: \"type\" must be \"ambient\", \"point\" or \"directional\", got \"spot\""},
+     "bad.json:1:13: missing required key \"position\" in light 0 (spot)"},
+    {__LINE__, TEXT("{\"lights\": [{\"type\": \"spot\", \"intensity\": 1, \"position\": [0, 0, 0], \"direction\": [0, -1, 0], "
+                    "\"inner_angle\": 30, \"outer_angle\": 20}]}"),
+     "bad.json:1:109: \"inner_angle\" (30) must be less than \"outer_angle\" (20)"},
     {__LINE__, TEXT("{\"lights\": [{\"type\": \"point\", \"position\": [2, 1, 0]}]}"),
      "bad.json:1:13: missing required key \"intensity\" in light 0 (point)"},
     {__LINE__, TEXT("{\"lights\": [{\"type\": \"ambient\", \"intensity\": -0.2}]}"),

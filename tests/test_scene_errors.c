@@ -147,14 +147,14 @@ static void test_referenced_files(void) {
     check_parse(__LINE__, "bad.json", "{\"objects\": [{\"type\": \"mesh\", \"file\": \"/dev/null\"}]}",
                 "bad.json:1:39: mesh file \"/dev/null\": cannot open: not a regular file");
 
-    const char *ply = "test_scene_errors.tmp.ply", *obj = "test_scene_errors.tmp.obj",
+    const char *ply = "test_scene_errors.tmp.3ds", *obj = "test_scene_errors.tmp.obj",
                *png = "test_scene_errors.tmp.png", *mtl = "test_scene_errors.tmp.mtl",
                *obj2 = "test_scene_errors.tmp2.obj";
-    if (write_file(ply, "ply\n"))
+    if (write_file(ply, "3ds\n"))
         check_parse(__LINE__, "bad.json",
-                    "{\"objects\": [{\"type\": \"mesh\", \"file\": \"test_scene_errors.tmp.ply\"}]}",
-                    "bad.json:1:39: mesh file \"test_scene_errors.tmp.ply\": unsupported format; expected a Wavefront "
-                    "OBJ file (.obj)");
+                    "{\"objects\": [{\"type\": \"mesh\", \"file\": \"test_scene_errors.tmp.3ds\"}]}",
+                    "bad.json:1:39: mesh file \"test_scene_errors.tmp.3ds\": unsupported format; expected Wavefront "
+                    "OBJ (.obj), glTF 2.0 (.gltf, .glb) or PLY (.ply)");
     // The OBJ reader's own message follows, with its file and line.
     if (write_file(obj, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"))
         check_prefix(__LINE__, "bad.json",

@@ -227,7 +227,8 @@ static vec3 sample_environment(const integrator *it, const envmap_sampler *es, c
 // Direct light from the scene's point and directional lights at a diffuse surface point (BRDF weight / pi
 // times irradiance) or a point in a medium (weight times phase function times irradiance), unoccluded and
 // through the media's transmittance. Point lights fall off with the inverse square of the distance; a
-// directional light's intensity is the irradiance it gives a surface facing it. Ambient lights have no
+// directional light's intensity is the irradiance it gives a surface facing it; a spot light is a point light
+// times its cone's falloff (light_spot_falloff). Ambient lights have no
 // place in a path tracer (the background is the ambient light) and are ignored.
 static vec3 direct_light(const integrator *it, const spawn_point *sp, const nee_vertex *vx, vec3 weight,
                          thread_stats *ts) {
@@ -237,13 +238,14 @@ static vec3 direct_light(const integrator *it, const spawn_point *sp, const nee_
         const light *l = &s->lights[i];
         vec3 wl;
         float dist, falloff;
-        if (l->kind == LIGHT_POINT) {
+        if (l->kind == LIGHT_POINT || l->kind == LIGHT_SPOT) {
             vec3 to = v3_sub(l->position, sp->p);
             float d2 = v3_len2(to);
             if (!(d2 > 0.0f)) continue;
             dist = sqrtf(d2);
             wl = v3_scale(to, 1.0f / dist);
             falloff = 1.0f / d2;
+            if (l->kind == LIGHT_SPOT && !((falloff *= light_spot_falloff(l, wl)) > 0.0f)) continue;
         } else if (l->kind == LIGHT_DIRECTIONAL) {
             if (!(v3_len2(l->direction) > 0.0f)) continue;
             wl = v3_unit(l->direction);

@@ -127,9 +127,15 @@ static dvec paper_lighting(const glint_scene *s, dvec normal, dvec p, dvec o, in
         } else {
             dvec l;
             double tmax;
-            if (li->kind == LIGHT_POINT) {
+            if (li->kind == LIGHT_POINT || li->kind == LIGHT_SPOT) {
                 l = dv_sub(paper_vec(li->position), p);
                 tmax = 1.0; // the light itself is at t = 1
+                if (li->kind == LIGHT_SPOT) {
+                    // Its cone scales it as it would a point light of the same intensity.
+                    double len = dv_norm(l);
+                    float share = len > 0.0 ? light_spot_falloff(li, v3((float)(l.x / len), (float)(l.y / len), (float)(l.z / len))) : 0.0f;
+                    i = dv_scale((double)share, i);
+                }
             } else {
                 l = paper_vec(li->direction);
                 tmax = INFINITY;
@@ -404,7 +410,16 @@ static vec3 color_local(const integrator *it, const material *m, vec3 albedo, co
             ambient = v3_add(ambient, li->intensity);
             continue;
         }
-        vec3 l = li->kind == LIGHT_POINT ? v3_sub(li->position, sf->p) : li->direction;
+        const bool placed = li->kind == LIGHT_POINT || li->kind == LIGHT_SPOT;
+        vec3 l = placed ? v3_sub(li->position, sf->p) : li->direction;
+        vec3 intensity = li->intensity;
+        if (li->kind == LIGHT_SPOT) {
+            float len = v3_len(l);
+            if (!(len > 0.0f)) continue;
+            float share = light_spot_falloff(li, v3_scale(l, 1.0f / len));
+            if (!(share > 0.0f)) continue;
+            intensity = v3_scale(intensity, share);
+        }
         float nl = v3_dot(n, l);
         float kd = nl > 0.0f ? nl / v3_len(l) : 0.0f;
         float ks = 0.0f;
@@ -415,12 +430,12 @@ static vec3 color_local(const integrator *it, const material *m, vec3 albedo, co
         }
         if (!(kd > 0.0f) && !(ks > 0.0f)) continue; // nothing to shadow
         spawned sh = spawn(co, l);
-        if (li->kind == LIGHT_POINT) sh.r.tmax = 1.0f; // the light itself is at t = 1
+        if (placed) sh.r.tmax = 1.0f; // the light itself is at t = 1
         ts->shadow_rays++;
         hit h;
         if (color_intersect(it, &sh, &h)) continue;
-        diffuse = v3_add(diffuse, v3_scale(li->intensity, kd));
-        specular = v3_add(specular, v3_scale(li->intensity, ks));
+        diffuse = v3_add(diffuse, v3_scale(intensity, kd));
+        specular = v3_add(specular, v3_scale(intensity, ks));
     }
     vec3 highlight = m->has_specular_color ? m->specular_color : albedo;
     return v3_add(v3_mul(albedo, v3_add(ambient, diffuse)), v3_mul(highlight, specular));

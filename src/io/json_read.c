@@ -75,7 +75,11 @@ static const char *describe_string(const json_reader *rd, size_t p, char *buf, s
 const char *jr_describe_path(const json_reader *rd, jr_val v, char *buf, size_t size) {
     if (!cJSON_IsString(v.item)) return jr_describe(rd, v, buf, size);
     size_t p = jr_offset(rd, v.tok), q = string_end(rd, p);
-    if (q - (p + 1) <= JR_PATH_SHOWN) return describe_string(rd, p, buf, size);
+    if (q - (p + 1) <= JR_PATH_SHOWN) {
+        // Whole, quotes included (describe_string would cut it after 40 bytes, losing the file name).
+        copy_source(rd, p, q < rd->len ? q + 1 : rd->len, JR_PATH_SHOWN + 2, "", buf, size);
+        return buf;
+    }
     // Keep the end, where the file name is: start after an escape's backslash or inside a UTF-8 sequence
     // never, so the excerpt stays valid text.
     size_t from = q - JR_PATH_SHOWN;

@@ -6,6 +6,7 @@ const char *light_kind_name(light_kind kind) {
     case LIGHT_AMBIENT: return "ambient";
     case LIGHT_POINT: return "point";
     case LIGHT_DIRECTIONAL: return "directional";
+    case LIGHT_SPOT: return "spot";
     }
     return "?";
 }

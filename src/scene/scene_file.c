@@ -119,6 +119,7 @@ static const char *const viewport_keys[] = {"type", "position", "viewport", "dis
 static const char *const lookat_keys[] = {"type",          "lookfrom",       "lookat",  "vup", "vfov",
                                           "defocus_angle", "focus_distance", "shutter", NULL};
 static const jr_numspec NUM_TIME = {0.0, 1.0, JR_FLOAT, "a time in [0, 1]"};
+static const char *const import_camera_keys[] = {"type", "file", "name", "transform", "shutter", NULL};
 
 // "shutter": [open, close], times in [0, 1] (the span over which objects' motions are defined), open <= close.
 static bool read_shutter(sf_loader *ld, const jr_obj *o, camera *c) {
@@ -142,6 +143,7 @@ static const struct camera_type {
 } camera_types[] = {
     {"viewport", CAMERA_VIEWPORT, viewport_keys},
     {"lookat", CAMERA_LOOKAT, lookat_keys},
+    {"import", CAMERA_LOOKAT, import_camera_keys}, // a glTF file's camera, as a look-at camera (scene_file_import.c)
 };
 
 // The camera's film for the widest and the tallest image allowed must lie within the extent (a huge focus
@@ -201,12 +203,13 @@ static bool read_viewport(sf_loader *ld, const jr_obj *o, camera *c) {
 
 bool sf_read_camera(sf_loader *ld, jr_val v) {
     size_t t;
-    if (!jr_open_typed(&ld->r, v, "camera", camera_types, 2, sizeof camera_types[0], &t)) return false;
+    if (!jr_open_typed(&ld->r, v, "camera", camera_types, 3, sizeof camera_types[0], &t)) return false;
     char typed[64];
     snprintf(typed, sizeof typed, "camera (%s)", camera_types[t].name);
     jr_obj o;
     if (!jr_open(&ld->r, v, typed, camera_types[t].keys, &o)) return false;
     camera *c = &ld->scene->camera;
+    if (t == 2) return sf_read_import_camera(ld, &o, c);
     *c = camera_default();
     c->kind = camera_types[t].kind;
     if (c->kind == CAMERA_VIEWPORT) {
@@ -442,6 +445,7 @@ void sf_loader_release(sf_loader *ld) {
     sf_names_free(&ld->textures);
     sf_names_free(&ld->api_meshes);
     free(ld->meshes);
+    free(ld->imports);
     free(ld->images);
 }
 

@@ -134,3 +134,13 @@ bool sf_check_extent(sf_loader *ld, size_t offset, const char *what, bounds3 b) 
     }
     return true;
 }
+
+// The shared grey Lambertian of faces that have no material of their own.
+bool sf_fallback_material(sf_loader *ld, uint32_t *index) {
+    if (ld->fallback_material < 0) {
+        material m = material_default(MAT_LAMBERTIAN);
+        if ((ld->fallback_material = scene_add_material(ld->scene, &m, NULL)) < 0) return sf_fail_oom(ld);
+    }
+    *index = (uint32_t)ld->fallback_material;
+    return true;
+}

@@ -11,6 +11,7 @@
 #include "core/strmap.h"
 #include "io/image_read.h"
 #include "io/json_read.h"
+#include "io/model_read.h"
 #include "io/mtl.h"
 #include "scene/scene.h"
 
@@ -58,6 +59,12 @@ typedef struct sf_mesh_entry {
     uint32_t mesh;
 } sf_mesh_entry;
 
+/// A model file already imported: placing it again adds instances of the same scene meshes.
+typedef struct sf_import_entry {
+    sf_file_id id;
+    uint32_t first_mesh; ///< the scene mesh of the model's mesh 0; the others follow in order
+} sf_import_entry;
+
 /// An image file already decoded into a texture.
 typedef struct sf_image_entry {
     sf_file_id id;
@@ -75,6 +82,7 @@ typedef enum sf_object_kind {
     SF_OBJECT_MESH,
     SF_OBJECT_CONSTANT_MEDIUM,
     SF_OBJECT_HOMOGENEOUS_MEDIUM,
+    SF_OBJECT_IMPORT,
     SF_OBJECT_KINDS
 } sf_object_kind;
 
@@ -88,6 +96,8 @@ typedef struct sf_loader {
     size_t mesh_count, mesh_cap;
     sf_image_entry *images;
     size_t image_count, image_cap;
+    sf_import_entry *imports; ///< model files imported ("import" objects), each loaded once
+    size_t import_count, import_cap;
     const char *base;        ///< the path relative file names resolve against: the scene file's (its name)
     sf_names api_meshes;     ///< meshes a program added by name (glint_scene_add_mesh); none in a file
     long fallback_material;  ///< the grey Lambertian of faces without a material, once created; else -1
@@ -143,6 +153,10 @@ bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const ch
 /// would make samples NaN); otherwise writes "<what> reaches <x> on the <axis> axis; ..." at `offset`.
 bool sf_check_extent(sf_loader *ld, size_t offset, const char *what, bounds3 b);
 
+/// The grey Lambertian of faces without a material (meshes from any file or array), created on first use; false
+/// when out of memory.
+bool sf_fallback_material(sf_loader *ld, uint32_t *index);
+
 // scene_file_warnings.c: what a loaded scene will not show
 
 /// Warns about what the loaded scene will not show: no light at all, and what paper mode drops.
@@ -186,10 +200,23 @@ bool sf_read_light(sf_loader *ld, jr_val v, size_t i);
 /// A "mesh" object: its OBJ file loaded once (materials mapped to scene materials), or a mesh a program added
 /// ("mesh": its name), placed as an instance.
 bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what);
-/// The grey Lambertian of faces without a material, created on first use; false when out of memory.
-bool sf_fallback_material(sf_loader *ld, uint32_t *index);
 /// The glint material of an MTL material's values (the policy: docs/scene-format.md, "Meshes").
 material sf_mtl_material(const mtl_values *v);
+
+// scene_file_import.c: glTF and PLY files (models)
+
+/// Reads model file `path` (written as `file`; `kind`, "mesh" or "import", names it in messages) and records the
+/// files it read as scene inputs.
+bool sf_model_load(sf_loader *ld, jr_val file, const char *path, const char *kind, model_file *model);
+/// Whether every fragment of the mesh is cut away (alphaMode MASK with baseColorFactor's alpha below the cutoff):
+/// such meshes are not placed.
+bool sf_model_fully_cut(const model_file *model, const model_mesh *placed);
+/// Model material i as a new scene material named "FILE:NAME", with its textures.
+bool sf_model_material(sf_loader *ld, jr_val file, const model_file *model, size_t i, uint32_t *index);
+/// An "import" object: every node's meshes placed as instances (under the object's "transform"), the file's lights.
+bool sf_read_import(sf_loader *ld, const jr_obj *o, const char *what);
+/// A camera {"type": "import", "file", "name", "transform", "shutter"}: the file's perspective camera as a look-at one.
+bool sf_read_import_camera(sf_loader *ld, const jr_obj *o, camera *c);
 
 // scene_file_media.c: participating media
 

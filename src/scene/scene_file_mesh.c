@@ -90,16 +90,6 @@ static bool has_obj_extension(const char *path) {
     return e[0] == '.' && (e[1] | 0x20) == 'o' && (e[2] | 0x20) == 'b' && (e[3] | 0x20) == 'j';
 }
 
-// The shared grey Lambertian of faces that have no material of their own.
-bool sf_fallback_material(sf_loader *ld, uint32_t *index) {
-    if (ld->fallback_material < 0) {
-        material m = material_default(MAT_LAMBERTIAN);
-        if ((ld->fallback_material = scene_add_material(ld->scene, &m, NULL)) < 0) return sf_fail_oom(ld);
-    }
-    *index = (uint32_t)ld->fallback_material;
-    return true;
-}
-
 /// Turns the material slots of a loaded OBJ into scene materials ("file:name", map_Kd as an image texture)
 /// and fills the scene mesh's slot table; *needs_fallback tells whether some faces have no material.
 static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model, scene_mesh *sm, bool *needs_fallback) {
@@ -214,6 +204,131 @@ static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id i
     return true;
 }
 
+// n / |n|, or fallback when n has no direction (or overflows).
+static vec3 unit_or(vec3 n, vec3 fallback) {
+    float len = v3_len(n);
+    return len > 0.0f && isfinite(len) ? v3_scale(n, 1.0f / len) : fallback;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Meshes from glTF and PLY files (io/model_read): every node's meshes flattened into one mesh
+
+/// The model's placed meshes as one mesh in model space: each placement's vertices moved by its node's transform
+/// (normals by the inverse transpose, mirrors keeping their fronts), its triangles in material slot = the model
+/// material. Normals and uvs are kept where the file gives them; triangles without are given none.
+static bool flatten_model(sf_loader *ld, size_t where, model_file *model, mesh *out) {
+    memset(out, 0, sizeof *out);
+    // One mesh placed once where it is (every PLY file): taken as it is, not copied.
+    if (model->placement_count == 1 && !sf_model_fully_cut(model, &model->meshes[model->placements[0].mesh])) {
+        const mat4 id = mat4_identity();
+        model_mesh *mm = &model->meshes[model->placements[0].mesh];
+        if (memcmp(&model->placements[0].xf, &id, sizeof id) == 0) {
+            *out = mm->geometry;
+            memset(&mm->geometry, 0, sizeof mm->geometry);
+            for (size_t k = 0; k < out->triangle_count; k++) out->triangles[k].material = (int32_t)mm->material;
+            return true;
+        }
+    }
+    size_t nv = 0, nt = 0;
+    bool any_n = false, all_n = true, any_uv = false;
+    for (size_t i = 0; i < model->placement_count; i++) {
+        const mesh *g = &model->meshes[model->placements[i].mesh].geometry;
+        if (!g->triangle_count || sf_model_fully_cut(model, &model->meshes[model->placements[i].mesh])) continue;
+        nv += g->position_count, nt += g->triangle_count;
+        any_n |= g->normals != NULL, all_n &= g->normals != NULL, any_uv |= g->uvs != NULL;
+        if (nv > (size_t)INT32_MAX || nt > (size_t)INT32_MAX)
+            return jr_fail_at(&ld->r, where,
+                              "the model's placed meshes flatten to more than 2^31 - 1 vertices or triangles; place it "
+                              "with {\"type\": \"import\"}, which keeps repeated meshes as instances");
+    }
+    if (nv && !(out->positions = malloc(nv * sizeof *out->positions))) return sf_fail_oom(ld);
+    if (nt && !(out->triangles = malloc(nt * sizeof *out->triangles))) return sf_fail_oom(ld);
+    if (any_n && nv && !(out->normals = malloc(nv * sizeof *out->normals))) return sf_fail_oom(ld);
+    if (any_n && !all_n && nt && !(out->normal_corners = malloc(nt * sizeof *out->normal_corners))) return sf_fail_oom(ld);
+    if (any_uv && nv && !(out->uvs = malloc(nv * sizeof *out->uvs))) return sf_fail_oom(ld);
+    if (any_uv && nt && !(out->uv_corners = malloc(nt * sizeof *out->uv_corners))) return sf_fail_oom(ld);
+    size_t v0 = 0, t0 = 0;
+    for (size_t i = 0; i < model->placement_count; i++) {
+        const model_placement *pl = &model->placements[i];
+        const model_mesh *mm = &model->meshes[pl->mesh];
+        const mesh *g = &mm->geometry;
+        if (!g->triangle_count || sf_model_fully_cut(model, mm)) continue;
+        transform xf;
+        bool invertible = transform_make(&pl->xf, &xf);
+        for (size_t k = 0; k < g->position_count; k++) {
+            vec3 p = mat4_apply_point(&pl->xf, g->positions[k]);
+            if (!v3_is_finite(p) || !invertible)
+                return jr_fail_at(&ld->r, where, "the model's node transforms move a vertex beyond single precision");
+            out->positions[v0 + k] = p;
+            if (any_n) out->normals[v0 + k] = g->normals ? unit_or(mat4_apply_normal(&xf.inv, g->normals[k]), g->normals[k]) : v3s(0.0f);
+            if (any_uv) out->uvs[v0 + k] = g->uvs ? g->uvs[k] : (uv2){0.0f, 0.0f};
+        }
+        bool mirror = mat4_linear_det(&pl->xf) < 0.0;
+        for (size_t k = 0; k < g->triangle_count; k++) {
+            const int32_t *v = g->triangles[k].v;
+            int32_t a = (int32_t)v0 + v[0], b = (int32_t)v0 + v[mirror ? 2 : 1], c = (int32_t)v0 + v[mirror ? 1 : 2];
+            out->triangles[t0 + k] = (mesh_triangle){{a, b, c}, (int32_t)mm->material};
+            if (out->normal_corners) out->normal_corners[t0 + k] = g->normals ? (mesh_corners){{a, b, c}} : (mesh_corners){{-1, -1, -1}};
+            if (any_uv) out->uv_corners[t0 + k] = g->uvs ? (mesh_corners){{a, b, c}} : (mesh_corners){{-1, -1, -1}};
+        }
+        v0 += g->position_count, t0 += g->triangle_count;
+    }
+    out->position_count = out->normal_count = out->uv_count = nv;
+    if (!any_n) out->normal_count = 0;
+    if (!any_uv) out->uv_count = 0;
+    if (any_uv && !out->uvs) out->uv_corners = NULL;
+    out->triangle_count = nt;
+    out->smooth = all_n && any_n; // every vertex has its normal, indexed like its position
+    mesh_compute_bounds(out);
+    return true;
+}
+
+/// Loads a glTF or PLY file into a new scene mesh (flattened); *entry records it in the cache.
+static bool load_model_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id id, bool face_normals,
+                            sf_mesh_entry *entry) {
+    model_file model;
+    if (!sf_model_load(ld, file, path, "mesh", &model)) return false;
+    size_t where = jr_offset(&ld->r, file.tok);
+    scene_mesh sm = {0};
+    bool ok = flatten_model(ld, where, &model, &sm.geometry);
+    entry->needs_fallback = false;
+    if (ok && model.material_count && !(sm.slot_material = calloc(model.material_count, sizeof *sm.slot_material)))
+        ok = sf_fail_oom(ld);
+    if (ok) sm.slot_count = model.material_count;
+    for (size_t i = 0; ok && i < model.material_count; i++) {
+        bool used = false;
+        for (size_t p = 0; p < model.placement_count && !used; p++)
+            used = model.meshes[model.placements[p].mesh].material == i &&
+                   model.meshes[model.placements[p].mesh].geometry.triangle_count;
+        if (model.materials[i].is_default || !used) {
+            // assimp's stand-in (PLY has no materials): the grey fallback, or the object's "material"
+            entry->needs_fallback |= used;
+            ok = sf_fallback_material(ld, &sm.slot_material[i]);
+        } else {
+            ok = sf_model_material(ld, file, &model, i, &sm.slot_material[i]);
+        }
+    }
+    model_file_free(&model);
+    if (ok) {
+        if (face_normals) mesh_drop_normals(&sm.geometry);
+        else if (!(sm.geometry.smooth && !sm.geometry.normal_corners)) // not when every vertex has its normal
+            ok = mesh_compute_normals(&sm.geometry) || sf_fail_oom(ld);
+    }
+    if (ok) ok = sm.slot_count ? (sm.default_material = sm.slot_material[0], true) : sf_fallback_material(ld, &sm.default_material);
+    if (ok && !(sm.path = malloc(strlen(path) + 1))) ok = sf_fail_oom(ld);
+    if (!ok) {
+        mesh_free(&sm.geometry);
+        free(sm.slot_material);
+        free(sm.path);
+        return false;
+    }
+    memcpy(sm.path, path, strlen(path) + 1);
+    long i = scene_add_mesh(ld->scene, &sm);
+    if (i < 0) return sf_fail_oom(ld);
+    *entry = (sf_mesh_entry){id, face_normals, entry->needs_fallback, false, (uint32_t)i};
+    return true;
+}
+
 // Places scene mesh `index` with the object's transform (and transform2) and, when it gives one (`override`), its
 // material `mat`; `where` names what is blamed for a mesh out of bounds ("file" or "mesh").
 static bool place_mesh(sf_loader *ld, const jr_obj *o, uint32_t index, bool override, uint32_t mat,
@@ -267,10 +382,13 @@ bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
     if (!sf_read_file_path(ld, o, "file", "mesh", &path, &id, &file)) return false;
     bool ok = true;
     char got[96], note[420];
-    if (!has_obj_extension(path))
-        ok = jr_fail_at(
-            &ld->r, jr_offset(&ld->r, file.tok), "mesh file %s%s: unsupported format; expected a Wavefront OBJ file (.obj)",
-            jr_describe_path(&ld->r, file, got, sizeof got), sf_resolved_note(file.item->valuestring, path, note, sizeof note));
+    const bool is_model = model_format_of(path) != MODEL_FORMAT_NONE;
+    if (!has_obj_extension(path) && !is_model)
+        ok = jr_fail_at(&ld->r, jr_offset(&ld->r, file.tok),
+                        "mesh file %s%s: unsupported format; expected Wavefront OBJ (.obj), glTF 2.0 (.gltf, .glb) or "
+                        "PLY (.ply)",
+                        jr_describe_path(&ld->r, file, got, sizeof got),
+                        sf_resolved_note(file.item->valuestring, path, note, sizeof note));
     ok = ok && jr_read_bool(&ld->r, o, "face_normals", &face_normals) && (!override || sf_read_material_ref(ld, o, what, &mat)) &&
          sf_read_transform(ld, o, &xf, &moved);
     sf_mesh_entry *entry = NULL;
@@ -283,7 +401,8 @@ bool sf_read_mesh(sf_loader *ld, const jr_obj *o, const char *what) {
             ok = sf_fail_oom(ld);
         } else {
             entry = &ld->meshes[ld->mesh_count];
-            ok = load_mesh(ld, file, path, id, face_normals, entry);
+            ok = is_model ? load_model_mesh(ld, file, path, id, face_normals, entry)
+                          : load_mesh(ld, file, path, id, face_normals, entry);
             if (ok) ld->mesh_count++;
         }
     }

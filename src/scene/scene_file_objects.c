@@ -163,6 +163,7 @@ static const char *const box_keys[] = {"type", "min", "max", "material", "transf
 static const char *const mesh_keys[] = {"type", "file", "mesh", "material", "transform", "transform2", "face_normals", NULL};
 static const char *const constant_medium_keys[] = {"type", "boundary", "density", "albedo", "g", NULL};
 static const char *const homogeneous_medium_keys[] = {"type", "boundary", "sigma_a", "sigma_s", "g", NULL};
+static const char *const import_keys[] = {"type", "file", "transform", NULL};
 
 // Quads and boxes are baked into world-space quads: they cannot move (yet). Said where "transform2" is.
 static bool refuse_motion(sf_loader *ld, const jr_obj *o, const char *shape) {
@@ -343,6 +344,7 @@ static const struct object_type {
     {"mesh", mesh_keys, sf_read_mesh},
     {"constant_medium", constant_medium_keys, sf_read_constant_medium},
     {"homogeneous_medium", homogeneous_medium_keys, sf_read_homogeneous_medium},
+    {"import", import_keys, sf_read_import},
 };
 #define OBJECT_TYPES (sizeof object_types / sizeof object_types[0])
 
@@ -364,6 +366,7 @@ bool sf_read_object(sf_loader *ld, jr_val v, size_t i) {
 static const char *const ambient_keys[] = {"type", "intensity", NULL};
 static const char *const point_keys[] = {"type", "intensity", "position", NULL};
 static const char *const directional_keys[] = {"type", "intensity", "direction", NULL};
+static const char *const spot_keys[] = {"type", "intensity", "position", "direction", "inner_angle", "outer_angle", NULL};
 
 static const struct light_type {
     light_kind kind;
@@ -372,8 +375,34 @@ static const struct light_type {
     {LIGHT_AMBIENT, ambient_keys},
     {LIGHT_POINT, point_keys},
     {LIGHT_DIRECTIONAL, directional_keys},
+    {LIGHT_SPOT, spot_keys},
 };
 #define LIGHT_TYPES (sizeof light_types / sizeof light_types[0])
+
+static const jr_numspec NUM_CONE = {0.0, 90.0, JR_FLOAT, "an angle in [0, 90] degrees"};
+
+// A spot light: a point light at "position" shining along "direction", full inside "inner_angle" (degrees from
+// the axis, default 0), nothing beyond "outer_angle" (default 45), falling off between (light_spot_falloff).
+static bool read_spot(sf_loader *ld, const jr_obj *o, light *l) {
+    float inner = 0.0f, outer = 45.0f;
+    if (!jr_read_vec3(&ld->r, o, "position", true, &JR_FINITE, &l->position) ||
+        !sf_check_extent(ld, jr_member_offset(&ld->r, o, "position"), "the light", (bounds3){l->position, l->position}) ||
+        !jr_read_vec3(&ld->r, o, "direction", true, &JR_FINITE, &l->direction) ||
+        !jr_read_float(&ld->r, o, "inner_angle", false, &NUM_CONE, &inner) ||
+        !jr_read_float(&ld->r, o, "outer_angle", false, &NUM_CONE, &outer))
+        return false;
+    float len = v3_len(l->direction);
+    if (!(len > 0.0f) || !isfinite(len))
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, "direction"), "\"direction\" must be a non-zero vector");
+    if (!(inner < outer))
+        return jr_fail_at(&ld->r, jr_member_offset(&ld->r, o, jr_get(o, "inner_angle") ? "inner_angle" : "outer_angle"),
+                          "\"inner_angle\" (%g) must be less than \"outer_angle\" (%g)", (double)inner, (double)outer);
+    const float deg = 3.14159265358979f / 180.0f;
+    l->direction = v3_scale(l->direction, 1.0f / len);
+    l->cos_inner = cosf(inner * deg);
+    l->cos_outer = cosf(outer * deg);
+    return scene_add_light(ld->scene, *l) || sf_fail_oom(ld);
+}
 
 bool sf_read_light(sf_loader *ld, jr_val v, size_t i) {
     char what[64], typed[96];
@@ -389,6 +418,7 @@ bool sf_read_light(sf_loader *ld, jr_val v, size_t i) {
     light l = {0};
     l.kind = light_types[t].kind;
     if (!jr_read_color(&ld->r, &o, "intensity", true, &JR_NONNEG, &l.intensity)) return false;
+    if (l.kind == LIGHT_SPOT) return read_spot(ld, &o, &l);
     if (l.kind == LIGHT_POINT && (!jr_read_vec3(&ld->r, &o, "position", true, &JR_FINITE, &l.position) ||
                                   !sf_check_extent(ld, jr_member_offset(&ld->r, &o, "position"), "the light",
                                                    (bounds3){l.position, l.position})))
