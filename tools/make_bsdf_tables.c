@@ -10,9 +10,23 @@
 
 enum { GRID = 64 };
 
+// The nodes lie at mu = (i / (n - 1))^2: closer together near grazing, where the albedo changes fastest.
+static double node_at(int i) {
+    double x = (double)i / (BSDF_TABLE_MU - 1);
+    return x * x;
+}
+
 static float node_mu(int i) {
-    float mu = (float)i / (BSDF_TABLE_MU - 1);
+    float mu = (float)node_at(i);
     return mu > 1e-3f ? mu : 1e-3f;
+}
+
+// 2 int T(mu) mu dmu by the trapezoid rule over the nodes (the first node's T stands for mu = 0).
+static double hemispherical(const double *t) {
+    double s = 0.0;
+    for (int i = 0; i + 1 < BSDF_TABLE_MU; i++)
+        s += 0.5 * (node_at(i + 1) - node_at(i)) * (t[i] * node_at(i) + t[i + 1] * node_at(i + 1));
+    return 2.0 * s;
 }
 
 static float node_alpha(int j) { return mf_alpha((float)j / (BSDF_TABLE_ROUGH - 1)); }
@@ -64,9 +78,7 @@ static void print_table(FILE *out, const char *name, const char *avg_name, doubl
     }
     fprintf(out, "};\n\nconst float %s[BSDF_TABLE_ROUGH] = {\n", avg_name);
     for (int j = 0; j < BSDF_TABLE_ROUGH; j++) {
-        double s = 0.0, h = 1.0 / (BSDF_TABLE_MU - 1);
-        for (int i = 0; i + 1 < BSDF_TABLE_MU; i++) s += 0.5 * h * (t[j][i] * i * h + t[j][i + 1] * (i + 1) * h);
-        fprintf(out, "%s%.6ff", j ? (j % 8 ? ", " : ",\n    ") : "    ", 2.0 * s);
+        fprintf(out, "%s%.6ff", j ? (j % 8 ? ", " : ",\n    ") : "    ", hemispherical(t[j]));
     }
     fprintf(out, "\n};\n");
 }
@@ -90,13 +102,8 @@ int main(int argc, char **argv) {
         fprintf(out, "},\n");
     }
     fprintf(out, "};\n\nconst float bsdf_table_conductor_e_avg[BSDF_TABLE_ROUGH] = {\n");
-    for (int j = 0; j < BSDF_TABLE_ROUGH; j++) {
-        // 2 int E mu dmu by the trapezoid rule over the nodes (the first node's E stands for mu = 0).
-        double s = 0.0, h = 1.0 / (BSDF_TABLE_MU - 1);
-        for (int i = 0; i + 1 < BSDF_TABLE_MU; i++)
-            s += 0.5 * h * (e[j][i] * i * h + e[j][i + 1] * (i + 1) * h);
-        fprintf(out, "%s%.6ff", j ? (j % 8 ? ", " : ",\n    ") : "    ", 2.0 * s);
-    }
+    for (int j = 0; j < BSDF_TABLE_ROUGH; j++)
+        fprintf(out, "%s%.6ff", j ? (j % 8 ? ", " : ",\n    ") : "    ", hemispherical(e[j]));
     fprintf(out, "\n};\n\nconst float bsdf_table_dielectric_e[BSDF_TABLE_ETA][BSDF_TABLE_ROUGH][BSDF_TABLE_MU] = {\n");
     for (int k = 0; k < BSDF_TABLE_ETA; k++) {
         fprintf(out, "    { // etap %.6f\n", (double)node_etap(k));

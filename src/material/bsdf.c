@@ -28,7 +28,7 @@ static inline int table_cell(float x, int n, float *frac) {
 static float conductor_e(float rough, float mu) {
     float fr, fm;
     int j = table_cell(rough * (BSDF_TABLE_ROUGH - 1), BSDF_TABLE_ROUGH, &fr);
-    int i = table_cell(mu * (BSDF_TABLE_MU - 1), BSDF_TABLE_MU, &fm);
+    int i = table_cell(sqrtf(mu) * (BSDF_TABLE_MU - 1), BSDF_TABLE_MU, &fm);
     const float *r0 = bsdf_table_conductor_e[j], *r1 = bsdf_table_conductor_e[j + 1];
     float a = r0[i] + (r0[i + 1] - r0[i]) * fm, b = r1[i] + (r1[i + 1] - r1[i]) * fm;
     return a + (b - a) * fr;
@@ -47,7 +47,7 @@ static float dielectric_e(float etap, float rough, float mu) {
     float x = (logf(etap) / logf(3.0f) + 1.0f) * 0.5f * (BSDF_TABLE_ETA - 1);
     int k = table_cell(x, BSDF_TABLE_ETA, &fe);
     int j = table_cell(rough * (BSDF_TABLE_ROUGH - 1), BSDF_TABLE_ROUGH, &fr);
-    int i = table_cell(mu * (BSDF_TABLE_MU - 1), BSDF_TABLE_MU, &fm);
+    int i = table_cell(sqrtf(mu) * (BSDF_TABLE_MU - 1), BSDF_TABLE_MU, &fm);
     float v[2];
     for (int s = 0; s < 2; s++) {
         const float *r0 = bsdf_table_dielectric_e[k + s][j], *r1 = bsdf_table_dielectric_e[k + s][j + 1];
@@ -61,7 +61,7 @@ static float dielectric_e(float etap, float rough, float mu) {
 static float table2(const float t[BSDF_TABLE_ROUGH][BSDF_TABLE_MU], float rough, float mu) {
     float fr, fm;
     int j = table_cell(rough * (BSDF_TABLE_ROUGH - 1), BSDF_TABLE_ROUGH, &fr);
-    int i = table_cell(mu * (BSDF_TABLE_MU - 1), BSDF_TABLE_MU, &fm);
+    int i = table_cell(sqrtf(mu) * (BSDF_TABLE_MU - 1), BSDF_TABLE_MU, &fm);
     float a = t[j][i] + (t[j][i + 1] - t[j][i]) * fm, b = t[j + 1][i] + (t[j + 1][i + 1] - t[j + 1][i]) * fm;
     return a + (b - a) * fr;
 }

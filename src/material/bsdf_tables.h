@@ -4,7 +4,8 @@
 #ifndef GLINT_BSDF_TABLES_H
 #define GLINT_BSDF_TABLES_H
 
-/// Nodes over cos(theta_o): mu_i = i / (BSDF_TABLE_MU - 1) (the first evaluated at 1e-3).
+/// Nodes over cos(theta_o): mu_i = (i / (BSDF_TABLE_MU - 1))^2, closer near grazing where the albedos change fastest
+/// (the first evaluated at 1e-3); looked up at sqrt(mu) (BSDF_TABLE_MU - 1).
 #define BSDF_TABLE_MU 32
 /// Nodes over perceptual roughness: r_j = j / (BSDF_TABLE_ROUGH - 1), alpha = mf_alpha(r_j).
 #define BSDF_TABLE_ROUGH 32
