@@ -42,9 +42,11 @@ struct integrator {
     integrator_sample_fn sample;
     integrator_tile_fn render_tile;
     void (*release)(integrator *it); ///< frees the integrator's own state, or NULL
+    bool alpha_masks;         ///< some material has an alpha mask: closest-hit and shadow queries go through
+                              ///< integrator/alpha_mask.h, one ray at a time (no streams, no camera packets)
 };
 
-/// Fills the common part: scene, accel, camera prepared for the scene's image size, random stream.
+/// Fills the common part: scene, accel, camera prepared for the scene's image size, random stream, alpha_masks.
 void integrator_init(integrator *it, const glint_scene *s, const accel *a);
 
 /// The albedo an AOV records: each channel clamped to [0, 1], as denoisers expect (NaN becomes 0).

@@ -6,6 +6,7 @@
 // importance sampling. Participating media (medium/medium.h) scatter paths inside them, and the same lights
 // are sampled there with the phase function, their shadow rays carrying the media's transmittance.
 #include "integrator/path.h"
+#include "integrator/alpha_mask.h"
 #include "integrator/light_sampler.h"
 #include "integrator/sample_stream.h"
 #include "integrator/spawn.h"
@@ -99,7 +100,7 @@ static inline vec3 nee_contribution(const nee_vertex *vx, vec3 le, vec3 tr, floa
 // Whether shadow ray r gets past every surface (glass included); *tr is then the transmittance of the media it
 // crosses (1 in a scene without media).
 static inline bool shadow_unblocked(const integrator *it, const ray *r, vec3 *tr) {
-    if (accel_occluded(it->accel, r)) return false;
+    if (it->alpha_masks ? alpha_occluded(it->accel, it->scene, r) : accel_occluded(it->accel, r)) return false;
     const glint_scene *s = it->scene;
     *tr = s->medium_count ? medium_transmittance(s->media, s->medium_count, r->o, r->d, r->tmin, r->tmax) : v3s(1.0f);
     return true;
@@ -685,7 +686,8 @@ static vec3 path_trace(const integrator *it, vec3 o, vec3 d, float time, rng *r,
             h = *first;
             found = first_found;
         } else {
-            found = accel_intersect(pi->base.accel, &cur, &h);
+            found = pi->base.alpha_masks ? alpha_intersect(pi->base.accel, s, &cur, &h)
+                                         : accel_intersect(pi->base.accel, &cur, &h);
         }
         if (!path_vertex(pi, setup, &ps, &cur, &mpath, found, &h, r, ts, aov)) break;
     }
@@ -777,8 +779,10 @@ static __attribute__((noinline)) bool path_render_tile_stream_any(const integrat
 // (accel_streams), else one by one after their camera rays are made in batches.
 static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    // Without the memory for the stream loop, the one-by-one loop makes the same bytes.
-    path_lanes *pl = it->scene->settings.max_depth > 0 && accel_streams(it->accel) ? malloc(sizeof *pl) : NULL;
+    // Without the memory for the stream loop, the one-by-one loop makes the same bytes. Alpha masks take the
+    // one-by-one loop: the stream's queries (accel_intersect_stream) know nothing of them (alpha_mask.h).
+    path_lanes *pl = it->scene->settings.max_depth > 0 && !it->alpha_masks && accel_streams(it->accel)
+                         ? malloc(sizeof *pl) : NULL;
     if (pl) {
         bool more = path_lean(pi) && !ft->film->aovs ? path_render_tile_stream_lean(it, tp, ft, ts, pl)
                                                      : path_render_tile_stream_any(it, tp, ft, ts, pl);
