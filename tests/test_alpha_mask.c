@@ -224,7 +224,45 @@ static void test_layer_bound(const char *integrator) {
     glint_scene_free(s);
 }
 
+// An emissive surface cut away everywhere emits nothing: neither paths that pass through it nor next-event
+// estimation (which samples points on it) light the floor below it.
+static void test_cut_emitter_dark(void) {
+    const char *lights[] = {
+        "{\"type\": \"quad\", \"q\": [-1, 1, -1], \"u\": [2, 0, 0], \"v\": [0, 0, 2], \"material\": \"lamp\"}",
+        "{\"type\": \"sphere\", \"center\": [0, 1.5, 0], \"radius\": 0.3, \"material\": \"lamp\"}",
+        "{\"type\": \"mesh\", \"mesh\": \"tri\", \"material\": \"lamp\"}"};
+    for (int i = 0; i < 3; i++) {
+        glint_scene *s;
+        glint_error err;
+        CHECK(glint_scene_new(NULL, &s, &err) == GLINT_OK);
+        add(s, "render", NULL, "{\"integrator\": \"path\", \"width\": 16, \"height\": 16, \"spp\": 4, "
+            "\"background\": [0, 0, 0]}");
+        add(s, "camera", NULL, "{\"type\": \"lookat\", \"lookfrom\": [0, 4, 4], \"lookat\": [0, 0, 0], \"vfov\": 40}");
+        add(s, "material", "lamp", "{\"type\": \"pbr\", \"emission\": 10, \"alpha\": 0, \"alpha_cutoff\": 0.5}");
+        float xyz[] = {-1, 1, -1, 1, 1, -1, 0, 1, 1};
+        uint32_t tri[] = {0, 1, 2}; // facing down
+        glint_mesh_data m = {.vertex_count = 3, .positions = xyz, .triangle_count = 1, .indices = tri};
+        CHECK(glint_scene_add_mesh(s, "tri", &m, &err) == GLINT_OK);
+        add(s, "object", NULL, lights[i]);
+        add(s, "object", NULL, "{\"type\": \"quad\", \"q\": [-3, 0, -3], \"u\": [0, 0, 6], \"v\": [6, 0, 0], "
+            "\"material\": {\"type\": \"lambertian\", \"albedo\": 0.8}}");
+        float *rgb = malloc(16 * 16 * 3 * sizeof *rgb);
+        glint_render_options opt;
+        memset(&opt, 0, sizeof opt);
+        opt.threads = 2;
+        opt.rgb_out = rgb;
+        CHECK(rgb && glint_render(s, &opt, NULL, NULL, NULL, NULL, &err) == GLINT_OK);
+        float peak = 0.0f;
+        for (int k = 0; rgb && k < 16 * 16 * 3; k++) peak = fmaxf(peak, rgb[k]);
+        if (peak != 0.0f) fprintf(stderr, "cut emitter %d lights the scene: %g\n", i, (double)peak);
+        CHECK(peak == 0.0f);
+        free(rgb);
+        glint_scene_free(s);
+    }
+}
+
 int main(void) {
+    test_cut_emitter_dark();
     test_texture_alpha();
     test_png_alpha();
     const char *integrators[] = {"path", "whitted"};

@@ -10,11 +10,7 @@ bool alpha_scene_masked(const glint_scene *s) {
 
 bool alpha_cut(const glint_scene *s, const ray *r, const hit *h) {
     surface sf = surface_at(s, r, h);
-    const material *m = &s->materials[sf.material];
-    if (!material_masked(m)) return false;
-    float alpha = m->alpha;
-    if (m->alpha_texture >= 0) alpha *= texture_alpha(&s->textures[m->alpha_texture], sf.u, sf.v);
-    return alpha < m->alpha_cutoff;
+    return alpha_cut_at(&s->materials[sf.material], s->textures, sf.u, sf.v);
 }
 
 bool alpha_intersect(const accel *a, const glint_scene *s, const ray *r, hit *h) {

@@ -6,6 +6,8 @@
 #define GLINT_ALPHA_MASK_H
 
 #include "accel/accel.h"
+#include "material/material.h"
+#include "material/texture.h"
 #include "scene/scene.h"
 
 #include <stdbool.h>
@@ -14,6 +16,13 @@
 /// ray through a stack of foliage cards, where ray tracers commonly stop).
 #define ALPHA_MAX_LAYERS 64
 
+/// Whether material m's alpha mask cuts its surface away at texture coordinates (u, v) (false without a mask).
+static inline bool alpha_cut_at(const material *m, const texture *textures, float u, float v) {
+    if (!material_masked(m)) return false;
+    float alpha = m->alpha;
+    if (m->alpha_texture >= 0) alpha *= texture_alpha(&textures[m->alpha_texture], u, v);
+    return alpha < m->alpha_cutoff;
+}
 /// Whether some material of s has an alpha mask (what integrator.alpha_masks caches).
 bool alpha_scene_masked(const glint_scene *s);
 /// Whether hit h of ray r (found by accel_intersect) is on a surface its material's alpha mask cuts away there.

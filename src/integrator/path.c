@@ -128,7 +128,9 @@ static vec3 sample_sphere_light(const integrator *it, float select, uint32_t ind
     vec3 outward = v3_scale(q, copysignf(1.0f / len, sph->radius));
     const material *m = &s->materials[sph->material];
     float u = 0.0f, v = 0.0f;
-    if (m->emission_texture >= 0) sphere_uv(sph->radius < 0.0f ? v3_neg(outward) : outward, &u, &v);
+    if (m->emission_texture >= 0 || m->alpha_texture >= 0)
+        sphere_uv(sph->radius < 0.0f ? v3_neg(outward) : outward, &u, &v);
+    if (alpha_cut_at(m, s->textures, u, v)) return v3s(0.0f); // a cut part emits nothing, as paths see it
     vec3 le = mat_emitted(m, s->textures, v3_dot(wi, outward) < 0.0f, u, v, x);
     if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return v3s(0.0f);
     // Stop short of the light by a relative margin (pbrt's shadow epsilon) so that it does not occlude itself.
@@ -199,7 +201,8 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
     ts->shadow_rays++;
     vec3 tr;
     if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
-    if (q) le = mat_emitted(&s->materials[q->material], s->textures, true, a, b, x);
+    if (q) le = alpha_cut_at(&s->materials[q->material], s->textures, a, b) // a cut part emits nothing
+                    ? v3s(0.0f) : mat_emitted(&s->materials[q->material], s->textures, true, a, b, x);
     return nee_contribution(vx, le, tr, f, fc, pdf_light);
 }
 
