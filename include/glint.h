@@ -59,6 +59,10 @@ typedef struct glint_overrides {
     long long seed;
     const char *accel; ///< "bvh" (default), "bvh2" or "none"
     const char *output_encoding; ///< how 8-bit output encodes linear values: "linear", "gamma2" or "srgb"
+    const char *sampler; ///< the path tracer's random numbers: "sobol" (default) or "independent"
+    /// Adaptive sampling (the scene's "noise_threshold"): a pixel whose estimated relative error falls below this
+    /// stops taking samples; 0: off (every pixel takes spp samples); < 0: the scene's value
+    double noise_threshold;
 } glint_overrides;
 
 /// Sets every field of *o to "not overridden".
@@ -78,7 +82,10 @@ typedef enum glint_aov {
     /// 1 float a pixel: the distance from the camera to the first surface hit along each sample's ray, the mean
     /// over the samples that hit one; +infinity where none did
     GLINT_AOV_DEPTH = 4,
-    GLINT_AOV_ALL = 7
+    /// 1 float a pixel: the samples the pixel took (the scene's spp, or fewer where adaptive sampling stopped it:
+    /// "noise_threshold")
+    GLINT_AOV_SAMPLES = 8,
+    GLINT_AOV_ALL = 15
 } glint_aov;
 /// Receives the image while it is being rendered (glint_render_options.live_image): the image (of the region's
 /// size), the samples per pixel that every pixel has completed, and the fraction of all samples done.

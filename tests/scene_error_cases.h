@@ -77,7 +77,11 @@ static const bad_scene cases[] = {
      "objects, lights"},
     {__LINE__, TEXT("{\"render\": {\"samples\": 4}}"),
      "bad.json:1:13: unknown key \"samples\" in render; expected one of: width, height, spp, max_depth, seed, "
-     "integrator, background, output, accel, presplit"},
+     "sampler, noise_threshold, integrator, background, output, accel, presplit"},
+    {__LINE__, TEXT("{\"render\": {\"sampler\": \"halton\"}}"),
+     "bad.json:1:24: \"sampler\" must be \"sobol\" or \"independent\", got \"halton\""},
+    {__LINE__, TEXT("{\"render\": {\"noise_threshold\": -0.5}}"),
+     "bad.json:1:32: \"noise_threshold\" must be a number in [0, 1000], got -0.5"},
     {__LINE__, TEXT("{\"camera\": {\"type\": \"viewport\", \"vfov\": 40}}"),
      "bad.json:1:33: unknown key \"vfov\" in camera (viewport); expected one of: type, position, viewport, distance, "
      "shutter"},

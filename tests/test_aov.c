@@ -8,6 +8,7 @@
 #include "glint.h"
 #include "camera/camera.h"
 #include "core/rng.h"
+#include "integrator/integrator_common.h"
 #include "film/film.h"
 #include "scene/scene.h"
 
@@ -44,7 +45,8 @@ static const float *plane(const glint_image *img, glint_aov aov) { return glint_
 // A sample's camera ray as the integrator makes it: the path tracer's jittered one, or (spp 1, Whitted) the
 // pixel centre's; for the paper's viewport camera, the ray from the eye through the pixel's viewport point.
 static ray sample_ray(const camera *cam, const glint_scene *s, bool centre, int x, int y, int k) {
-    rng r = rng_for_sample(s->settings.seed, (uint64_t)y * W + (uint64_t)x, (uint64_t)k);
+    uint64_t key = rng_pixel_key(s->settings.seed, (uint64_t)y * W + (uint64_t)x);
+    rng r = rng_for_stream(integrator_stream(&s->settings), key, (uint64_t)k);
     if (cam->kind == CAMERA_VIEWPORT) {
         double v[3];
         camera_viewport_point(cam, (double)x, (double)y + 1.0, v); // pixel (x, y) is film point (x, y + 1)
@@ -288,7 +290,7 @@ static void test_determinism(void) {
     }
     glint_render_options opt;
     memset(&opt, 0, sizeof opt);
-    opt.aovs = 8; // no such AOV
+    opt.aovs = 16; // no such AOV
     glint_image *img = NULL;
     glint_error err;
     CHECK(glint_render(s, &opt, NULL, NULL, &img, NULL, &err) == GLINT_ERR_INPUT && img == NULL);
@@ -409,19 +411,20 @@ static void test_exr(void) {
         return;
     }
     glint_error err;
-    static const char *const sorted[] = {"B", "G", "R", "Z", "albedo.B", "albedo.G", "albedo.R",
-                                         "normal.X", "normal.Y", "normal.Z"};
+    static const char *const sorted[] = {"B",        "G",        "R",        "Z",        "albedo.B", "albedo.G",
+                                         "albedo.R", "normal.X", "normal.Y", "normal.Z", "samples"};
     size_t pixels = (size_t)W * H;
     for (int half = 0; half < 2; half++) {
         const char *path = tmp_path(half ? "half.exr" : "float.exr");
         CHECK(glint_image_write(img, path, half ? GLINT_FORMAT_EXR_HALF : GLINT_FORMAT_AUTO, &err) == GLINT_OK);
         exr_back b;
         CHECK(read_exr(path, &b));
-        CHECK(b.count == 10);
-        for (int c = 0; c < b.count && c < 10; c++) CHECK(strcmp(b.names[c], sorted[c]) == 0);
+        CHECK(b.count == 11);
+        for (int c = 0; c < b.count && c < 11; c++) CHECK(strcmp(b.names[c], sorted[c]) == 0);
         CHECK(b.data.min.x == 0 && b.data.min.y == 0 && b.data.max.x == W - 1 && b.data.max.y == H - 1);
         exr_pixel_type_t type = EXR_PIXEL_UINT;
         CHECK(channel(&b, "Z", &type) && type == EXR_PIXEL_FLOAT); // depth stays 32-bit in a half file
+        CHECK(channel(&b, "samples", &type) && type == EXR_PIXEL_FLOAT); // and so does the sample count
         CHECK(channel(&b, "albedo.G", &type) && type == (half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT));
         const float *albedo = plane(img, GLINT_AOV_ALBEDO), *normal = plane(img, GLINT_AOV_NORMAL);
         CHECK(channel_matches(&b, "albedo.R", albedo, 3, 0, pixels, half));
@@ -429,6 +432,7 @@ static void test_exr(void) {
         CHECK(channel_matches(&b, "normal.X", normal, 3, 0, pixels, half));
         CHECK(channel_matches(&b, "normal.Z", normal, 3, 2, pixels, half));
         CHECK(channel_matches(&b, "Z", plane(img, GLINT_AOV_DEPTH), 1, 0, pixels, false));
+        CHECK(channel_matches(&b, "samples", plane(img, GLINT_AOV_SAMPLES), 1, 0, pixels, false));
         if (!half) {
             // The colour channels hold exactly the PFM's values (PFM rows run from the bottom up).
             const char *pfm = tmp_path("beauty.pfm");

@@ -1,7 +1,7 @@
 // test_camera_batch.c — the render loop's camera rays made eight at a time are, lane for lane and bit for bit,
-// the rays and generators that rng_for_key and camera_sample_ray make one at a time: with and without
+// the rays and generators that rng_for_stream and camera_sample_ray make one at a time: with and without
 // defocus blur, with and without an open shutter (the ray's time), for the look-at and the viewport camera, for
-// any pixel and sample index.
+// any pixel and sample index, with PCG32 and with the Sobol' sampler.
 #include "glint.h"
 #include "check.h"
 #include "camera/camera_batch.h"
@@ -31,9 +31,9 @@ static glint_scene *make_scene(camera_kind kind, float defocus_degrees) {
 }
 
 // Fills a batch with pseudo-random pixels and sample indices (some lanes repeated, as at a tile's end) and
-// checks every lane against the one-at-a-time code.
-static void check_batches(const glint_scene *s, const char *what) {
-    uint64_t stream = rng_seed_stream(12345), lcg = 0x9e3779b97f4a7c15ULL;
+// checks every lane against the one-at-a-time code, on a PCG32 stream and with the Sobol' sampler.
+static void check_batches_on(const glint_scene *s, const char *what, uint64_t stream) {
+    uint64_t lcg = 0x9e3779b97f4a7c15ULL;
     int mismatches = 0;
     for (int round = 0; round < 200; round++) {
         camera_batch b;
@@ -47,7 +47,7 @@ static void check_batches(const glint_scene *s, const char *what) {
         }
         camera_batch_make(&s->camera, stream, &b);
         for (int i = 0; i < CAMERA_BATCH; i++) {
-            rng r = rng_for_key(stream, b.key[i], b.sample[i]);
+            rng r = rng_for_stream(stream, b.key[i], b.sample[i]);
             ray want = camera_sample_ray(&s->camera, b.x[i], b.y[i], &r);
             bool same = memcmp(&want.o, &b.o[i], sizeof want.o) == 0 && memcmp(&want.d, &b.d[i], sizeof want.d) == 0 &&
                         memcmp(&want.time, &b.time[i], sizeof want.time) == 0 && r.state == b.r[i].state &&
@@ -55,8 +55,15 @@ static void check_batches(const glint_scene *s, const char *what) {
             mismatches += !same;
         }
     }
-    if (mismatches) fprintf(stderr, "%s: %d of %d lanes differ\n", what, mismatches, 200 * CAMERA_BATCH);
+    if (mismatches)
+        fprintf(stderr, "%s (%s): %d of %d lanes differ\n", what, stream == RNG_SOBOL_STREAM ? "sobol" : "pcg32",
+                mismatches, 200 * CAMERA_BATCH);
     CHECK(mismatches == 0);
+}
+
+static void check_batches(const glint_scene *s, const char *what) {
+    check_batches_on(s, what, rng_seed_stream(12345));
+    check_batches_on(s, what, RNG_SOBOL_STREAM);
 }
 
 int main(void) {

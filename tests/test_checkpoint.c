@@ -232,10 +232,18 @@ static run render_stopped(const glint_scene *s, int threads, const char *ckp, co
 }
 
 // `streams`: the ground is a quad and the path tracer's stream loop is forced (stream_min_bytes), its rays traversed
-// together (interleave_min_bytes), so that stops fall inside its window of paths in flight.
-static void test_stopped_and_resumed(bool streams) {
+// together (interleave_min_bytes), so that stops fall inside its window of paths in flight. `noise_threshold` > 0:
+// adaptive sampling, whose decisions the checkpoint's odd-numbered samples' sums let a resume make again.
+static void test_stopped_and_resumed(bool streams, double noise_threshold) {
     enum { W = 64, H = 48, SPP = 128 };
     glint_scene *s = scene_ground("stop.json", W, H, SPP, 4, streams ? GROUND_QUAD : GROUND_SPHERE, "");
+    if (noise_threshold > 0) {
+        glint_overrides o;
+        glint_overrides_init(&o);
+        o.noise_threshold = noise_threshold;
+        glint_error err;
+        CHECK(glint_scene_override(s, &o, &err) == GLINT_OK);
+    }
     build_knobs = (accel_build_options){.stream_min_bytes = streams ? 1 : 0, .interleave_min_bytes = streams ? 1 : 0};
     if (streams) {
         glint_error err;
@@ -247,6 +255,9 @@ static void test_stopped_and_resumed(bool streams) {
     double t0 = now();
     run ref = render(s, 1, NULL, NULL, NULL);
     double full = now() - t0;
+    // Adaptive sampling stops pixels before the others: fewer samples than W * H * SPP, yet a complete render.
+    CHECK(ref.status == GLINT_OK && ref.stats.spp_done == SPP);
+    CHECK(noise_threshold > 0 ? ref.stats.samples < (uint64_t)W * H * SPP : ref.stats.samples == (uint64_t)W * H * SPP);
     int region[4] = {0, 0, W, H};
     checkpoint_identity id;
     glint_error err;
@@ -266,7 +277,8 @@ static void test_stopped_and_resumed(bool streams) {
         if (b.status != GLINT_ERR_INTERRUPTED && b.status != GLINT_OK) fprintf(stderr, "  resume: %s\n", b.err.message);
         run c = render(s, 3, NULL, ckp, NULL);
         CHECK(c.status == GLINT_OK && same_image(c.image, ref.image));
-        CHECK(c.stats.samples + c.stats.samples_resumed == (uint64_t)W * H * SPP);
+        CHECK(c.stats.samples + c.stats.samples_resumed == ref.stats.samples);
+        CHECK(c.stats.spp_done == SPP);
         glint_image_free(a.image);
         glint_image_free(b.image);
         glint_image_free(c.image);
@@ -407,7 +419,7 @@ static void test_refused(void) {
         {-1, 40, "a.cut: corrupt checkpoint (header checksum mismatch)"},
         {-1, size - 100, "a.cut: corrupt checkpoint (data checksum mismatch)"},
         {-1, 0, "a.cut: not a glint checkpoint"},
-        {-1, 8, "a.cut: checkpoint of format version 17, this glint reads version 1"},
+        {-1, 8, "a.cut: checkpoint of format version 18, this glint reads version 2"},
     };
     for (size_t i = 0; i < sizeof broken / sizeof broken[0]; i++) {
         CHECK(copy_cut(tmp_path("a.ckp"), tmp_path("a.cut"), broken[i].keep, broken[i].flip));
@@ -554,8 +566,9 @@ int main(void) {
     if (!tmpdir_make("glint-checkpoint")) return 1;
     test_complete_and_extended();
     test_mixed_counts();
-    test_stopped_and_resumed(false);
-    test_stopped_and_resumed(true);
+    test_stopped_and_resumed(false, 0);
+    test_stopped_and_resumed(true, 0);
+    test_stopped_and_resumed(false, 0.05);
     test_time_limit();
     test_region();
     test_refused();

@@ -227,7 +227,7 @@ static void test_scene_file(void) {
         CHECK_NEAR(s->environment.rotate_cos, cos(PI / 4), 1e-6);
         glint_image *img = NULL;
         glint_render_options opt = {.threads = 1};
-        CHECK(glint_scene_override(s, &(glint_overrides){8, 4, 2, 3, 1, NULL, NULL}, &err) == GLINT_OK);
+        CHECK(glint_scene_override(s, &(glint_overrides){8, 4, 2, 3, 1, NULL, NULL, NULL, -1.0}, &err) == GLINT_OK);
         CHECK(glint_render(s, &opt, NULL, NULL, &img, NULL, &err) == GLINT_OK);
         glint_image_free(img);
         glint_scene_free(s);

@@ -414,7 +414,9 @@ static void test_ellipsoid_silhouette(void) {
                     int hits = 0, spp = s->settings.spp, near = 0;
                     for (int j = 0; j < spp; j++) {
                         // The camera ray of sample j, drawn exactly as the integrators draw it.
-                        rng r = rng_for_sample(s->settings.seed, (uint64_t)y * (uint64_t)w + (uint64_t)x, (uint64_t)j);
+                        rng r = rng_for_stream(integrator_stream(&s->settings),
+                                               rng_pixel_key(s->settings.seed, (uint64_t)y * (uint64_t)w + (uint64_t)x),
+                                               (uint64_t)j);
                         float fx = (float)x + 0.5f, fy = (float)y + 0.5f; // Whitted's one ray: the centre
                         if (spp > 1) {
                             fx = (float)x + rng_float(&r);

@@ -196,14 +196,15 @@ static bool merge(const char *out, int count, const int order[], const char *suf
 static void check_merged_exr(const char *path, const glint_image *full) {
     exr_planes e;
     CHECK(read_exr(path, &e));
-    CHECK(e.count == 10);
+    CHECK(e.count == 11);
     CHECK(e.width == WIDTH && e.height == HEIGHT && e.data[0] == 0 && e.display[2] == WIDTH);
-    int w, h, albedo_n, normal_n, depth_n;
+    int w, h, albedo_n, normal_n, depth_n, samples_n;
     const float *rgb;
     glint_image_info(full, &w, &h, &rgb);
     const float *albedo = glint_image_aov(full, GLINT_AOV_ALBEDO, &albedo_n);
     const float *normal = glint_image_aov(full, GLINT_AOV_NORMAL, &normal_n);
     const float *depth = glint_image_aov(full, GLINT_AOV_DEPTH, &depth_n);
+    const float *samples = glint_image_aov(full, GLINT_AOV_SAMPLES, &samples_n);
     static const char *const colour[3] = {"R", "G", "B"}, *const albedo_names[3] = {"albedo.R", "albedo.G", "albedo.B"},
                              *const normal_names[3] = {"normal.X", "normal.Y", "normal.Z"};
     for (int c = 0; c < 3; c++) {
@@ -212,6 +213,7 @@ static void check_merged_exr(const char *path, const glint_image *full) {
         CHECK(channel_equals(&e, normal_names[c], normal, normal_n, c));
     }
     CHECK(channel_equals(&e, "Z", depth, depth_n, 0));
+    CHECK(channel_equals(&e, "samples", samples, samples_n, 0));
     exr_planes_free(&e);
 }
 

@@ -30,6 +30,11 @@ static glint_scene *gold_cornell(int spp, uint64_t seed, float rough) {
     rs->background = BACKGROUND_CONSTANT;
     rs->background_color = v3s(0.0f);
     rs->seed = seed;
+    // Independent samples, as the tolerances below were set with: light sampling alone at the glossy gold sphere
+    // is heavy-tailed, and the two renders' difference underestimates its noise for either sampler (over four pairs
+    // of seeds its mean ranged 0.094-0.135 with independent samples, 0.099-0.116 with Sobol' points, which at
+    // seeds 40 and 41 fall 6.6 of these sigmas from MIS's). The test is about the MIS weights, not the sampler.
+    rs->sampler = SAMPLER_INDEPENDENT;
     s->camera.kind = CAMERA_LOOKAT;
     s->camera.lookfrom = v3(278, 278, -800);
     s->camera.lookat = v3(278, 120, 278);

@@ -1,5 +1,6 @@
 // test_regions.c — rendering a region gives its pixels exactly as a full render does (linear floats and 8-bit
-// bytes), on any thread count; bad regions are refused; region PNGs merge back into the full image.
+// bytes), on any thread count, with either sampler and with adaptive sampling; bad regions are refused; region PNGs merge back into the full
+// image.
 #include "check.h"
 #include "glint.h"
 #include "render/render.h"
@@ -9,7 +10,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static glint_scene *load(const char *name, long width, long height) {
+static glint_scene *load(const char *name, long width, long height, const char *sampler, double noise_threshold) {
     char path[4096];
     snprintf(path, sizeof path, "%s/tests/data/%s", GLINT_SOURCE_DIR, name);
     glint_scene *s = NULL;
@@ -22,6 +23,9 @@ static glint_scene *load(const char *name, long width, long height) {
     glint_overrides_init(&o);
     o.width = width;
     o.height = height;
+    o.sampler = sampler;
+    o.noise_threshold = noise_threshold;
+    if (noise_threshold > 0) o.spp = 64;
     CHECK(glint_scene_override(s, &o, &err) == GLINT_OK);
     return s;
 }
@@ -55,8 +59,9 @@ static bool same_pixels(const glint_image *full, const glint_image *part, int x0
 
 // A 4 x 3 split at uneven places (crossing the 16-pixel tiles), and single pixels and rows, on 1 and 3 threads.
 // `streams`: the path tracer's stream loop forced (stream_min_bytes), its rays traversed together.
-static void test_regions_match(const char *scene, int width, int height, bool streams) {
-    glint_scene *s = load(scene, width, height);
+static void test_regions_match(const char *scene, int width, int height, bool streams, const char *sampler,
+                               double noise_threshold) {
+    glint_scene *s = load(scene, width, height, sampler, noise_threshold);
     CHECK(s != NULL);
     if (!s) return;
     build_knobs = (accel_build_options){.stream_min_bytes = streams ? 1 : 0, .interleave_min_bytes = streams ? 1 : 0};
@@ -93,7 +98,7 @@ static void test_regions_match(const char *scene, int width, int height, bool st
 
 // Regions that are empty or reach outside the image are input errors with their exact messages, and no image.
 static void test_bad_regions(void) {
-    glint_scene *s = load("tiny.json", 24, 16);
+    glint_scene *s = load("tiny.json", 24, 16, NULL, -1);
     CHECK(s != NULL);
     if (!s) return;
     static const struct {
@@ -122,7 +127,7 @@ static void test_bad_regions(void) {
 
 // Two region PNGs merge into exactly the full render's PNG file; a region's PNG is not a whole image's.
 static void test_merge(void) {
-    glint_scene *s = load("tiny.json", 24, 16);
+    glint_scene *s = load("tiny.json", 24, 16, NULL, -1);
     CHECK(s != NULL);
     if (!s) return;
     glint_status st;
@@ -163,9 +168,16 @@ static void test_merge(void) {
 }
 
 int main(void) {
-    test_regions_match("tiny-path.json", 40, 30, false);     // the path tracer: camera rays sixteen at a time, 3 passes
-    test_regions_match("tiny-path-quad.json", 40, 30, true); // its stream loop (a quad ground: not spheres only)
-    test_regions_match("tiny.json", 40, 30, false);          // a Whitted integrator: sample by sample
+    for (int i = 0; i < 2; i++) {
+        const char *sampler = i ? "independent" : "sobol";
+        // The path tracer: camera rays sixteen at a time, 3 passes; its stream loop (a quad ground).
+        test_regions_match("tiny-path.json", 40, 30, false, sampler, -1);
+        test_regions_match("tiny-path-quad.json", 40, 30, true, sampler, -1);
+    }
+    // Adaptive sampling (decisions from each pixel's own sums: a region cannot change them) at 64 spp, 7 passes.
+    test_regions_match("tiny-path.json", 40, 30, false, "sobol", 0.05);
+    test_regions_match("tiny-path-quad.json", 40, 30, true, "independent", 0.05);
+    test_regions_match("tiny.json", 40, 30, false, NULL, -1); // a Whitted integrator: sample by sample
     test_bad_regions();
     test_merge();
     return check_summary();

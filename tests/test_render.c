@@ -68,7 +68,7 @@ static void reference_pixel(const integrator *it, int x, int y, int n, float out
     thread_stats ts = {0};
     double sum[3] = {0, 0, 0};
     for (int k = 0; k < n; k++) {
-        rng r = rng_for_sample(s->settings.seed, pixel, (uint64_t)k);
+        rng r = rng_for_stream(it->stream, rng_pixel_key(s->settings.seed, pixel), (uint64_t)k);
         vec3 c = it->sample(it, x, y, (uint32_t)k, &r, &ts, NULL);
         if (!v3_is_finite(c)) continue;
         sum[0] += c.x;
@@ -213,7 +213,7 @@ static void test_stop_during(void) {
             // Walk the running mean until it equals the pixel: k = 0 is a black pixel.
             bool found = got[0] == 0.0f && got[1] == 0.0f && got[2] == 0.0f;
             for (int k = 0; !found && k < SPP; k++) {
-                rng r = rng_for_sample(s->settings.seed, pixel, (uint64_t)k);
+                rng r = rng_for_stream(it->stream, rng_pixel_key(s->settings.seed, pixel), (uint64_t)k);
                 vec3 c = it->sample(it, x, y, (uint32_t)k, &r, &ts, NULL);
                 if (v3_is_finite(c)) {
                     sum[0] += c.x;

@@ -27,7 +27,8 @@ _Static_assert((int)GLINT_FORMAT_HDR == (int)IMAGE_FORMAT_HDR && (int)GLINT_FORM
                    (int)GLINT_FORMAT_PPM_ASCII == (int)IMAGE_FORMAT_PPM_ASCII && (int)GLINT_FORMAT_AUTO == 0,
                "glint_format and image_format list the formats in one order");
 _Static_assert(GLINT_AOV_ALBEDO == 1u << FILM_AOV_ALBEDO && GLINT_AOV_NORMAL == 1u << FILM_AOV_NORMAL &&
-                   GLINT_AOV_DEPTH == 1u << FILM_AOV_DEPTH && GLINT_AOV_ALL == FILM_AOV_MASK_ALL,
+                   GLINT_AOV_DEPTH == 1u << FILM_AOV_DEPTH &&
+                   GLINT_AOV_SAMPLES == 1u << FILM_AOV_SAMPLES && GLINT_AOV_ALL == FILM_AOV_MASK_ALL,
                "glint_aov bit i is the film's AOV plane i");
 _Static_assert((size_t)SCENE_MAX_FILE_BYTES == GLINT_MAX_SCENE_BYTES, "one scene size limit, public and private");
 _Static_assert(sizeof(render_stats) == sizeof(glint_render_stats), "render_stats is glint_render_stats, field for field");
@@ -39,6 +40,8 @@ void glint_overrides_init(glint_overrides *o) {
     o->seed = -1;
     o->accel = NULL;
     o->output_encoding = NULL;
+    o->sampler = NULL;
+    o->noise_threshold = -1.0;
 }
 
 // "scene load" on the calling thread's trace row, from `began` to now.
@@ -83,7 +86,8 @@ glint_status glint_scene_parse_with(const char *name, const char *text, size_t l
 
 glint_status glint_scene_override(glint_scene *scene, const glint_overrides *o, glint_error *err) {
     glint_error scratch;
-    scene_overrides so = {o->width, o->height, o->spp, o->max_depth, o->seed, o->accel, o->output_encoding};
+    scene_overrides so = {o->width, o->height,          o->spp,     o->max_depth,       o->seed,
+                          o->accel, o->output_encoding, o->sampler, o->noise_threshold};
     return scene_override(scene, &so, err ? err : &scratch);
 }
 
@@ -117,7 +121,8 @@ static glint_status render_overridden(const glint_scene *scene, const glint_over
     glint_scene copy = *scene;
     copy.warnings = NULL;
     copy.warning_count = copy.capacity.warnings = 0;
-    scene_overrides so = {o->width, o->height, o->spp, o->max_depth, o->seed, o->accel, o->output_encoding};
+    scene_overrides so = {o->width, o->height,          o->spp,     o->max_depth,       o->seed,
+                          o->accel, o->output_encoding, o->sampler, o->noise_threshold};
     glint_status st = scene_override(&copy, &so, err);
     if (st == GLINT_OK) st = render_scene(&copy, ro, progress, user, out, rs, err);
     for (size_t i = 0; i < copy.warning_count; i++) free(copy.warnings[i]);

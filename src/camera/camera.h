@@ -70,14 +70,17 @@ static inline ray camera_ray(const camera *c, float fx, float fy, rng *r) {
 static inline bool camera_has_shutter(const camera *c) { return c->shutter_open < c->shutter_close; }
 
 /// The camera ray of a sample of pixel (x, y) as the path tracer makes it: a film point uniformly jittered in
-/// the pixel (two draws from r), camera_ray_unnormalised through it, then, with an open shutter, a time
-/// uniform in it (one draw, after the others, so that a closed shutter leaves every other draw where it was;
-/// camera_batch.h makes eight at once).
+/// the pixel (two draws from r: the Sobol' sampler's RNG_DIM_FILM), camera_ray_unnormalised through it (the lens:
+/// RNG_DIM_LENS), then, with an open shutter, a time uniform in it (one draw, after the others, so that a closed
+/// shutter leaves every other draw where it was; RNG_DIM_TIME; camera_batch.h makes sixteen at once).
 static inline ray camera_sample_ray(const camera *c, int x, int y, rng *r) {
     float fx = (float)x + rng_float(r);
     float fy = (float)y + rng_float(r);
     ray out = camera_ray_unnormalised(c, fx, fy, r);
-    if (camera_has_shutter(c)) out.time = rng_range(r, c->shutter_open, c->shutter_close);
+    if (camera_has_shutter(c)) {
+        rng_decision(r, RNG_DIM_TIME);
+        out.time = rng_range(r, c->shutter_open, c->shutter_close);
+    }
     return out;
 }
 

@@ -1,5 +1,5 @@
 // camera_batch.h — camera rays sixteen samples at a time, for the path tracer's tile loop: every lane computes
-// exactly what rng_for_key and camera_sample_ray compute for one sample (the same operations in the same
+// exactly what rng_for_stream and camera_sample_ray compute for one sample (the same operations in the same
 // order, so the same bits), in loops over the lanes that the compiler turns into vector instructions.
 #ifndef GLINT_CAMERA_BATCH_H
 #define GLINT_CAMERA_BATCH_H
@@ -7,6 +7,7 @@
 #include "camera/camera.h"
 #include "core/rng.h"
 #include "core/sampling.h"
+#include "core/sobol.h"
 
 #include <stdint.h>
 #include <string.h>
@@ -70,24 +71,67 @@ static inline void batch_sincos_turn(const float u[CAMERA_BATCH], float c[CAMERA
     memcpy(s, rs, sizeof rs);
 }
 
-/// Fills b->r, b->o, b->d and b->time from the inputs: lane i is rng_for_key(stream, key[i], sample[i]) followed
-/// by camera_sample_ray(c, x[i], y[i], &r).
+/// The random numbers of a batch's camera rays: the film point (jx, jy), the lens point (u1, u2) when `lens`, the
+/// time (ut) when `shutter`; and each lane's generator after them (b->r).
+typedef struct camera_batch_draws {
+    float jx[CAMERA_BATCH], jy[CAMERA_BATCH], u1[CAMERA_BATCH], u2[CAMERA_BATCH], ut[CAMERA_BATCH];
+} camera_batch_draws;
+
+// The Sobol' sampler's camera dimensions in every lane (RNG_DIM_FILM, RNG_DIM_LENS, RNG_DIM_TIME, as
+// camera_sample_ray draws them) and the lanes' samplers at the offset after them. Out of line (and unused where no
+// tile loop includes this header's caller): the PCG32 path keeps the tile loops' code as it was.
+static __attribute__((noinline, unused)) void camera_batch_sobol(camera_batch *b, bool lens, bool shutter,
+                                                                 camera_batch_draws *u) {
+    for (int i = 0; i < CAMERA_BATCH; i++) {
+        uint64_t key = b->key[i];
+        uint32_t sample = (uint32_t)b->sample[i];
+        u->jx[i] = sobol_sampler_float(key, sample, RNG_DIM_FILM);
+        u->jy[i] = sobol_sampler_float(key, sample, RNG_DIM_FILM + 1);
+        int next = RNG_DIM_FILM + 2;
+        if (lens) {
+            u->u1[i] = sobol_sampler_float(key, sample, RNG_DIM_LENS);
+            u->u2[i] = sobol_sampler_float(key, sample, RNG_DIM_LENS + 1);
+            next = RNG_DIM_LENS + 2;
+        }
+        if (shutter) {
+            u->ut[i] = sobol_sampler_float(key, sample, RNG_DIM_TIME);
+            next = RNG_DIM_TIME + 1;
+        }
+        b->r[i] = rng_sobol(key, sample);
+        rng_decision(&b->r[i], next);
+    }
+}
+
+/// Fills b->r, b->o, b->d and b->time from the inputs: lane i is rng_for_stream(stream, key[i], sample[i])
+/// followed by camera_sample_ray(c, x[i], y[i], &r): PCG32's draws, or the Sobol' sampler's camera dimensions.
 // Always inlined into the tile loops: a call passes the whole batch through memory (gcc stopped inlining it once
 // the path tracer grew).
 static inline __attribute__((always_inline)) void camera_batch_make(const camera *c, uint64_t stream,
                                                                    camera_batch *b) {
-    uint64_t st[CAMERA_BATCH];
-    for (int i = 0; i < CAMERA_BATCH; i++) {
-        // rng_for_key: state 0 stepped (to the stream), plus the mixed key, stepped again.
-        st[i] = (stream + rng_mix64(b->key[i] ^ (b->sample[i] + 0x2545f4914f6cdd1dULL))) * 6364136223846793005ULL +
-                stream;
+    bool lens = c->kind != CAMERA_VIEWPORT && c->defocus_angle_degrees > 0.0f, shutter = camera_has_shutter(c);
+    camera_batch_draws u;
+    if (stream == RNG_SOBOL_STREAM) {
+        camera_batch_sobol(b, lens, shutter, &u);
+    } else { // PCG32: the film point's two draws, the lens point's two, the time's one, in camera_sample_ray's order
+        uint64_t st[CAMERA_BATCH];
+        for (int i = 0; i < CAMERA_BATCH; i++) {
+            // rng_for_key: state 0 stepped (to the stream), plus the mixed key, stepped again.
+            st[i] = (stream + rng_mix64(b->key[i] ^ (b->sample[i] + 0x2545f4914f6cdd1dULL))) *
+                        6364136223846793005ULL +
+                    stream;
+        }
+        batch_float(st, stream, u.jx);
+        batch_float(st, stream, u.jy);
+        if (lens) {
+            batch_float(st, stream, u.u1);
+            batch_float(st, stream, u.u2);
+        }
+        if (shutter) batch_float(st, stream, u.ut);
+        for (int i = 0; i < CAMERA_BATCH; i++) b->r[i] = (rng){st[i], stream};
     }
-    float jx[CAMERA_BATCH], jy[CAMERA_BATCH];
-    batch_float(st, stream, jx);
-    batch_float(st, stream, jy);
     float tx[CAMERA_BATCH], ty[CAMERA_BATCH], tz[CAMERA_BATCH];
     for (int i = 0; i < CAMERA_BATCH; i++) {
-        float fx = (float)b->x[i] + jx[i], fy = (float)b->y[i] + jy[i];
+        float fx = (float)b->x[i] + u.jx[i], fy = (float)b->y[i] + u.jy[i];
         tx[i] = c->pixel00.x + (c->pixel_du.x * fx + c->pixel_dv.x * fy);
         ty[i] = c->pixel00.y + (c->pixel_du.y * fx + c->pixel_dv.y * fy);
         tz[i] = c->pixel00.z + (c->pixel_du.z * fx + c->pixel_dv.z * fy);
@@ -104,13 +148,11 @@ static inline __attribute__((always_inline)) void camera_batch_make(const camera
             oy[i] = c->origin.y;
             oz[i] = c->origin.z;
         }
-        if (c->defocus_angle_degrees > 0.0f) { // sample_unit_disk, then the lens point
-            float u1[CAMERA_BATCH], u2[CAMERA_BATCH], cs[CAMERA_BATCH], sn[CAMERA_BATCH];
-            batch_float(st, stream, u1);
-            batch_float(st, stream, u2);
-            batch_sincos_turn(u2, cs, sn);
+        if (lens) { // sample_unit_disk, then the lens point
+            float cs[CAMERA_BATCH], sn[CAMERA_BATCH];
+            batch_sincos_turn(u.u2, cs, sn);
             for (int i = 0; i < CAMERA_BATCH; i++) {
-                float rad = sqrtf(u1[i]), dx = rad * cs[i], dy = rad * sn[i];
+                float rad = sqrtf(u.u1[i]), dx = rad * cs[i], dy = rad * sn[i];
                 ox[i] = c->origin.x + (c->defocus_u.x * dx + c->defocus_v.x * dy);
                 oy[i] = c->origin.y + (c->defocus_u.y * dx + c->defocus_v.y * dy);
                 oz[i] = c->origin.z + (c->defocus_u.z * dx + c->defocus_v.z * dy);
@@ -121,14 +163,12 @@ static inline __attribute__((always_inline)) void camera_batch_make(const camera
             b->d[i] = v3(tx[i] - ox[i], ty[i] - oy[i], tz[i] - oz[i]);
         }
     }
-    if (camera_has_shutter(c)) { // rng_range(r, open, close), after the other draws
-        float u[CAMERA_BATCH];
-        batch_float(st, stream, u);
-        for (int i = 0; i < CAMERA_BATCH; i++) b->time[i] = c->shutter_open + (c->shutter_close - c->shutter_open) * u[i];
+    if (shutter) { // rng_range(r, open, close), after the other draws
+        for (int i = 0; i < CAMERA_BATCH; i++)
+            b->time[i] = c->shutter_open + (c->shutter_close - c->shutter_open) * u.ut[i];
     } else {
         for (int i = 0; i < CAMERA_BATCH; i++) b->time[i] = c->shutter_open;
     }
-    for (int i = 0; i < CAMERA_BATCH; i++) b->r[i] = (rng){st[i], stream};
 }
 
 #endif

@@ -13,7 +13,7 @@
 
 typedef enum option_id {
     OPT_OUTPUT, OPT_ASCII_PPM, OPT_HALF, OPT_TIME_LIMIT, OPT_WIDTH, OPT_HEIGHT, OPT_SPP, OPT_DEPTH, OPT_SEED,
-    OPT_THREADS, OPT_ACCEL, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_PREVIEW, OPT_CHECKPOINT, OPT_RESUME,
+    OPT_THREADS, OPT_ACCEL, OPT_SAMPLER, OPT_NOISE_THRESHOLD, OPT_OUTPUT_ENCODING, OPT_REGION, OPT_AOV, OPT_PREVIEW, OPT_CHECKPOINT, OPT_RESUME,
     OPT_TRACE, OPT_QUIET, OPT_HELP, OPT_VERSION
 } option_id;
 
@@ -38,6 +38,8 @@ static const option_spec OPTIONS[] = {
     {"threads", 0, true, OPT_THREADS, 0, 256}, // 0: all online CPUs, as the library counts them
     {"time-limit", 0, true, OPT_TIME_LIMIT, 1, 100000000},
     {"accel", 0, true, OPT_ACCEL, 1, 0},
+    {"sampler", 0, true, OPT_SAMPLER, 1, 0},
+    {"noise-threshold", 0, true, OPT_NOISE_THRESHOLD, 1, 0},
     {"output-encoding", 0, true, OPT_OUTPUT_ENCODING, 1, 0},
     {"region", 0, true, OPT_REGION, 1, 0},
     {"aov", 0, true, OPT_AOV, 1, 0},
@@ -110,6 +112,11 @@ static void print_usage(const cli_program *prog, FILE *f) {
             "                     (default: the scene's \"output\"; without it srgb, linear in paper mode)\n"
             "      --accel KIND   acceleration structure: bvh, bvh2 or none (brute force: every ray tests\n"
             "                     every object and triangle; a warning says so when there are meshes)\n"
+            "      --sampler S    the path tracer's random numbers: sobol (Owen-scrambled Sobol', the\n"
+            "                     default) or independent (PCG32); the Whitted integrators ignore it\n"
+            "      --noise-threshold T  adaptive sampling, 0..1000 (0: off): after each sample pass a pixel\n"
+            "                     of 16 samples or more whose estimated relative error (its two half-buffers'\n"
+            "                     difference, Cycles' measure) is below T takes no more samples (0.01: fine)\n"
             "      --region X0,Y0,X1,Y1\n"
             "                     render only the pixels X0 <= x < X1, Y0 <= y < Y1, each exactly as in the\n"
             "                     full image; the image written is (X1-X0)x(Y1-Y0) and records where it lies\n"
@@ -118,13 +125,15 @@ static void print_usage(const cli_program *prog, FILE *f) {
             cpus);
     // In parts: ISO C promises string literals of 4095 bytes, no more.
     fprintf(f,
-            "      --aov LIST     also render AOVs, a comma-separated list of albedo, normal and depth: the\n"
-            "                     albedo and world-space normal of the first diffuse or glossy surface seen\n"
-            "                     and the camera distance of the first hit, each the mean over the pixel's\n"
-            "                     samples (the buffers a denoiser such as Intel Open Image Denoise takes).\n"
-            "                     An .exr output holds them as channels albedo.R/G/B, normal.X/Y/Z and Z; a\n"
-            "                     .pfm output NAME.pfm is joined by NAME.albedo.pfm, NAME.normal.pfm and\n"
-            "                     NAME.depth.pfm. Other formats: a usage error\n"
+            "      --aov LIST     also render AOVs, a comma-separated list of albedo, normal, depth and\n"
+            "                     samples: the albedo and world-space normal of the first diffuse or glossy\n"
+            "                     surface seen and the camera distance of the first hit, each the mean over\n"
+            "                     the pixel's samples (the buffers a denoiser such as Intel Open Image Denoise\n"
+            "                     takes), and the samples each pixel took (fewer under --noise-threshold).\n"
+            "                     An .exr output holds them as channels albedo.R/G/B, normal.X/Y/Z, Z and\n"
+            "                     samples; a .pfm output NAME.pfm is joined by NAME.albedo.pfm,\n"
+            "                     NAME.normal.pfm, NAME.depth.pfm and NAME.samples.pfm. Other formats: a\n"
+            "                     usage error\n"
             "      --preview      show the image in a window (SDL2) as it converges, in the output's 8-bit\n"
             "                     encoding; the title shows the progress and the samples per pixel done.\n"
             "                     Esc, Q or closing the window stops the render as Ctrl-C does (the\n"
@@ -207,11 +216,12 @@ static bool parse_region(const char *text, int region[4]) {
     return *p == '\0';
 }
 
-// "albedo,normal,depth" (any of them, any order, repeats allowed) as glint_aov bits; 0 for a bad list, with the
+// "albedo,normal,depth,samples" (any of them, any order, repeats allowed) as glint_aov bits; 0 for a bad list, with the
 // message printed.
 static unsigned parse_aovs(const char *text) {
     static const struct { const char *name; glint_aov bit; } known[] = {
-        {"albedo", GLINT_AOV_ALBEDO}, {"normal", GLINT_AOV_NORMAL}, {"depth", GLINT_AOV_DEPTH}};
+        {"albedo", GLINT_AOV_ALBEDO}, {"normal", GLINT_AOV_NORMAL}, {"depth", GLINT_AOV_DEPTH},
+        {"samples", GLINT_AOV_SAMPLES}};
     unsigned mask = 0;
     const char *p = text;
     for (;;) {
@@ -221,7 +231,7 @@ static unsigned parse_aovs(const char *text) {
             if (n == strlen(known[i].name) && strncmp(p, known[i].name, n) == 0) bit = (unsigned)known[i].bit;
         if (!bit) {
             fprintf(stderr, "glint: --aov: unknown AOV '%.*s' in '%s', expected a comma-separated list of albedo, "
-                            "normal and depth\n", (int)n, p, text);
+                            "normal, depth and samples\n", (int)n, p, text);
             return 0;
         }
         mask |= bit;
@@ -275,6 +285,24 @@ static cli_action apply_option(const cli_program *prog, const option_spec *spec,
         // Checked by glint_scene_override, with the names the library knows (exit 2, the same message).
         o->overrides.accel = value;
         break;
+    case OPT_SAMPLER: o->overrides.sampler = value; break; // checked by glint_scene_override, as --accel
+    case OPT_NOISE_THRESHOLD: {
+        // A plain decimal number (no blanks, signs, hex, inf or nan), in the scene's range.
+        char *end = NULL;
+        errno = 0;
+        bool plain = (value[0] >= '0' && value[0] <= '9') || value[0] == '.';
+        double t = plain ? strtod(value, &end) : 0.0;
+        if (!plain || end == value || *end != '\0' || strpbrk(value, "xXnN")) {
+            say(prog, "--noise-threshold: '%s' is not a number, expected a number in [0, 1000]\n", value);
+            return CLI_EXIT_USAGE;
+        }
+        if (errno || !(t <= 1000.0)) {
+            say(prog, "--noise-threshold: %s is out of range, expected a number in [0, 1000]\n", value);
+            return CLI_EXIT_USAGE;
+        }
+        o->overrides.noise_threshold = t;
+        break;
+    }
     case OPT_OUTPUT_ENCODING:
         o->overrides.output_encoding = value;
         break;
@@ -401,7 +429,7 @@ cli_action cli_parse(const cli_program *prog, int argc, char **argv, cli_options
         return CLI_EXIT_USAGE;
     }
     // A PFM holds one image: each AOV goes to a file of its own, NAME.albedo.pfm beside NAME.pfm.
-    static const char *const aov_names[CLI_AOV_COUNT] = {"albedo", "normal", "depth"};
+    static const char *const aov_names[CLI_AOV_COUNT] = {"albedo", "normal", "depth", "samples"};
     for (int i = 0; pfm && i < CLI_AOV_COUNT; i++) {
         if (!(o->aovs & (1u << i))) continue;
         int len = snprintf(o->aov_output[i], sizeof o->aov_output[i], "%.*s.%s%s", (int)(out_len - 4), o->output,

@@ -10,7 +10,7 @@
 #include <stdint.h>
 #include <stdio.h>
 
-enum { CLI_AOV_COUNT = 3 }; ///< albedo, normal, depth: the bits of glint_aov, in order
+enum { CLI_AOV_COUNT = 4 }; ///< albedo, normal, depth, samples: the bits of glint_aov, in order
 
 /// Everything the command line asked for.
 typedef struct cli_options {

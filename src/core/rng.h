@@ -1,13 +1,45 @@
-// rng.h — PCG32 (O'Neill 2014): a small, fast generator seeded from (scene seed, pixel, sample) alone.
+// rng.h — the random numbers of one pixel sample, seeded from (scene seed, pixel, sample) alone: PCG32 (O'Neill
+// 2014), a small, fast generator (the independent sampler), or the Owen-scrambled Sobol' sampler (core/sobol.h)
+// in the same 16 bytes, told apart by the low bit of `inc`. Callers draw with rng_float either way; the Sobol'
+// sampler gives each draw the next dimension, and rng_start_bounce and rng_decision put a path's decisions on
+// dimensions of their own (no-ops for PCG32, whose draws stay exactly what they were).
 #ifndef GLINT_RNG_H
 #define GLINT_RNG_H
 
+#include <stdbool.h>
 #include <stdint.h>
 
+/// PCG32: state and stream (inc, always odd). The Sobol' sampler: state is the pixel's key (rng_pixel_key), inc
+/// holds the sample index (bits 32-63), the depth field (bits 16-31: 0 for the camera, d + 1 for bounce d), the
+/// next draw's offset in it (bits 1-15) and a clear bit 0.
 typedef struct rng {
     uint64_t state, inc;
 } rng;
 
+/// The `stream` argument (of camera_batch_make, integrator.stream) that stands for the Sobol' sampler: no PCG32
+/// stream is even.
+enum { RNG_SOBOL_STREAM = 0 };
+
+/// The Sobol' sampler's dimensions of a sample: offsets in the camera's depth field, then in each bounce's
+/// (rng_start_bounce). Pairs (2j, 2j + 1) are one 2-D decision's; a decision that draws more numbers than its
+/// slot goes on into the next offsets, and a decision's numbers never serve another decision of the same
+/// bounce.
+enum rng_dimension {
+    RNG_DIM_FILM = 0,        ///< camera: the film point in the pixel (2-D)
+    RNG_DIM_LENS = 2,        ///< camera: the point on the lens (2-D)
+    RNG_DIM_TIME = 4,        ///< camera: the time in the shutter
+    RNG_DIM_BSDF = 0,        ///< bounce: the material's sampling, up to six numbers (a lobe choice, then the
+                             ///< direction's: 2-D at 0, 1 where it draws no choice) or the phase function's (2-D)
+    RNG_DIM_LIGHT = 7,       ///< bounce: the light chosen, then the point on it (2-D: 8, 9)
+    RNG_DIM_ENVIRONMENT = 10, ///< bounce: the environment's direction (2-D)
+    RNG_DIM_IMPORTANCE = 12, ///< bounce: book 3's mixture: its choice, the sphere, the direction (2-D: 14, 15)
+    RNG_DIM_MEDIUM = 16,     ///< bounce: the path's hero channel (once a path), one free flight a medium crossed
+};
+_Static_assert(RNG_DIM_FILM % 2 == 0 && RNG_DIM_LENS % 2 == 0 && (RNG_DIM_LIGHT + 1) % 2 == 0 &&
+                   RNG_DIM_ENVIRONMENT % 2 == 0 && (RNG_DIM_IMPORTANCE + 2) % 2 == 0,
+               "every 2-D decision starts a pair of dimensions");
+
+/// PCG32's next 32 bits (a PCG32 generator only: rng_for_key, rng_for_sample).
 static inline uint32_t rng_u32(rng *r) {
     uint64_t old = r->state;
     r->state = old * 6364136223846793005ULL + r->inc;
@@ -47,8 +79,45 @@ static inline rng rng_for_sample(uint64_t seed, uint64_t pixel, uint64_t sample)
     return rng_for_key(rng_seed_stream(seed), rng_pixel_key(seed, pixel), sample);
 }
 
-/// Uniform float in [0, 1): the top 24 bits, so 1.0 is never returned.
-static inline float rng_float(rng *r) { return (float)(rng_u32(r) >> 8) * 0x1.0p-24f; }
+/// The Sobol' sampler of sample `sample` of the pixel of key `key` (rng_pixel_key), at the camera's first
+/// dimension.
+static inline rng rng_sobol(uint64_t key, uint64_t sample) { return (rng){key, (uint64_t)(uint32_t)sample << 32}; }
+
+/// The generator of sample `sample` of the pixel of key `key` in a render of stream `stream`: PCG32
+/// (rng_for_key), or the Sobol' sampler where the stream is RNG_SOBOL_STREAM.
+static inline rng rng_for_stream(uint64_t stream, uint64_t key, uint64_t sample) {
+    return stream == RNG_SOBOL_STREAM ? rng_sobol(key, sample) : rng_for_key(stream, key, sample);
+}
+
+/// Whether r is the Sobol' sampler (not PCG32).
+static inline bool rng_is_sobol(const rng *r) { return (r->inc & 1u) == 0; }
+
+/// The dimension (depth field and offset: core/sobol.h's `dim`) of a Sobol' sampler's next draw.
+static inline uint32_t rng_sobol_dimension(const rng *r) { return (uint32_t)(r->inc >> 1) & 0x7fffffffu; }
+
+/// The Sobol' sampler's next value, its offset advanced (core/sobol.c: out of line, off PCG32's path).
+float rng_sobol_float(rng *r);
+
+/// Uniform float in [0, 1): the top 24 bits, so 1.0 is never returned. PCG32's next number, or the Sobol'
+/// sampler's value of its next dimension.
+// Always inlined: PCG32's step is a few instructions, and a call costs more (gcc stopped inlining it once the
+// Sobol' branch was added).
+static inline __attribute__((always_inline)) float rng_float(rng *r) {
+    if (__builtin_expect(rng_is_sobol(r), 0)) return rng_sobol_float(r);
+    return (float)(rng_u32(r) >> 8) * 0x1.0p-24f;
+}
+
+/// A path's bounce `depth` (0: the first surface or medium event) starts: the Sobol' sampler's next draws are
+/// that bounce's, from offset 0. Nothing for PCG32.
+static inline void rng_start_bounce(rng *r, int depth) {
+    if (rng_is_sobol(r)) r->inc = (r->inc & 0xffffffff00000000ULL) | ((uint64_t)(uint16_t)(depth + 1) << 16);
+}
+
+/// The next draws are decision `offset`'s (an rng_dimension) of the current bounce (or of the camera). Nothing
+/// for PCG32.
+static inline void rng_decision(rng *r, int offset) {
+    if (rng_is_sobol(r)) r->inc = (r->inc & ~0xfffeULL) | (((uint64_t)offset << 1) & 0xfffeu);
+}
 
 /// Uniform float in [lo, hi).
 static inline float rng_range(rng *r, float lo, float hi) { return lo + (hi - lo) * rng_float(r); }

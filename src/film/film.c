@@ -135,6 +135,7 @@ bool film_init(film *f, const int region[4], int full_width, int full_height, in
     f->spp = spp;
     f->sums = NULL;
     f->aov_sums = NULL;
+    f->odd_sums = NULL;
     f->aovs = aovs & ((1u << FILM_AOV_COUNT) - 1u);
     f->keep_all_sums = false;
     f->x0 = region[0];
@@ -172,6 +173,7 @@ void film_store_aov_pixel(film *f, size_t pixel, const double sum[FILM_AOV_STRID
         double hits = sum[FILM_AOV_SUM_HITS];
         plane[FILM_AOV_DEPTH][pixel] = hits > 0.0 ? (float)(sum[FILM_AOV_SUM_DEPTH] / hits) : INFINITY;
     }
+    if (plane[FILM_AOV_SAMPLES]) plane[FILM_AOV_SAMPLES][pixel] = (float)k; // the samples the pixel has taken
 }
 
 bool film_keep_all_sums(film *f) {
@@ -181,6 +183,26 @@ bool film_keep_all_sums(film *f) {
     if (f->sums) memset(f->sums, 0, n * sizeof *f->sums);
     else f->sums = calloc(n, sizeof *f->sums);
     return f->sums != NULL;
+}
+
+bool film_keep_odd_sums(film *f) {
+    f->odd_sums = calloc((size_t)f->image->width * (size_t)f->image->height * 3u, sizeof *f->odd_sums);
+    return f->odd_sums != NULL;
+}
+
+double film_pixel_error(const film *f, size_t pixel, uint32_t count) {
+    const double *sum = &f->sums[pixel * 3u], *odd = &f->odd_sums[pixel * 3u];
+    double half = (double)count / 2.0, difference = 0.0, brightness = 0.0;
+    for (int c = 0; c < 3; c++) {
+        difference += fabs((sum[c] - odd[c]) - odd[c]) / half;
+        brightness += sum[c] / (double)count;
+    }
+    return 0.5 * difference / (1e-4 + sqrt(brightness > 0.0 ? brightness : 0.0));
+}
+
+bool film_pixel_converged(const film *f, size_t pixel, uint32_t count, float threshold) {
+    if (count < FILM_ADAPTIVE_MIN_SAMPLES || (count & (count - 1u)) != 0) return false;
+    return film_pixel_error(f, pixel, count) < (double)threshold;
 }
 
 void film_restore_means(film *f, const uint32_t *counts) {
@@ -199,9 +221,11 @@ void film_release(film *f) {
     film_image_free(f->image);
     free(f->sums);
     free(f->aov_sums);
+    free(f->odd_sums);
     f->image = NULL;
     f->sums = NULL;
     f->aov_sums = NULL;
+    f->odd_sums = NULL;
 }
 
 void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *stats,
@@ -220,5 +244,6 @@ void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int 
     t->progress = progress;
     t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
     if (k0 > 0) memcpy(t->sum, &f->sums[t->pixel * 3u], sizeof t->sum);
+    if (f->odd_sums) film_tile_load_odd(t);
     film_tile_load_aovs(t);
 }

@@ -21,12 +21,12 @@ enum { TRANSFORM_COUNT = TRANSFORM_SRGB + 1 };
 extern const char *const output_transform_names[TRANSFORM_COUNT];
 
 /// The AOVs a film can keep (the bits of glint_aov), in the order of glint_image.aov[].
-enum { FILM_AOV_ALBEDO, FILM_AOV_NORMAL, FILM_AOV_DEPTH, FILM_AOV_COUNT };
+enum { FILM_AOV_ALBEDO, FILM_AOV_NORMAL, FILM_AOV_DEPTH, FILM_AOV_SAMPLES, FILM_AOV_COUNT };
 /// Every AOV bit (bit i: plane FILM_AOV i, as glint_aov's bits are).
 #define FILM_AOV_MASK_ALL ((1u << FILM_AOV_COUNT) - 1u)
 
-/// Floats a pixel of AOV plane i (FILM_AOV_*): 3 for albedo RGB and normal XYZ, 1 for depth Z.
-static inline int film_aov_channels(int i) { return i == FILM_AOV_DEPTH ? 1 : 3; }
+/// Floats a pixel of AOV plane i (FILM_AOV_*): 3 for albedo RGB and normal XYZ, 1 for depth Z and the sample count.
+static inline int film_aov_channels(int i) { return i == FILM_AOV_DEPTH || i == FILM_AOV_SAMPLES ? 1 : 3; }
 
 /// The rendered image: linear RGB means and how they are displayed. The API hands it out as the opaque
 /// glint_image, under this tag.
@@ -78,6 +78,7 @@ typedef struct film {
     glint_image *image;
     double *sums;     ///< RGB sums of the samples completed in earlier passes; NULL when one pass renders them all
     double *aov_sums; ///< FILM_AOV_STRIDE doubles a pixel, as sums; NULL without AOVs or with a single pass
+    double *odd_sums; ///< adaptive sampling: RGB sums of the odd-numbered samples alone, kept as sums; else NULL
     unsigned aovs;    ///< the AOVs kept (glint_aov bits); 0: none, and no AOV work at all
     int spp;          ///< samples per pixel of the whole render
     bool keep_all_sums; ///< the last pass stores its sums too (for a checkpoint), not only the earlier ones
@@ -92,6 +93,24 @@ bool film_init(film *f, const int region[4], int full_width, int full_height, in
 /// Makes the film keep every pixel's sums after every pass, the last included, as a checkpoint needs them;
 /// false when out of memory for them.
 bool film_keep_all_sums(film *f);
+/// Adaptive sampling decides a pixel's fate at sample counts that are powers of two of at least this.
+enum { FILM_ADAPTIVE_MIN_SAMPLES = 16 };
+
+/// Adaptive sampling's estimate of the relative error of pixel `pixel` after its first `count` samples, from the
+/// film's sums and odd-numbered samples' sums (film_keep_odd_sums): with E and O the means of its even- and
+/// odd-numbered samples and I the mean of all, sum_c |E_c - O_c| / 2 / (1e-4 + sqrt(sum_c I_c)) over R, G, B
+/// (Cycles' measure: the difference of the two interleaved half-buffers, relative to the square root of the
+/// pixel's brightness). `count` must be even and positive.
+double film_pixel_error(const film *f, size_t pixel, uint32_t count);
+/// Whether adaptive sampling stops pixel `pixel` once it has `count` samples: count is a power of two of at
+/// least FILM_ADAPTIVE_MIN_SAMPLES (a pass boundary) and film_pixel_error is below `threshold`. A function of the
+/// pixel's own sums alone, so the same for any thread count, region, tile order or resume.
+bool film_pixel_converged(const film *f, size_t pixel, uint32_t count, float threshold);
+
+/// Makes the film keep, beside every pixel's sums, the sums of its odd-numbered samples (samples 1, 3, 5, ...),
+/// zeroed: the two interleaved half-buffers adaptive sampling estimates a pixel's error from. False when out of
+/// memory.
+bool film_keep_odd_sums(film *f);
 /// Sets the image to the mean of each pixel's counts[i] samples whose sums the film holds (a resumed
 /// render: exactly what the passes that took them stored); pixels of no sample stay black.
 void film_restore_means(film *f, const uint32_t *counts);
@@ -109,6 +128,7 @@ typedef struct film_tile {
     int x, y, k;            ///< the next sample's pixel and index
     size_t pixel;           ///< the film's index of (x, y): (y - y0) * width + (x - x0)
     double sum[3];          ///< the current pixel's sum so far
+    double odd[3];          ///< the current pixel's sum of odd-numbered samples so far (when the film keeps them)
     double aov_sum[FILM_AOV_STRIDE]; ///< the current pixel's AOV sums so far (when the film keeps AOVs)
     thread_stats *stats;    ///< counts samples and discarded samples
     _Atomic uint64_t *progress; ///< the samples counter the progress reporter reads
@@ -138,6 +158,18 @@ static inline void film_store_pixel(film *f, size_t pixel, const double sum[3], 
     if (f->aovs) film_store_aov_pixel(f, pixel, aov_sum, k, k1); // once a pixel and pass: no cost per sample
 }
 
+/// Starts the odd-numbered samples' sums of the tile's current pixel: zero, or what earlier passes left.
+static inline void film_tile_load_odd(film_tile *t) {
+    if (t->k0 > 0) memcpy(t->odd, &t->film->odd_sums[t->pixel * 3u], sizeof t->odd);
+    else t->odd[0] = t->odd[1] = t->odd[2] = 0.0;
+}
+
+/// Stores the tile's current pixel: film_store_pixel, and its odd-numbered samples' sums when the film keeps them.
+static inline void film_tile_store(film_tile *t, int k) {
+    film_store_pixel(t->film, t->pixel, t->sum, t->aov_sum, k, t->k1);
+    if (t->film->odd_sums) memcpy(&t->film->odd_sums[t->pixel * 3u], t->odd, sizeof t->odd);
+}
+
 /// Starts the AOV sums of the tile's current pixel: zero, or what earlier passes left.
 static inline void film_tile_load_aovs(film_tile *t) {
     if (t->k0 > 0 && t->film->aov_sums)
@@ -161,9 +193,14 @@ static inline bool film_tile_add(film_tile *t, vec3 c) {
         t->sum[0] += c.x;
         t->sum[1] += c.y;
         t->sum[2] += c.z;
+        if ((t->k & 1) && t->film->odd_sums) { // the odd half-buffer (adaptive sampling): taken in index order too
+            t->odd[0] += c.x;
+            t->odd[1] += c.y;
+            t->odd[2] += c.z;
+        }
     }
     if (++t->k < t->k1) return true;
-    film_store_pixel(t->film, t->pixel, t->sum, t->aov_sum, t->k1, t->k1); // the pixel's samples of the pass are done
+    film_tile_store(t, t->k1); // the pixel's samples of the pass are done
     t->k = t->k0;
     if (++t->x == t->x1) {
         t->x = t->x0;
@@ -173,6 +210,7 @@ static inline bool film_tile_add(film_tile *t, vec3 c) {
     t->pixel = film_pixel_index(t->film, t->x, t->y);
     t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
     if (t->k0 > 0) memcpy(t->sum, &t->film->sums[t->pixel * 3u], sizeof t->sum);
+    if (t->film->odd_sums) film_tile_load_odd(t);
     if (t->film->aovs) film_tile_load_aovs(t);
     return true;
 }
@@ -200,8 +238,6 @@ static inline bool film_tile_add_aov(film_tile *t, vec3 c, const film_aov_sample
 
 /// Ends a tile pass cut short by a stop request: the current pixel keeps the mean of the samples it completed,
 /// the pixels not reached keep the previous pass's.
-static inline void film_tile_stop(film_tile *t) {
-    film_store_pixel(t->film, t->pixel, t->sum, t->aov_sum, t->k, t->k1);
-}
+static inline void film_tile_stop(film_tile *t) { film_tile_store(t, t->k); }
 
 #endif

@@ -25,7 +25,7 @@ typedef struct tile_pass {
 
 typedef struct integrator integrator;
 
-/// Radiance of sample `sample` of pixel (x, y); r is seeded for exactly this sample (rng_for_key). When aov is not
+/// Radiance of sample `sample` of pixel (x, y); r is seeded for exactly this sample (rng_for_stream). When aov is not
 /// NULL it receives the sample's AOVs (film_aov_sample); the radiance and the random numbers drawn are the same
 /// either way.
 typedef vec3 (*integrator_sample_fn)(const integrator *it, int x, int y, uint32_t sample, rng *r, thread_stats *ts,
@@ -38,7 +38,8 @@ struct integrator {
     const glint_scene *scene; ///< plain data, read by every thread
     const accel *accel;       ///< built from the scene's geometry by the render frame
     camera camera;            ///< the scene's camera prepared for the image size
-    uint64_t stream;          ///< rng_seed_stream(seed): shared by every sample's generator
+    uint64_t stream;          ///< rng_seed_stream(seed), shared by every sample's PCG32 generator, or
+                              ///< RNG_SOBOL_STREAM: the samples draw from the Sobol' sampler (rng_for_stream)
     integrator_sample_fn sample;
     integrator_tile_fn render_tile;
     void (*release)(integrator *it); ///< frees the integrator's own state, or NULL
@@ -46,6 +47,9 @@ struct integrator {
                               ///< integrator/alpha_mask.h, one ray at a time (no streams, no camera packets)
 };
 
+/// The stream of a render's generators (rng_for_stream): the Sobol' sampler's for the path tracer when the scene
+/// asks for it, else PCG32's stream of the seed (the Whitted integrators always).
+uint64_t integrator_stream(const render_settings *rs);
 /// Fills the common part: scene, accel, camera prepared for the scene's image size, random stream, alpha_masks.
 void integrator_init(integrator *it, const glint_scene *s, const accel *a);
 

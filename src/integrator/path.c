@@ -148,6 +148,7 @@ static vec3 sample_sphere_light(const integrator *it, float select, uint32_t ind
 static vec3 sample_light(const integrator *it, const light_sampler *pl, const nee_vertex *vx, const spawn_point *sp,
                          rng *r, thread_stats *ts) {
     const glint_scene *s = it->scene;
+    rng_decision(r, RNG_DIM_LIGHT);
     float xi = rng_float(r), a = rng_float(r), b = rng_float(r), select;
     size_t chosen = light_sampler_choose(pl, sp->p, xi, &select);
     if (chosen == SIZE_MAX) return v3s(0.0f); // no light can reach the point
@@ -211,6 +212,7 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
 // that escape are weighted in turn (path_trace); the same contract as sample_light.
 static vec3 sample_environment(const integrator *it, const envmap_sampler *es, const nee_vertex *vx,
                                const spawn_point *sp, rng *r, thread_stats *ts) {
+    rng_decision(r, RNG_DIM_ENVIRONMENT);
     float a = rng_float(r), b = rng_float(r);
     vec3 wi, le;
     float pdf;
@@ -283,6 +285,7 @@ static vec3 direct_light(const integrator *it, const spawn_point *sp, const nee_
 // weighs a hit on a light with. A direction below the surface ends the path (weight 0).
 static float aim_diffuse(const glint_scene *s, vec3 p, vec3 n, rng *r, scatter_event *ev) {
     size_t count = s->importance_sphere_count;
+    rng_decision(r, RNG_DIM_IMPORTANCE);
     if (rng_float(r) < 0.5f) {
         size_t i = (size_t)(rng_float(r) * (float)count);
         float a = rng_float(r), b = rng_float(r), dist, pdf;
@@ -437,8 +440,10 @@ static inline __attribute__((always_inline)) int path_medium_step(const path_int
         if (found) h->t *= len;
         ps->unit = true;
     }
+    rng_decision(r, RNG_DIM_MEDIUM);
     medium_event me = medium_sample(s->media, setup.media, s->textures, cur->o, cur->d, found ? h->t : INFINITY,
                                     mpath, r);
+    rng_decision(r, RNG_DIM_BSDF); // the surface's scattering, or the phase function's, draws next
     ps->throughput = v3_mul(ps->throughput, me.weight);
     if (!(ps->throughput.x > 0.0f || ps->throughput.y > 0.0f || ps->throughput.z > 0.0f)) return 0;
     if (!me.scattered) return -1;
@@ -448,6 +453,7 @@ static inline __attribute__((always_inline)) int path_medium_step(const path_int
     nee_vertex nv = {NULL, 0.0f, cur->d, g, NULL, v3s(0.0f), false};
     spawn_point mp = {me.p, v3s(0.0f), 0.0f, cur->time}; // no surface to step off; the path's time
     path_nee(pi, setup, ps, &nv, &mp, v3s(1.0f), 0.0f, ps->depth + 1 < s->settings.max_depth, r, ts);
+    rng_decision(r, RNG_DIM_BSDF);
     float a = rng_float(r), b = rng_float(r);
     vec3 wi = phase_hg_sample(g, cur->d, a, b);
     ps->bsdf_pdf = phase_hg(g, v3_dot(cur->d, wi));
@@ -618,6 +624,7 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
                                                              hit *h, rng *r, thread_stats *ts, film_aov_sample *aov) {
     const glint_scene *s = pi->base.scene;
     bool lean = setup.lean;
+    rng_start_bounce(r, ps->depth); // the Sobol' sampler's dimensions of this bounce
     if (setup.media) {
         int scattered = path_medium_step(pi, setup, ps, cur, mpath, found, h, r, ts);
         if (scattered >= 0) return scattered != 0;

@@ -25,7 +25,7 @@ static inline bool scheduler_tile_by_samples(const integrator *it, const tile_pa
     bool aovs = t.film->aovs != 0;
     for (int y = tp->y0; y < tp->y1; y++)
         for (int x = tp->x0; x < tp->x1; x++) {
-            // rng_for_sample(seed, pixel, k), its per-render and per-pixel parts computed once.
+            // The generator of (seed, pixel, k), its per-render and per-pixel parts computed once.
             uint64_t key = rng_pixel_key(rs->seed, (uint64_t)y * (uint64_t)rs->width + (uint64_t)x);
             for (int k = tp->k0; k < tp->k1; k++) {
                 if (tile_pass_stopping(tp)) {
@@ -33,7 +33,7 @@ static inline bool scheduler_tile_by_samples(const integrator *it, const tile_pa
                     *ft = t;
                     return false;
                 }
-                rng r = rng_for_key(it->stream, key, (uint64_t)k);
+                rng r = rng_for_stream(it->stream, key, (uint64_t)k);
                 if (aovs) {
                     film_aov_sample a;
                     vec3 c = sample(it, x, y, (uint32_t)k, &r, ts, &a);

@@ -46,13 +46,14 @@ typedef struct exr_source {
     exr_pixel_type_t type;
 } exr_source;
 
-enum { EXR_MAX_CHANNELS = 10 }; // R, G, B, albedo.R/G/B, normal.X/Y/Z, Z
+enum { EXR_MAX_CHANNELS = 11 }; // R, G, B, albedo.R/G/B, normal.X/Y/Z, Z, samples
 
-// The channels of img: R, G, B, then those of its AOV planes. Depth stays 32-bit even in a half file: half
-// floats hold only 11 significant bits, too few for distances.
+// The channels of img: R, G, B, then those of its AOV planes. Depth and the sample count stay 32-bit even in a half
+// file: half floats hold only 11 significant bits, too few for distances and counts.
 static int exr_sources(const glint_image *img, bool half, exr_source out[EXR_MAX_CHANNELS]) {
     static const char *const names[FILM_AOV_COUNT + 1][3] = {
-        {"R", "G", "B"}, {"albedo.R", "albedo.G", "albedo.B"}, {"normal.X", "normal.Y", "normal.Z"}, {"Z", NULL, NULL}};
+        {"R", "G", "B"}, {"albedo.R", "albedo.G", "albedo.B"}, {"normal.X", "normal.Y", "normal.Z"}, {"Z", NULL, NULL},
+        {"samples", NULL, NULL}};
     exr_pixel_type_t colour = half ? EXR_PIXEL_HALF : EXR_PIXEL_FLOAT;
     int n = 0;
     for (int plane = 0; plane <= FILM_AOV_COUNT; plane++) {
@@ -61,7 +62,7 @@ static int exr_sources(const glint_image *img, bool half, exr_source out[EXR_MAX
         if (!data) continue;
         for (int c = 0; c < stride; c++)
             out[n++] = (exr_source){names[plane][c], data + c, stride,
-                                    plane - 1 == FILM_AOV_DEPTH ? EXR_PIXEL_FLOAT : colour};
+                                    plane - 1 >= FILM_AOV_DEPTH ? EXR_PIXEL_FLOAT : colour};
     }
     return n;
 }

@@ -485,7 +485,7 @@ glint_status image_write_file(const char *path, image_file_writer fill, const vo
 static glint_status write_traced(const glint_image *img, const char *path, image_format format, int aov,
                                  glint_error *err) {
     static const char *const formats[] = {"auto", "PNG", "PPM", "PPM (ASCII)", "PFM", "EXR", "EXR (half)", "HDR"};
-    static const char *const aovs[FILM_AOV_COUNT] = {"albedo", "normal", "depth"};
+    static const char *const aovs[FILM_AOV_COUNT] = {"albedo", "normal", "depth", "samples"};
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
     glint_status st = strcmp(path, "-") == 0 ? write_stdout(img, format, err) : write_file(img, path, format, aov, err);
@@ -504,7 +504,7 @@ glint_status image_write(const glint_image *img, const char *path, image_format 
 }
 
 glint_status image_write_aov(const glint_image *img, int aov, const char *path, glint_error *err) {
-    static const char *const names[FILM_AOV_COUNT] = {"albedo", "normal", "depth"};
+    static const char *const names[FILM_AOV_COUNT] = {"albedo", "normal", "depth", "samples"};
     image_format format;
     glint_status st = resolve_format(path, IMAGE_FORMAT_AUTO, &format, err);
     if (st != GLINT_OK) return st;

@@ -22,7 +22,8 @@ static const char EXPECTED_PFM[] = "expected a PFM written by glint with --regio
 // The channels a float part may hold: those glint writes, each at its place in the image's planes (plane 0 the
 // colour, then FILM_AOV_* + 1), and the grey values of a "Pf" PFM (an AOV plane written alone, such as depth),
 // which the merge keeps in the one-float depth plane.
-enum { PLANE_COLOUR, PLANE_ALBEDO, PLANE_NORMAL, PLANE_DEPTH, PLANE_COUNT };
+enum { PLANE_COLOUR, PLANE_ALBEDO, PLANE_NORMAL, PLANE_DEPTH, PLANE_SAMPLES, PLANE_COUNT };
+_Static_assert(PLANE_COUNT == FILM_AOV_COUNT + 1 && PLANE_SAMPLES == FILM_AOV_SAMPLES + 1, "a plane for each AOV");
 typedef struct known_channel {
     const char *name;
     int plane, component;
@@ -31,12 +32,12 @@ static const known_channel KNOWN[] = {
     {"R", PLANE_COLOUR, 0},        {"G", PLANE_COLOUR, 1},        {"B", PLANE_COLOUR, 2},
     {"albedo.R", PLANE_ALBEDO, 0}, {"albedo.G", PLANE_ALBEDO, 1}, {"albedo.B", PLANE_ALBEDO, 2},
     {"normal.X", PLANE_NORMAL, 0}, {"normal.Y", PLANE_NORMAL, 1}, {"normal.Z", PLANE_NORMAL, 2},
-    {"Z", PLANE_DEPTH, 0},         {"the grey values of a Pf PFM", PLANE_DEPTH, 0}};
-enum { KNOWN_COUNT = sizeof KNOWN / sizeof KNOWN[0], KNOWN_DEPTH = 9, KNOWN_GREY = 10 };
+    {"Z", PLANE_DEPTH, 0},         {"samples", PLANE_SAMPLES, 0}, {"the grey values of a Pf PFM", PLANE_DEPTH, 0}};
+enum { KNOWN_COUNT = sizeof KNOWN / sizeof KNOWN[0], KNOWN_DEPTH = 9, KNOWN_SAMPLES = 10, KNOWN_GREY = 11 };
 static const unsigned COLOUR_BITS = 7u, GREY_BIT = 1u << KNOWN_GREY;
 
 // Floats a pixel of a plane.
-static int plane_stride(int plane) { return plane == PLANE_DEPTH ? 1 : 3; }
+static int plane_stride(int plane) { return plane == PLANE_DEPTH || plane == PLANE_SAMPLES ? 1 : 3; }
 
 // One float part being read: where it lies, what it holds, and its open reader.
 typedef struct float_part {
@@ -90,7 +91,7 @@ static glint_status open_exr_part(FILE *f, const char *path, float_part *p, glin
         while (k < KNOWN_GREY && strcmp(KNOWN[k].name, ch->name) != 0) k++;
         if (k == KNOWN_GREY) {
             snprintf(err->message, sizeof err->message, "%s: channel '%.64s' is not one glint writes (R, G, B, "
-                     "albedo.R/G/B, normal.X/Y/Z, Z), %s", path, ch->name, EXPECTED_EXR);
+                     "albedo.R/G/B, normal.X/Y/Z, Z, samples), %s", path, ch->name, EXPECTED_EXR);
             return GLINT_ERR_INPUT;
         }
         if (ch->subsampled || ch->type == EXR_CHANNEL_UINT) {
@@ -100,7 +101,7 @@ static glint_status open_exr_part(FILE *f, const char *path, float_part *p, glin
         }
         p->known[c] = k;
         p->channels |= 1u << k;
-        if (k != KNOWN_DEPTH && ch->type != EXR_CHANNEL_HALF) p->half = false;
+        if (k != KNOWN_DEPTH && k != KNOWN_SAMPLES && ch->type != EXR_CHANNEL_HALF) p->half = false;
     }
     // Whole groups: R, G and B always; the three of albedo and of normal, or none.
     for (int k = 0; k < KNOWN_DEPTH; k += 3) {
@@ -300,7 +301,7 @@ glint_status merge_float(const char *output, image_format format, const char *co
                          merge_kind first_kind, size_t max_bytes, glint_error *err) {
     float_part first = {0};
     merge_cover cover = {0};
-    float *planes[PLANE_COUNT] = {NULL, NULL, NULL, NULL};
+    float *planes[PLANE_COUNT] = {NULL};
     bool half = true;
     glint_status st = GLINT_OK;
     for (size_t i = 0; i < count && st == GLINT_OK; i++) {

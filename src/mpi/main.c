@@ -267,6 +267,12 @@ int main(int argc, char **argv) {
                  opt.output);
         st = GLINT_ERR_INPUT;
     }
+    // Adaptive sampling's per-pixel counts and half-buffers are not in the ranks' messages (yet): refused.
+    if (st == GLINT_OK && scene->settings.noise_threshold > 0.0f) {
+        snprintf(err.message, sizeof err.message, "adaptive sampling (--noise-threshold, \"noise_threshold\") is not "
+                 "supported by glint-mpi (use glint, or a threshold of 0)");
+        st = GLINT_ERR_INPUT;
+    }
     int region[4];
     if (st == GLINT_OK) st = tiles_resolve_region(&scene->settings, opt.region, region, &err);
     int threads = opt.threads > 0 ? opt.threads : glint_cpu_count();

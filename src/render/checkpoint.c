@@ -31,10 +31,12 @@ typedef struct header {
     uint64_t scene_hash, seed;
     int32_t width, height, max_depth, integrator, whitted_mode, accel, encoding, light_sampling;
     int32_t region[4];
+    int32_t sampler;                  ///< sampler_kind
+    float noise_threshold;            ///< adaptive sampling's threshold (0: off)
     int32_t spp, complete;            ///< samples per pixel of the render; samples every pixel has
     uint32_t plane_count, name_bytes; ///< the table of planes and the scene's name follow
 } header;
-_Static_assert(sizeof(header) == 96, "the checkpoint header has no padding");
+_Static_assert(sizeof(header) == 104, "the checkpoint header has no padding");
 
 /// One entry of the table of planes, as on disk.
 typedef struct plane_entry {
@@ -90,6 +92,9 @@ glint_status checkpoint_identity_of(const glint_scene *s, const int region[4], b
     id->accel = (int32_t)rs->accel;
     id->encoding = (int32_t)rs->transform;
     id->light_sampling = light_sampling ? 1 : 0;
+    // The sampler that draws the render's numbers: the Whitted integrators always draw independent ones.
+    id->sampler = (int32_t)(rs->integrator == INTEGRATOR_PATH ? rs->sampler : SAMPLER_INDEPENDENT);
+    id->noise_threshold = rs->noise_threshold;
     for (int i = 0; i < 4; i++) id->region[i] = region[i];
     return checkpoint_scene_hash(s, &id->scene_hash, err);
 }
@@ -139,6 +144,8 @@ static int write_checkpoint(FILE *f, const void *user, char *why, size_t why_siz
     hd.accel = id->accel;
     hd.encoding = id->encoding;
     hd.light_sampling = id->light_sampling;
+    hd.sampler = id->sampler;
+    hd.noise_threshold = id->noise_threshold;
     memcpy(hd.region, id->region, sizeof hd.region);
     hd.spp = job->spp;
     hd.complete = job->complete;
@@ -210,6 +217,12 @@ static bool first_difference(const header *hd, const checkpoint_identity *id, ch
     } else if (hd->light_sampling != id->light_sampling) {
         snprintf(was, size, "light sampling %s", hd->light_sampling ? "on" : "off");
         snprintf(is, size, "light sampling %s", id->light_sampling ? "on" : "off");
+    } else if (hd->sampler != id->sampler) {
+        snprintf(was, size, "sampler %s", NAME_OF(sampler_kind_names, hd->sampler));
+        snprintf(is, size, "sampler %s", NAME_OF(sampler_kind_names, id->sampler));
+    } else if (memcmp(&hd->noise_threshold, &id->noise_threshold, sizeof hd->noise_threshold) != 0) {
+        snprintf(was, size, "noise threshold %.9g", (double)hd->noise_threshold);
+        snprintf(is, size, "noise threshold %.9g", (double)id->noise_threshold);
     } else {
         return false;
     }

@@ -12,7 +12,7 @@
 #include <stdint.h>
 
 /// Version of the file format this glint writes and reads.
-#define CHECKPOINT_VERSION 1u
+#define CHECKPOINT_VERSION 2u
 
 /// What a checkpoint is a checkpoint of: a resumed render must match it in every field.
 typedef struct checkpoint_identity {
@@ -23,6 +23,8 @@ typedef struct checkpoint_identity {
     int32_t integrator, whitted_mode, accel, encoding; ///< integrator_kind, whitted_mode, accel_kind, output_transform
     int32_t light_sampling; ///< 1 unless the path tracer's next-event estimation is off (integrator_options)
     int32_t region[4];      ///< X0, Y0, X1, Y1: the pixels the planes hold, row by row
+    int32_t sampler;        ///< sampler_kind
+    float noise_threshold;  ///< adaptive sampling's threshold (render_settings.noise_threshold; 0: off)
 } checkpoint_identity;
 
 /// Element types of planes.

@@ -50,8 +50,10 @@ typedef struct render_job {
     double deadline;               ///< clock_seconds() after which no new pass starts (0: no time limit)
     bool gated;                    ///< a time limit or checkpoints: each pass waits for its first tile's decision
     atomic_int pass_decision[MAX_PASSES]; ///< when gated: 0 undecided, PASS_RUN or PASS_SKIP
-    // Checkpoints and resumes only: each pixel's count of samples, so that any state can be saved and continued.
+    // Checkpoints, resumes and adaptive sampling only: each pixel's count of samples, so that any state can be
+    // saved and continued, and a pixel can stop before the others.
     uint32_t *counts;              ///< samples each pixel of the region has completed; NULL otherwise
+    float noise_threshold;         ///< adaptive sampling (film_pixel_converged); 0: off
     uint64_t resumed_samples;      ///< samples the resumed checkpoint brought (sum of counts at the start)
     const char *checkpoint;        ///< the file written after each pass and at the end, or NULL
     checkpoint_identity identity;  ///< of this render, as checkpoints record it
@@ -103,41 +105,65 @@ static bool render_rect(render_job *job, const int rect[4], int k0, int k1, thre
     return job->integrator->render_tile(job->integrator, &tp, ft, ts);
 }
 
-// A tile pass when every pixel's count is kept (checkpoints, resumes). A pixel continues from the samples it
-// has, whatever the pass says: a resumed tile may have been stopped part-way, or rendered to a smaller spp. The
-// sum after k samples does not depend on where the passes split them, so the image is an uninterrupted one's.
+// Whether pixel i (film index) still takes samples before the count k1: it has fewer, and adaptive sampling has not
+// stopped it (its count is a pass boundary where its estimated error was below the threshold).
+static bool pixel_needs(const render_job *job, size_t i, uint32_t k1) {
+    uint32_t c = job->counts[i];
+    return c < k1 && !(job->noise_threshold > 0.0f && film_pixel_converged(&job->film, i, c, job->noise_threshold));
+}
+
+// Samples [k0, k1) of the pixels run[0] <= x < run[2] of row run[1] (or of the whole rect), then their counts: the
+// pixels before a stop have k1, the one it came in has ft.k, the rest keep k0. False when stopped.
+static bool render_counted_rect(render_job *job, const int r[4], uint32_t k0, uint32_t k1, thread_stats *ts,
+                                _Atomic uint64_t *progress) {
+    film_tile ft;
+    film *f = &job->film;
+    bool done = render_rect(job, r, (int)k0, (int)k1, ts, progress, &ft);
+    for (int y = r[1]; y < r[3]; y++)
+        for (int x = r[0]; x < r[2]; x++) {
+            bool before = done || y < ft.y || (y == ft.y && x < ft.x);
+            if (before || (x == ft.x && y == ft.y)) job->counts[film_pixel_index(f, x, y)] = before ? k1 : (uint32_t)ft.k;
+        }
+    return done;
+}
+
+// A tile pass when every pixel's count is kept (checkpoints, resumes, adaptive sampling). A pixel continues from
+// the samples it has, whatever the pass says: a resumed tile may have been stopped part-way, or rendered to a
+// smaller spp, and adaptive sampling stops pixels one by one. The sum after k samples does not depend on where the
+// passes split them, so the image is an uninterrupted one's.
 static bool render_tile_counted(render_job *job, const int r[4], int pass, thread_stats *ts,
                                 _Atomic uint64_t *progress) {
     const uint32_t k1 = (uint32_t)job->grid.pass_start[pass + 1];
     film *f = &job->film;
     uint32_t *counts = job->counts, lo = UINT32_MAX, hi = 0;
-    for (int y = r[1]; y < r[3]; y++)
-        for (int x = r[0]; x < r[2]; x++) {
-            uint32_t c = counts[film_pixel_index(f, x, y)];
-            lo = c < lo ? c : lo;
-            hi = c > hi ? c : hi;
-        }
-    if (lo >= k1) return true; // a resumed tile that has these samples already
-    film_tile ft;
-    if (lo == hi) { // the whole tile at one count: one tile pass from there, as an uninterrupted render makes it
-        bool done = render_rect(job, r, (int)lo, (int)k1, ts, progress, &ft);
-        // Stopped at (ft.x, ft.y): the pixels before it in row order have k1 samples, it has ft.k, the rest lo.
-        for (int y = r[1]; y < r[3]; y++)
-            for (int x = r[0]; x < r[2]; x++) {
-                bool before = done || y < ft.y || (y == ft.y && x < ft.x);
-                if (before || (x == ft.x && y == ft.y)) counts[film_pixel_index(f, x, y)] = before ? k1 : (uint32_t)ft.k;
-            }
-        return done;
-    }
-    // A tile stopped part-way: each pixel on its own, from its own count (a one-pixel tile pass).
+    bool all = true, none = true;
     for (int y = r[1]; y < r[3]; y++)
         for (int x = r[0]; x < r[2]; x++) {
             size_t i = film_pixel_index(f, x, y);
-            if (counts[i] >= k1) continue;
-            int px[4] = {x, y, x + 1, y + 1};
-            bool done = render_rect(job, px, (int)counts[i], (int)k1, ts, progress, &ft);
-            counts[i] = done ? k1 : (uint32_t)ft.k;
-            if (!done) return false;
+            lo = counts[i] < lo ? counts[i] : lo;
+            hi = counts[i] > hi ? counts[i] : hi;
+            bool needs = pixel_needs(job, i, k1);
+            all = all && needs;
+            none = none && !needs;
+        }
+    if (none) return true; // a resumed tile that has these samples already, or every pixel stopped
+    // The whole tile at one count: one tile pass from there, as an uninterrupted render makes it.
+    if (all && lo == hi) return render_counted_rect(job, r, lo, k1, ts, progress);
+    // Otherwise runs of a row's pixels that take samples from one count, each a tile pass of its own.
+    for (int y = r[1]; y < r[3]; y++)
+        for (int x = r[0]; x < r[2];) {
+            size_t i = film_pixel_index(f, x, y);
+            if (!pixel_needs(job, i, k1)) {
+                x++;
+                continue;
+            }
+            int x1 = x + 1;
+            while (x1 < r[2] && counts[film_pixel_index(f, x1, y)] == counts[i] &&
+                   pixel_needs(job, film_pixel_index(f, x1, y), k1))
+                x1++;
+            int run[4] = {x, y, x1, y + 1};
+            if (!render_counted_rect(job, run, counts[i], k1, ts, progress)) return false;
+            x = x1;
         }
     return true;
 }
@@ -194,12 +220,16 @@ static bool job_write_checkpoint(render_job *job) {
     size_t pixels = (size_t)job->film.image->width * (size_t)job->film.image->height;
     uint32_t complete = UINT32_MAX;
     for (size_t i = 0; i < pixels; i++) complete = job->counts[i] < complete ? job->counts[i] : complete;
-    checkpoint_plane planes[] = {{"count", CHECKPOINT_U32, 1, job->counts}, {"rgb", CHECKPOINT_F64, 3, job->film.sums}};
+    checkpoint_plane planes[] = {{"count", CHECKPOINT_U32, 1, job->counts},
+                                 {"rgb", CHECKPOINT_F64, 3, job->film.sums},
+                                 {"rgb_odd", CHECKPOINT_F64, 3, job->film.odd_sums}};
     glint_error e;
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
+    // The odd-numbered samples' sums with adaptive sampling alone: its decisions are made from them.
+    size_t plane_count = job->film.odd_sums ? 3 : 2;
     glint_status st = checkpoint_write(job->checkpoint, &job->identity, job->film.spp, (int)complete, planes,
-                                       sizeof planes / sizeof planes[0], &e);
+                                       plane_count, &e);
     if (lane)
         trace_add(lane, &(trace_event){"checkpoint write", "io", began, trace_clock(), 2,
                                        {{"file", 0, job->checkpoint}, {"spp", complete, NULL}}});
@@ -441,7 +471,7 @@ static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *
     st = checkpoint_identity_of(s, job->region, light_sampling, &job->identity, err);
     if (st != GLINT_OK) return st;
     size_t pixels = (size_t)job->film.image->width * (size_t)job->film.image->height;
-    job->counts = calloc(pixels, sizeof *job->counts);
+    if (!job->counts) job->counts = calloc(pixels, sizeof *job->counts);
     if (!job->counts || !film_keep_all_sums(&job->film)) {
         snprintf(err->message, sizeof err->message, "out of memory for the sums of a %dx%d image",
                  job->film.image->width, job->film.image->height);
@@ -450,11 +480,14 @@ static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *
     job->checkpoint = opt->checkpoint;
     job->gated = opt->checkpoint != NULL; // a pass waits for the previous one only to be written
     if (!opt->resume) return GLINT_OK;
-    checkpoint_plane planes[] = {{"count", CHECKPOINT_U32, 1, job->counts}, {"rgb", CHECKPOINT_F64, 3, job->film.sums}};
+    checkpoint_plane planes[] = {{"count", CHECKPOINT_U32, 1, job->counts},
+                                 {"rgb", CHECKPOINT_F64, 3, job->film.sums},
+                                 {"rgb_odd", CHECKPOINT_F64, 3, job->film.odd_sums}};
+    size_t plane_count = job->film.odd_sums ? 3 : 2;
     int made_for = 0;
     trace_lane *lane = trace_current();
     int64_t began = lane ? trace_clock() : 0;
-    st = checkpoint_read(opt->resume, &job->identity, planes, sizeof planes / sizeof planes[0], &made_for, err);
+    st = checkpoint_read(opt->resume, &job->identity, planes, plane_count, &made_for, err);
     if (lane)
         trace_add(lane, &(trace_event){"checkpoint read", "io", began, trace_clock(), 1, {{"file", 0, opt->resume}}});
     if (st != GLINT_OK) return st;
@@ -463,8 +496,9 @@ static glint_status job_prepare_checkpoints(render_job *job, const glint_scene *
     for (size_t i = 0; i < pixels; i++) {
         most = job->counts[i] > most ? job->counts[i] : most;
         total += job->counts[i];
-        const double *sum = &job->film.sums[i * 3u];
-        if (job->counts[i] == 0 && (sum[0] != 0.0 || sum[1] != 0.0 || sum[2] != 0.0)) {
+        const double *sum = &job->film.sums[i * 3u], *odd = job->film.odd_sums ? &job->film.odd_sums[i * 3u] : sum;
+        if (job->counts[i] == 0 && (sum[0] != 0.0 || sum[1] != 0.0 || sum[2] != 0.0 || odd[0] != 0.0 ||
+                                    odd[1] != 0.0 || odd[2] != 0.0)) {
             snprintf(err->message, sizeof err->message, "%s: corrupt checkpoint (pixel %zu has sums but no samples), "
                      "expected a file written by glint's --checkpoint", opt->resume, i);
             return GLINT_ERR_INPUT;
@@ -586,10 +620,21 @@ static void fill_stats(render_stats *stats, const thread_stats *total, const ren
     stats->threads = ran_on;
 }
 
+// Whether every pixel has all its samples (`done` samples in all, resumed ones included): spp of them, or fewer where
+// adaptive sampling stopped it.
+static bool job_complete(const render_job *job, uint64_t done) {
+    if (!(job->noise_threshold > 0.0f)) return done == job->total_samples;
+    size_t pixels = (size_t)job->film.image->width * (size_t)job->film.image->height;
+    for (size_t i = 0; i < pixels; i++)
+        if (pixel_needs(job, i, (uint32_t)job->film.spp)) return false;
+    return true;
+}
+
 // The samples per pixel every pixel has once the workers stopped (`done` samples in all, resumed ones included):
-// spp when all were taken; under a time limit, which ends the render after a whole pass, the count every pixel
-// reached (*timed_out); 0 when a stop left pixels at different counts.
-static int spp_reached(const render_job *job, int spp, uint64_t done, bool *timed_out) {
+// spp when all were taken (`complete`); under a time limit, which ends the render after a whole pass, the count
+// every pixel reached (*timed_out; with adaptive sampling, every pixel it has not stopped); 0 when a stop left
+// pixels at different counts.
+static int spp_reached(const render_job *job, int spp, uint64_t done, bool complete, bool *timed_out) {
     int passes_run = job->grid.pass_count;
     for (int p = 1; job->deadline > 0.0 && p < job->grid.pass_count; p++)
         if (atomic_load(&job->pass_decision[p]) == PASS_SKIP) {
@@ -600,13 +645,19 @@ static int spp_reached(const render_job *job, int spp, uint64_t done, bool *time
     // Every pixel at the same count: with counts kept (a resumed render may start from any), that count.
     int uniform = job->grid.pass_start[passes_run];
     bool same = done == pixels * (uint64_t)uniform;
-    if (job->counts) {
+    if (job->counts && job->noise_threshold > 0.0f) {
+        uint32_t most = 0;
+        for (uint64_t i = 0; i < pixels; i++) most = job->counts[i] > most ? job->counts[i] : most;
+        same = true;
+        for (uint64_t i = 0; i < pixels && same; i++) same = job->counts[i] == most || !pixel_needs(job, i, most);
+        uniform = (int)most;
+    } else if (job->counts) {
         same = true;
         for (uint64_t i = 1; i < pixels && same; i++) same = job->counts[i] == job->counts[0];
         uniform = (int)job->counts[0];
     }
     *timed_out = passes_run < job->grid.pass_count && same;
-    return done == job->total_samples ? spp : *timed_out ? uniform : 0;
+    return complete ? spp : *timed_out ? uniform : 0;
 }
 
 static glint_status render_run(const glint_scene *s, const render_options *opt, render_progress_fn progress,
@@ -619,7 +670,7 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
     unsigned aovs = opt ? opt->aovs : 0u;
     if (aovs & ~FILM_AOV_MASK_ALL) {
         snprintf(err->message, sizeof err->message, "--aov: unknown AOV bits 0x%x, expected GLINT_AOV_ALBEDO, "
-                 "GLINT_AOV_NORMAL or GLINT_AOV_DEPTH", aovs & ~FILM_AOV_MASK_ALL);
+                 "GLINT_AOV_NORMAL, GLINT_AOV_DEPTH or GLINT_AOV_SAMPLES", aovs & ~FILM_AOV_MASK_ALL);
         return GLINT_ERR_INPUT;
     }
     // Checkpoints hold the colour's sums: AOVs are not saved in them (yet), so the two do not go together.
@@ -636,6 +687,18 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
         return GLINT_ERR_RENDER;
     }
     job.cancel = opt ? opt->cancel : NULL;
+    // Adaptive sampling: every pixel's count, its sums kept after every pass, and its odd-numbered samples' sums.
+    job.noise_threshold = s->settings.noise_threshold;
+    if (job.noise_threshold > 0.0f) {
+        size_t pixels = (size_t)(region[2] - region[0]) * (size_t)(region[3] - region[1]);
+        job.counts = calloc(pixels, sizeof *job.counts);
+        if (!job.counts || !film_keep_all_sums(&job.film) || !film_keep_odd_sums(&job.film)) {
+            job_free(&job);
+            snprintf(err->message, sizeof err->message, "out of memory for the sums of a %dx%d image",
+                     region[2] - region[0], region[3] - region[1]);
+            return GLINT_ERR_RENDER;
+        }
+    }
     if (opt && (opt->checkpoint || opt->resume)) {
         st = job_prepare_checkpoints(&job, s, opt, err);
         if (st != GLINT_OK) {
@@ -689,14 +752,15 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
         return GLINT_ERR_RENDER;
     }
     render_live_fn live_image = opt ? opt->live_image : NULL;
-    double fraction = fraction_done(&job, total.samples);
+    uint64_t done = job.resumed_samples + total.samples;
+    bool complete = job_complete(&job, done);
+    double fraction = complete ? 1.0 : fraction_done(&job, total.samples);
     if (progress) progress(fraction, user);
     // Every worker has stopped: this call sees the image as it will be returned.
     if (live_image) live_image(job.film.image, spp_completed(&job), fraction, opt->live_user);
     if (stats) fill_stats(stats, &total, &job, frame.accel, t0, t_built, ran_on);
-    uint64_t done = job.resumed_samples + total.samples;
     bool timed_out = false;
-    int spp_done = spp_reached(&job, s->settings.spp, done, &timed_out);
+    int spp_done = spp_reached(&job, s->settings.spp, done, complete, &timed_out);
     if (stats) stats->spp = s->settings.spp;
     if (stats) stats->spp_done = spp_done;
     frame_release(&frame);
@@ -709,7 +773,7 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
     }
     *out = film_take_image(&job.film);
     job_free(&job);
-    if (done < job.total_samples && !timed_out) {
+    if (!complete && !timed_out) {
         snprintf(err->message, sizeof err->message, "interrupted after %llu of %llu samples",
                  (unsigned long long)done, (unsigned long long)job.total_samples);
         return GLINT_ERR_INTERRUPTED;

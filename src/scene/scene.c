@@ -17,6 +17,7 @@ static char *dup_string(const char *s) {
 
 const char *const integrator_kind_names[INTEGRATOR_KIND_COUNT] = {"whitted", "path"};
 const char *const whitted_mode_names[WHITTED_MODE_COUNT] = {"paper", "color"};
+const char *const sampler_kind_names[SAMPLER_KIND_COUNT] = {"sobol", "independent"};
 
 glint_scene *scene_new(const char *path) {
     glint_scene *s = calloc(1, sizeof *s);
@@ -37,6 +38,7 @@ glint_scene *scene_new(const char *path) {
     rs->sky_zenith = v3(0.5f, 0.7f, 1.0f);
     rs->transform = TRANSFORM_LINEAR;
     rs->accel = ACCEL_BVH;
+    rs->sampler = SAMPLER_SOBOL; // the path tracer's default; the Whitted integrators draw PCG32 whatever it says
     s->camera = camera_default();
     return s;
 }
@@ -224,7 +226,20 @@ glint_status scene_override(glint_scene *s, const scene_overrides *o, glint_erro
                  "--output-encoding: unknown encoding '%s', expected linear, gamma2 or srgb", o->output_encoding);
         return GLINT_ERR_INPUT;
     }
+    int sampler = o->sampler ? names_find(sampler_kind_names, SAMPLER_KIND_COUNT, o->sampler) : (int)rs->sampler;
+    if (sampler < 0) {
+        snprintf(err->message, sizeof err->message, "--sampler: unknown sampler '%s', expected sobol or independent",
+                 o->sampler);
+        return GLINT_ERR_INPUT;
+    }
+    if (o->noise_threshold >= 0 && !(o->noise_threshold <= SCENE_MAX_NOISE_THRESHOLD)) {
+        snprintf(err->message, sizeof err->message, "--noise-threshold: %g is out of range, expected a number in "
+                 "[0, %d]", o->noise_threshold, SCENE_MAX_NOISE_THRESHOLD);
+        return GLINT_ERR_INPUT;
+    }
     rs->transform = (output_transform)encoding;
+    rs->sampler = (sampler_kind)sampler;
+    if (o->noise_threshold >= 0) rs->noise_threshold = (float)o->noise_threshold;
     if (o->width >= 0) rs->width = (int)o->width;
     if (o->height >= 0) rs->height = (int)o->height;
     if (o->spp >= 0) rs->spp = (int)o->spp;

@@ -31,6 +31,12 @@ enum { INTEGRATOR_KIND_COUNT = INTEGRATOR_PATH + 1, WHITTED_MODE_COUNT = WHITTED
 /// Their names, in order ("whitted", "path"; "paper", "color"), as scene files and checkpoints say them.
 extern const char *const integrator_kind_names[INTEGRATOR_KIND_COUNT];
 extern const char *const whitted_mode_names[WHITTED_MODE_COUNT];
+/// Where the path tracer's samples take their random numbers (core/rng.h): the Owen-scrambled Sobol' sampler
+/// (core/sobol.h) or independent PCG32 numbers. The Whitted integrators always draw independent ones.
+typedef enum sampler_kind { SAMPLER_SOBOL, SAMPLER_INDEPENDENT } sampler_kind;
+enum { SAMPLER_KIND_COUNT = SAMPLER_INDEPENDENT + 1 };
+/// Their names, in order ("sobol", "independent"): the scene's "sampler", --sampler, checkpoints.
+extern const char *const sampler_kind_names[SAMPLER_KIND_COUNT];
 typedef enum background_kind { BACKGROUND_CONSTANT, BACKGROUND_SKY, BACKGROUND_ENVMAP } background_kind;
 
 /// The "render" object of a scene file.
@@ -45,6 +51,8 @@ typedef struct render_settings {
     output_transform transform;
     accel_kind accel;
     bool no_presplit; ///< "presplit": false: long, slanted triangles keep whole boxes (accel_build_options)
+    sampler_kind sampler; ///< the path tracer's random numbers
+    float noise_threshold; ///< adaptive sampling: a pixel below this estimated relative error stops (0: off)
 } render_settings;
 
 /// Hard limits on sizes, so that a scene file cannot ask for absurd amounts of memory or time.
@@ -54,6 +62,7 @@ enum {
     SCENE_MAX_SPP = 1000000,
     SCENE_MAX_DEPTH = 10000,
     SCENE_MAX_NAME = 128,
+    SCENE_MAX_NOISE_THRESHOLD = 1000, ///< "noise_threshold", --noise-threshold: at most this
 };
 
 /// A mesh loaded from a file, shared by every instance that places it.
@@ -175,6 +184,8 @@ typedef struct scene_overrides {
     long long seed;
     const char *accel;           ///< "bvh", "bvh2" or "none"
     const char *output_encoding; ///< "linear", "gamma2" or "srgb"
+    const char *sampler;         ///< "sobol" or "independent"
+    double noise_threshold;      ///< adaptive sampling's threshold, 0 (off) to SCENE_MAX_NOISE_THRESHOLD; < 0: unset
 } scene_overrides;
 /// Applies command-line overrides, validated like scene values (GLINT_ERR_INPUT naming the flag otherwise).
 glint_status scene_override(glint_scene *s, const scene_overrides *o, glint_error *err);

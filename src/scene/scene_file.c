@@ -223,8 +223,11 @@ bool sf_read_camera(sf_loader *ld, jr_val v) {
 // ---------------------------------------------------------------------------------------------
 // Render settings
 
-static const char *const render_keys[] = {"width",      "height",     "spp",    "max_depth", "seed",
-                                          "integrator", "background", "output", "accel",     "presplit", NULL};
+static const char *const render_keys[] = {"width",      "height",   "spp",        "max_depth",
+                                          "seed",       "sampler",  "noise_threshold", "integrator",
+                                          "background", "output",   "accel",      "presplit",  NULL};
+/// Adaptive sampling's threshold (render_settings.noise_threshold; 0: off).
+static const jr_numspec NUM_NOISE_THRESHOLD = {0.0, SCENE_MAX_NOISE_THRESHOLD, JR_FLOAT, "a number in [0, 1000]"};
 static const char *const whitted_keys[] = {"type", "mode", NULL};
 static const char *const path_keys[] = {"type", NULL};
 static const char *const sky_keys[] = {"type", "horizon", "zenith", NULL};
@@ -358,10 +361,13 @@ bool sf_read_render(sf_loader *ld, jr_val v) {
     if (m && !read_integrator(ld, m->val, rs)) return false;
     m = jr_get(&o, "background");
     if (m && !read_background(ld, m->val, rs)) return false;
-    int output = -1, structure = -1;
+    int output = -1, structure = -1, sampler = (int)rs->sampler;
     if (!jr_read_enum(&ld->r, &o, "output", output_transform_names, TRANSFORM_COUNT, &output) ||
-        !jr_read_enum(&ld->r, &o, "accel", accel_kind_names, ACCEL_KIND_COUNT, &structure))
+        !jr_read_enum(&ld->r, &o, "accel", accel_kind_names, ACCEL_KIND_COUNT, &structure) ||
+        !jr_read_enum(&ld->r, &o, "sampler", sampler_kind_names, SAMPLER_KIND_COUNT, &sampler) ||
+        !jr_read_float(&ld->r, &o, "noise_threshold", false, &NUM_NOISE_THRESHOLD, &rs->noise_threshold))
         return false;
+    rs->sampler = (sampler_kind)sampler;
     if (output >= 0) rs->transform = (output_transform)output;
     ld->output_given = output >= 0;
     if (structure >= 0) rs->accel = (accel_kind)structure;

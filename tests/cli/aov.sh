@@ -4,9 +4,9 @@ source "$2/tests/cli/common.bash"
 
 PATHS=$DATA/tiny-path.json # 24x16, 4 spp
 
-expect 2 "glint: --aov: unknown AOV 'speed' in 'albedo,speed', expected a comma-separated list of albedo, normal and depth" \
+expect 2 "glint: --aov: unknown AOV 'speed' in 'albedo,speed', expected a comma-separated list of albedo, normal, depth and samples" \
     --aov albedo,speed -o "$TMP/x.exr" "$PATHS"
-expect 2 "glint: --aov: unknown AOV '' in 'albedo,', expected a comma-separated list of albedo, normal and depth" \
+expect 2 "glint: --aov: unknown AOV '' in 'albedo,', expected a comma-separated list of albedo, normal, depth and samples" \
     --aov albedo, -o "$TMP/x.exr" "$PATHS"
 expect 2 "glint: --aov: the output '$TMP/x.png' is not an .exr or .pfm file, expected an OpenEXR file (AOVs as channels) or a PFM (AOVs in files beside it)" \
     --aov depth -o "$TMP/x.png" "$PATHS"

@@ -103,7 +103,7 @@ expect 2 "glint: plain1.exr: lacks channel albedo.R, which p0.exr holds: the par
 expect 2 "glint: p1.exr: holds channel albedo.R, which p0.pfm lacks: the parts of a merge hold the same channels (rendered with the same --aov, written in the same format)" \
     merge bad.exr p0.pfm p1.exr p2.exr
 cp "$SRC/tests/fuzz/corpus_exr/exr_rgb_plus_y_red.exr" foreign.exr
-expect 2 "glint: foreign.exr: channel 'Y' is not one glint writes (R, G, B, albedo.R/G/B, normal.X/Y/Z, Z), expected an OpenEXR file written by glint with --region" \
+expect 2 "glint: foreign.exr: channel 'Y' is not one glint writes (R, G, B, albedo.R/G/B, normal.X/Y/Z, Z, samples), expected an OpenEXR file written by glint with --region" \
     merge bad.exr foreign.exr
 head -c 2000 p2.exr >cut.exr
 run merge bad.exr p0.exr p1.exr cut.exr

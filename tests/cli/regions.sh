@@ -33,6 +33,22 @@ run -q "${SIZE[@]}" "$SCENE" -o "$TMP/full.ppm"
 run merge "$TMP/merged.ppm" "${parts[@]}"
 check "merge to PPM gives the full render's PPM" cmp -s "$TMP/merged.ppm" "$TMP/full.ppm"
 
+# The same with independent samples, and with adaptive sampling (64 spp, threshold 0.05): a 2 x 2 split across the
+# tiles, on 1 and 3 threads, merges into the full render's PNG.
+for opts in "--sampler independent" "--spp 64 --noise-threshold 0.05" "--sampler independent --spp 64 --noise-threshold 0.05"; do
+    # shellcheck disable=SC2086 # the options are words
+    run -q "${SIZE[@]}" $opts --threads 2 "$SCENE" -o "$TMP/full2.png"
+    few=()
+    for region in 0,0,17,13 17,0,40,13 0,13,17,30 17,13,40,30; do
+        # shellcheck disable=SC2086
+        run -q "${SIZE[@]}" $opts --threads $(( ${#few[@]} % 2 * 2 + 1 )) --region "$region" "$SCENE" \
+            -o "$TMP/few-${#few[@]}.png"
+        few+=("$TMP/few-${#few[@]}.png")
+    done
+    run merge "$TMP/merged2.png" "${few[@]}"
+    check "$opts: the merged parts are the full render" cmp -s "$TMP/merged2.png" "$TMP/full2.png"
+done
+
 # A region written as PPM holds its pixels alone.
 run -q "${SIZE[@]}" --region 7,5,17,16 "$SCENE" -o "$TMP/part.ppm"
 check "a PPM region has the region's size" test "$(head -c 9 "$TMP/part.ppm" | tr '\n' ' ')" = "P6 10 11 "

@@ -7,7 +7,8 @@ HINT="Try 'glint --help' for more information."
 run --help
 check "--help exits 0" test "$rc" -eq 0
 check "--help prints to stdout only" test ! -s "$TMP/err"
-for flag in --output --ascii-ppm --width --height --spp --depth --seed --threads --accel --quiet --help --version; do
+for flag in --output --ascii-ppm --width --height --spp --depth --seed --threads --accel --sampler --noise-threshold \
+    --quiet --help --version; do
     check "--help documents $flag" grep -q -- "$flag" "$TMP/out"
 done
 check "--help names the default output" grep -q 'paper.png' "$TMP/out"
@@ -41,6 +42,23 @@ expect 2 "glint: --seed: -1 is out of range, expected an integer in [0, 90071992
 expect 2 "glint: --threads: -1 is out of range, expected an integer in [0, 256]" --threads -1 "$DATA/tiny.json"
 expect 2 "glint: --threads: 257 is out of range, expected an integer in [0, 256]" --threads 257 "$DATA/tiny.json"
 expect 2 "glint: --accel: unknown structure 'kd', expected bvh, bvh2 or none" --accel kd "$DATA/tiny.json"
+expect 2 "glint: --sampler: unknown sampler 'halton', expected sobol or independent" --sampler halton "$DATA/tiny.json"
+expect 2 "glint: --noise-threshold: '-1' is not a number, expected a number in [0, 1000]" --noise-threshold -1 \
+    "$DATA/tiny.json"
+expect 2 "glint: --noise-threshold: 'nan' is not a number, expected a number in [0, 1000]" --noise-threshold nan \
+    "$DATA/tiny.json"
+expect 2 "glint: --noise-threshold: 1e4 is out of range, expected a number in [0, 1000]" --noise-threshold 1e4 \
+    "$DATA/tiny.json"
+# --sampler: the path tracer's images differ between the two, each the same as the scene's "sampler" says.
+run --quiet --sampler independent --spp 4 -o "$TMP/ind.pfm" "$DATA/tiny-path.json"
+run --quiet --spp 4 -o "$TMP/sob.pfm" "$DATA/tiny-path.json"
+check "--sampler: sobol (the default) and independent differ" test "$(cmp -s "$TMP/ind.pfm" "$TMP/sob.pfm"; echo $?)" = 1
+sed 's/"integrator": "path"/"integrator": "path", "sampler": "independent"/' "$DATA/tiny-path.json" >"$TMP/ind.json"
+run --quiet --spp 4 -o "$TMP/ind2.pfm" "$TMP/ind.json"
+check "--sampler independent is the scene's \"sampler\": \"independent\"" cmp -s "$TMP/ind.pfm" "$TMP/ind2.pfm"
+# --noise-threshold: fewer samples, the count of each pixel in the samples AOV.
+run --quiet --spp 64 --noise-threshold 0.05 --aov samples -o "$TMP/ad.pfm" "$DATA/tiny-path.json"
+check "--noise-threshold --aov samples writes the counts" test "$rc" -eq 0 -a -s "$TMP/ad.samples.pfm"
 # --time-limit ends after a whole pass: the image of the samples per pixel reached, exit 0, said on stderr.
 run --time-limit 1 --spp 1000000 --width 8 --height 8 -o "$TMP/tl.pfm" "$DATA/tiny-path.json"
 check "--time-limit: exit 0" test "$rc" -eq 0

@@ -72,6 +72,11 @@ for flag in "--aov depth" --preview "--checkpoint $TMP/c.ckp" "--resume $TMP/c.c
     check "$flag: exit 2 (got $rc)" test $rc -eq 2
     check "$flag: refused once, by name" test "$(grep -c "^glint-mpi: ${flag%% *} is not supported by glint-mpi (use glint)$" "$TMP/err")" -eq 1
 done
+# Adaptive sampling's counts and half-buffers are not in the ranks' messages either: a threshold is refused.
+"${MPIRUN[@]}" -np 2 "$GLINT_MPI" --noise-threshold 0.01 -o "$TMP/x.pfm" "$DATA/tiny-path.json" >"$TMP/out" 2>"$TMP/err"
+rc=$?
+check "--noise-threshold: exit 2 (got $rc)" test $rc -eq 2
+check "--noise-threshold: refused once" test "$(grep -c 'adaptive sampling .* is not supported by glint-mpi' "$TMP/err")" -eq 1
 "${MPIRUN[@]}" -np 2 "$GLINT_MPI" --help >"$TMP/out" 2>"$TMP/err"
 check "--help: exit 0, once, naming mpirun" test $? -eq 0 -a "$(grep -c '^usage: mpirun' "$TMP/out")" -eq 1
 

@@ -1,0 +1,80 @@
+// sobol.h — Sobol' points and the path tracer's low-discrepancy sampler built on them: each 2-D decision of a
+// sample (film point, lens point, BSDF direction, point on a light, ...) takes Sobol' dimensions 0 and 1, a
+// (0,2)-sequence, at the pixel's sample index shuffled for that decision (Burley 2020's nested uniform
+// scramble of the index, seeded by pixel and decision), and each value is Owen-scrambled on its own (a hashed
+// nested uniform scramble, seeded by pixel and dimension). So the first 2^m samples of any pixel form a
+// (0,m,2)-net in every decision's pair of dimensions, the pixels' errors are independent, and every value is a
+// pure function of (pixel key, sample index, dimension): the same for any thread count, tile order or machine.
+#ifndef GLINT_SOBOL_H
+#define GLINT_SOBOL_H
+
+#include "core/rng.h"
+
+#include <stdint.h>
+
+/// Dimensions of the Sobol' sequence whose generator matrices sobol_matrix builds (Joe & Kuo's first ten).
+enum { SOBOL_DIMENSIONS = 10 };
+
+/// The generator matrix of Sobol' dimension dim (< SOBOL_DIMENSIONS): columns[k] is the 32-bit fraction that
+/// bit k of a point's index adds (by XOR) to its coordinate.
+void sobol_matrix(int dim, uint32_t columns[32]);
+/// The unscrambled coordinate dim (< SOBOL_DIMENSIONS) of point `index` (natural order, not Gray code), as a
+/// 32-bit fraction: the XOR of the columns of the index's set bits.
+uint32_t sobol_point(uint32_t index, int dim);
+
+/// x with its 32 bits in reverse order.
+static inline uint32_t sobol_reverse_bits(uint32_t x) {
+    x = (x << 16) | (x >> 16);
+    x = ((x & 0x00ff00ffu) << 8) | ((x >> 8) & 0x00ff00ffu);
+    x = ((x & 0x0f0f0f0fu) << 4) | ((x >> 4) & 0x0f0f0f0fu);
+    x = ((x & 0x33333333u) << 2) | ((x >> 2) & 0x33333333u);
+    return ((x & 0x55555555u) << 1) | ((x >> 1) & 0x55555555u);
+}
+
+/// Sobol' dimension 1 with its bits reversed: digit j of the coordinate is the XOR of the index bits k whose
+/// positions contain j's (k AND j = j), as the generator matrix of x + 1 is Pascal's triangle mod 2 (Lucas'
+/// theorem); that superset sum takes five shift-and-mask steps, one per bit of a position.
+static inline uint32_t sobol_dim1_reversed(uint32_t index) {
+    index ^= (index >> 1) & 0x55555555u;
+    index ^= (index >> 2) & 0x33333333u;
+    index ^= (index >> 4) & 0x0f0f0f0fu;
+    index ^= (index >> 8) & 0x00ff00ffu;
+    return index ^ ((index >> 16) & 0x0000ffffu);
+}
+
+/// A nested uniform (Owen) scramble of bit-reversed x: each bit is flipped by a hash of the bits below it (the
+/// higher digits of the unreversed value) and the seed. Every step (x ^= x * even, x += seed, x *= odd) changes
+/// bit k by a function of bits 0..k-1 alone, so a digit's flip depends on the digits above it only, as Owen's
+/// scrambling asks; the multipliers are Vegdahl's improvement of Laine and Karras's hash.
+static inline uint32_t sobol_owen_reversed(uint32_t x, uint32_t seed) {
+    x ^= x * 0x3d20adeau;
+    x += seed;
+    x *= (seed >> 16) | 1u;
+    x ^= x * 0x05526c56u;
+    x ^= x * 0x53a22864u;
+    return x;
+}
+
+/// A 32-bit seed from a 64-bit hash and a salt (its high half after another SplitMix64 round).
+static inline uint32_t sobol_seed(uint64_t h, uint64_t salt) { return (uint32_t)(rng_mix64(h ^ salt) >> 32); }
+
+/// The sampler's value of dimension `dim` (rng_sobol_dimension: the depth field and the offset) of sample
+/// `sample` of the pixel of key `key` (rng_pixel_key), as a 32-bit fraction. The dimensions 2j and 2j + 1 of a
+/// depth share one shuffle of the sample index (a pair: one 2-D decision), and take Sobol' dimensions 0 and 1.
+static inline uint32_t sobol_sampler_u32(uint64_t key, uint32_t sample, uint32_t dim) {
+    uint64_t pair = rng_mix64(key ^ ((uint64_t)(dim >> 1) * 0x9e3779b97f4a7c15ULL));
+    // The index shuffled: a nested uniform scramble of its bits read from the top (so the first 2^m indices
+    // map onto one aligned block of 2^m, which is a (0,m,2)-net of dimensions 0 and 1).
+    uint32_t shuffled = sobol_reverse_bits(sobol_owen_reversed(sobol_reverse_bits(sample), (uint32_t)pair));
+    // The coordinate with its bits reversed: Sobol' dimension 0 is the reversed index itself.
+    uint32_t v = (dim & 1u) ? sobol_dim1_reversed(shuffled) : shuffled;
+    return sobol_reverse_bits(sobol_owen_reversed(v, sobol_seed(pair, dim & 1u ? 0xb5ad4eceda1ce2a9ULL
+                                                                                  : 0x2545f4914f6cdd1dULL)));
+}
+
+/// sobol_sampler_u32 as a float in [0, 1): its top 24 bits, as rng_float takes PCG32's.
+static inline float sobol_sampler_float(uint64_t key, uint32_t sample, uint32_t dim) {
+    return (float)(sobol_sampler_u32(key, sample, dim) >> 8) * 0x1.0p-24f;
+}
+
+#endif
