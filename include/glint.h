@@ -292,7 +292,7 @@ GLINT_API glint_status glint_scene_add_mesh(glint_scene *scene, const char *name
 /// Pixels in the caller's array, row 0 at the top, copied.
 typedef struct glint_pixels {
     int width, height; ///< at most 2^24 pixels in all, as for image files
-    int channels;      ///< 1 (grey), 3 (RGB) or 4 (RGBA; alpha is ignored)
+    int channels;      ///< 1 (grey), 3 (RGB) or 4 (RGBA; alpha is linear in [0, 1], for pbr's alpha masks)
     const float *values;  ///< linear values >= 0, or NULL
     const uint8_t *bytes; ///< 8-bit values, decoded as the options' "encoding" says (default "srgb"), or NULL
 } glint_pixels;

@@ -203,6 +203,13 @@ static const bad_scene cases[] = {
      "bad.json:1:50: texture \"none\" is not defined (no named textures are defined)"},
     {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"pbr\", \"normal_map\": 1}}}"),
      "bad.json:1:51: \"normal_map\" must be a texture name or a texture object, got 1"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"pbr\", \"alpha\": 0.5}}}"),
+     "bad.json:1:46: \"alpha\" needs \"alpha_cutoff\": glint cuts surfaces where alpha < alpha_cutoff (an alpha mask) "
+     "and does not blend"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"pbr\", \"alpha\": true, \"alpha_cutoff\": 0.5}}}"),
+     "bad.json:1:46: \"alpha\" must be a number in [0, 1], a texture name or a texture object (its alpha channel), got true"},
+    {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"pbr\", \"alpha_cutoff\": 2}}}"),
+     "bad.json:1:53: \"alpha_cutoff\" must be a number in [0, 1], got 2"},
     {__LINE__, TEXT("{\"materials\": {\"steel\": {\"type\": \"metal\", \"fuzz\": 2}}}"),
      "bad.json:1:51: \"fuzz\" must be a number in [0, 1], got 2"},
     {__LINE__, TEXT("{\"materials\": {\"m\": {\"type\": \"lambertian\", \"albedo\": [0.5, 1.5, 0.5]}}}"),

@@ -17,7 +17,7 @@ static const double PI = 3.14159265358979323846;
 
 // A W x H map whose texel (c, r) holds (c, r, 1) + base, so that a lookup says which texel it read.
 static image_rgb index_image(int w, int h, float base) {
-    image_rgb img = {w, h, malloc((size_t)w * (size_t)h * 3 * sizeof(float))};
+    image_rgb img = {w, h, malloc((size_t)w * (size_t)h * 3 * sizeof(float)), NULL};
     for (int r = 0; r < h; r++)
         for (int c = 0; c < w; c++) {
             float *p = &img.pixels[((size_t)r * (size_t)w + (size_t)c) * 3];
@@ -97,7 +97,7 @@ static void test_sampling(float degrees) {
     envmap_sampler_release(&s);
     envmap_free(&e);
     // A black map has nothing to sample.
-    image_rgb black = {2, 1, calloc(6, sizeof(float))};
+    image_rgb black = {2, 1, calloc(6, sizeof(float)), NULL};
     envmap b = envmap_make(black, 1.0f, 0.0f);
     CHECK(!envmap_sampler_build(&s, &b));
     envmap_free(&b);
@@ -127,7 +127,7 @@ static void test_plane_under_envmap(void) {
         s->camera.lookfrom = v3(0, 1, 0.001f);
         s->camera.lookat = v3(0, 0, 0);
         s->camera.vfov_degrees = 1.0f;
-        image_rgb img = {w, h, calloc((size_t)w * h * 3, sizeof(float))};
+        image_rgb img = {w, h, calloc((size_t)w * h * 3, sizeof(float)), NULL};
         for (int r = 0; r < h / 2; r++)
             for (int c = 0; c < w; c++)
                 for (int k = 0; k < 3; k++)

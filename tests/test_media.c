@@ -341,7 +341,7 @@ static void test_furnaces(void) {
         CHECK(scene_add_medium(s, sphere_medium(v3(0.7f, 0, 0), 0.5f, v3s(0), v3_scale(chroma, 3.0f), g)));
         CHECK(scene_add_medium(s, box_medium(v3(-1, -0.3f, -0.3f), v3(-0.4f, 0.3f, 0.3f), v3s(0), v3_scale(chroma, 2.0f), -g)));
         if (variant == 2) { // a uniform environment map of radiance 1, sampled at every diffuse or medium vertex
-            image_rgb img = {8, 4, malloc(8 * 4 * 3 * sizeof(float))};
+            image_rgb img = {8, 4, malloc(8 * 4 * 3 * sizeof(float)), NULL};
             for (int i = 0; i < 8 * 4 * 3; i++) img.pixels[i] = 1.0f;
             s->settings.background = BACKGROUND_ENVMAP;
             s->environment = envmap_make(img, 1.0f, 0.0f);

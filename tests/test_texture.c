@@ -105,7 +105,7 @@ static void test_noise(void) {
 
 // A w x h image whose texel (x, y) is (x, y, 10 + x + y) / 16: every texel differs.
 static image_rgb ramp(int w, int h) {
-    image_rgb img = {w, h, malloc((size_t)w * (size_t)h * 3 * sizeof(float))};
+    image_rgb img = {w, h, malloc((size_t)w * (size_t)h * 3 * sizeof(float)), NULL};
     for (int y = 0; y < h; y++)
         for (int x = 0; x < w; x++) {
             float *p = img.pixels + ((size_t)y * (size_t)w + (size_t)x) * 3;
@@ -142,7 +142,7 @@ static void test_bilinear(void) {
     CHECK(isfinite(c.x) && isfinite(c.y) && isfinite(c.z));
     texture_free(&t);
     // A texture without pixels shows the book's cyan.
-    texture empty = texture_image((image_rgb){0, 0, NULL}, FILTER_BILINEAR);
+    texture empty = texture_image((image_rgb){0, 0, NULL, NULL}, FILTER_BILINEAR);
     c = texture_value(&empty, 0.5f, 0.5f, v3s(0));
     CHECK(c.x == 0.0f && c.y == 1.0f && c.z == 1.0f);
     // Odd sizes: centres are exact to rounding.
@@ -329,7 +329,7 @@ static uint32_t crc32_png(const unsigned char *p, size_t n) {
 }
 
 static void check_error(const char *path, const char *expected_suffix) {
-    image_rgb img = {7, 7, NULL};
+    image_rgb img = {7, 7, NULL, NULL};
     glint_error err;
     glint_status st = image_read(path, IMAGE_DECODE_SRGB, &img, &err);
     CHECK(st == GLINT_ERR_INPUT);

@@ -5,6 +5,7 @@
 
 void image_rgb_free(image_rgb *img) {
     free(img->pixels);
-    img->pixels = NULL;
+    free(img->alpha);
+    img->pixels = img->alpha = NULL;
     img->width = img->height = 0;
 }

@@ -1,5 +1,6 @@
 // integrator_common.c — the part every integrator shares, filled in by each integrator's constructor.
 #include "integrator/integrator_common.h"
+#include "integrator/alpha_mask.h"
 
 #include <stddef.h>
 
@@ -17,4 +18,5 @@ void integrator_init(integrator *it, const glint_scene *s, const accel *a) {
     it->sample = NULL;
     it->render_tile = NULL;
     it->release = NULL;
+    it->alpha_masks = alpha_scene_masked(s);
 }

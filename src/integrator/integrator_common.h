@@ -43,12 +43,14 @@ struct integrator {
     integrator_sample_fn sample;
     integrator_tile_fn render_tile;
     void (*release)(integrator *it); ///< frees the integrator's own state, or NULL
+    bool alpha_masks;         ///< some material has an alpha mask: closest-hit and shadow queries go through
+                              ///< integrator/alpha_mask.h, one ray at a time (no streams, no camera packets)
 };
 
 /// The stream of a render's generators (rng_for_stream): the Sobol' sampler's for the path tracer when the scene
 /// asks for it, else PCG32's stream of the seed (the Whitted integrators always).
 uint64_t integrator_stream(const render_settings *rs);
-/// Fills the common part: scene, accel, camera prepared for the scene's image size, random stream.
+/// Fills the common part: scene, accel, camera prepared for the scene's image size, random stream, alpha_masks.
 void integrator_init(integrator *it, const glint_scene *s, const accel *a);
 
 /// The albedo an AOV records: each channel clamped to [0, 1], as denoisers expect (NaN becomes 0).

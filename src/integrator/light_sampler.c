@@ -1,5 +1,6 @@
 // light_sampler.c — building the index of emissive quads and triangles, and the densities of its choices.
 #include "integrator/light_sampler.h"
+#include "integrator/alpha_mask.h"
 #include "material/scatter.h"
 
 #include <math.h>
@@ -336,5 +337,7 @@ vec3 light_sampler_tri_emitted(const glint_scene *s, const tri_light *tl, float 
     mesh_shading sh = mesh_shade(&s->meshes[in->index].geometry, tl->tri, &th);
     vec3 ng = mat4_apply_normal(&in->xf.inv, sh.ng);
     bool front = v3_dot(wi, ng) < 0.0f;
-    return mat_emitted(&s->materials[tl->material], s->textures, front, sh.u, sh.v, x);
+    const material *m = &s->materials[tl->material];
+    if (alpha_cut_at(m, s->textures, sh.u, sh.v)) return v3s(0.0f); // a cut part emits nothing, as paths see it
+    return mat_emitted(m, s->textures, front, sh.u, sh.v, x);
 }

@@ -6,6 +6,7 @@
 // importance sampling. Participating media (medium/medium.h) scatter paths inside them, and the same lights
 // are sampled there with the phase function, their shadow rays carrying the media's transmittance.
 #include "integrator/path.h"
+#include "integrator/alpha_mask.h"
 #include "integrator/light_sampler.h"
 #include "integrator/sample_stream.h"
 #include "integrator/spawn.h"
@@ -99,7 +100,7 @@ static inline vec3 nee_contribution(const nee_vertex *vx, vec3 le, vec3 tr, floa
 // Whether shadow ray r gets past every surface (glass included); *tr is then the transmittance of the media it
 // crosses (1 in a scene without media).
 static inline bool shadow_unblocked(const integrator *it, const ray *r, vec3 *tr) {
-    if (accel_occluded(it->accel, r)) return false;
+    if (it->alpha_masks ? alpha_occluded(it->accel, it->scene, r) : accel_occluded(it->accel, r)) return false;
     const glint_scene *s = it->scene;
     *tr = s->medium_count ? medium_transmittance(s->media, s->medium_count, r->o, r->d, r->tmin, r->tmax) : v3s(1.0f);
     return true;
@@ -127,7 +128,9 @@ static vec3 sample_sphere_light(const integrator *it, float select, uint32_t ind
     vec3 outward = v3_scale(q, copysignf(1.0f / len, sph->radius));
     const material *m = &s->materials[sph->material];
     float u = 0.0f, v = 0.0f;
-    if (m->emission_texture >= 0) sphere_uv(sph->radius < 0.0f ? v3_neg(outward) : outward, &u, &v);
+    if (m->emission_texture >= 0 || m->alpha_texture >= 0)
+        sphere_uv(sph->radius < 0.0f ? v3_neg(outward) : outward, &u, &v);
+    if (alpha_cut_at(m, s->textures, u, v)) return v3s(0.0f); // a cut part emits nothing, as paths see it
     vec3 le = mat_emitted(m, s->textures, v3_dot(wi, outward) < 0.0f, u, v, x);
     if (!(le.x > 0.0f || le.y > 0.0f || le.z > 0.0f)) return v3s(0.0f);
     // Stop short of the light by a relative margin (pbrt's shadow epsilon) so that it does not occlude itself.
@@ -199,7 +202,8 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
     ts->shadow_rays++;
     vec3 tr;
     if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
-    if (q) le = mat_emitted(&s->materials[q->material], s->textures, true, a, b, x);
+    if (q) le = alpha_cut_at(&s->materials[q->material], s->textures, a, b) // a cut part emits nothing
+                    ? v3s(0.0f) : mat_emitted(&s->materials[q->material], s->textures, true, a, b, x);
     return nee_contribution(vx, le, tr, f, fc, pdf_light);
 }
 
@@ -692,7 +696,8 @@ static vec3 path_trace(const integrator *it, vec3 o, vec3 d, float time, rng *r,
             h = *first;
             found = first_found;
         } else {
-            found = accel_intersect(pi->base.accel, &cur, &h);
+            found = pi->base.alpha_masks ? alpha_intersect(pi->base.accel, s, &cur, &h)
+                                         : accel_intersect(pi->base.accel, &cur, &h);
         }
         if (!path_vertex(pi, setup, &ps, &cur, &mpath, found, &h, r, ts, aov)) break;
     }
@@ -784,8 +789,10 @@ static __attribute__((noinline)) bool path_render_tile_stream_any(const integrat
 // (accel_streams), else one by one after their camera rays are made in batches.
 static bool path_render_tile(const integrator *it, const tile_pass *tp, film_tile *ft, thread_stats *ts) {
     const path_integrator *pi = (const path_integrator *)(const void *)it;
-    // Without the memory for the stream loop, the one-by-one loop makes the same bytes.
-    path_lanes *pl = it->scene->settings.max_depth > 0 && accel_streams(it->accel) ? malloc(sizeof *pl) : NULL;
+    // Without the memory for the stream loop, the one-by-one loop makes the same bytes. Alpha masks take the
+    // one-by-one loop: the stream's queries (accel_intersect_stream) know nothing of them (alpha_mask.h).
+    path_lanes *pl = it->scene->settings.max_depth > 0 && !it->alpha_masks && accel_streams(it->accel)
+                         ? malloc(sizeof *pl) : NULL;
     if (pl) {
         bool more = path_lean(pi) && !ft->film->aovs ? path_render_tile_stream_lean(it, tp, ft, ts, pl)
                                                      : path_render_tile_stream_any(it, tp, ft, ts, pl);

@@ -106,8 +106,9 @@ static inline __attribute__((always_inline)) bool scheduler_tile_batched(const i
     scheduler_cursor cursor = scheduler_cursor_start(it, tp); // runs ahead of the film tile's by up to CAMERA_BATCH
     camera_batch cb;
     film_tile t = *ft; // a local copy whose address does not escape: its fields can live in registers
-    // A tree of triangles traces each batch's camera rays (a pixel's samples, or neighbours) as one packet.
-    bool coherent = accel_coherent(it->accel) && it->scene->settings.max_depth > 0;
+    // A tree of triangles traces each batch's camera rays (a pixel's samples, or neighbours) as one packet; not
+    // with alpha masks, which the packet query (accel_intersect_coherent) knows nothing of: the path steps past cuts.
+    bool coherent = accel_coherent(it->accel) && it->scene->settings.max_depth > 0 && !it->alpha_masks;
     _Static_assert((int)CAMERA_BATCH <= (int)ACCEL_COHERENT, "a batch of camera rays fits in one packet");
     hit first[CAMERA_BATCH];
     bool first_found[CAMERA_BATCH] = {false};

@@ -15,7 +15,7 @@ surface surface_at_general(const glint_scene *s, const ray *r, const hit *h) {
         out.material = sp.material;
         out.u = out.v = 0.0f;
         const material *m = &s->materials[sp.material];
-        if (m->albedo_texture >= 0 || m->emission_texture >= 0)
+        if (m->albedo_texture >= 0 || m->emission_texture >= 0 || m->alpha_texture >= 0)
             sphere_uv(sp.radius < 0.0f ? v3_neg(outward) : outward, &out.u, &out.v);
         out.error = out.magnitude = 0.0f;
         return out;

@@ -131,7 +131,7 @@ static inline surface surface_at(const glint_scene *s, const ray *r, const hit *
     // Texture coordinates cost an acos and an atan2: only for materials that look them up.
     const material *m = &s->materials[sp->material];
     out.u = out.v = 0.0f;
-    if (m->albedo_texture >= 0 || m->emission_texture >= 0)
+    if (m->albedo_texture >= 0 || m->emission_texture >= 0 || m->alpha_texture >= 0)
         sphere_uv(sp->radius < 0.0f ? v3_neg(outward) : outward, &out.u, &out.v);
     out.error = out.magnitude = 0.0f;
     out.kind = HIT_SPHERE;

@@ -1,5 +1,6 @@
 // whitted.c — the paper's Whitted ray tracer (exact, in double) and its colour-correct variant.
 #include "integrator/whitted.h"
+#include "integrator/alpha_mask.h"
 #include "integrator/sample_scheduler.h"
 #include "integrator/spawn.h"
 #include "material/bsdf.h"
@@ -328,6 +329,8 @@ static float refine_t(const sphere *sp, const ray *r, float t) {
 // Closest hit of a ray. For a ray leaving the surface of sphere `from`, that sphere's float roots near the
 // origin are rounding noise (and an offset origin would move shadow edges): its one true root is
 // t = -2 (o - C).d / |d|^2, the other being 0, so its float roots are skipped and this one stands in.
+// With alpha masks (it->alpha_masks) a hit the mask cuts away does not count: the search goes on past it, as
+// alpha_intersect's does, at most ALPHA_MAX_LAYERS times.
 static bool color_intersect(const integrator *it, const spawned *sr, hit *h) {
     const glint_scene *s = it->scene;
     ray r = sr->r;
@@ -338,15 +341,25 @@ static bool color_intersect(const integrator *it, const spawned *sr, hit *h) {
         if (t_own > r.tmin && t_own < r.tmax) r.tmax = t_own; // nothing beyond it matters
         else t_own = -1.0f;
     }
+    int cuts = it->alpha_masks ? 0 : ALPHA_MAX_LAYERS;
     // Each pass steps over at most one float root of `from`, which has two.
-    for (int pass = 0; pass < 3; pass++) {
+    for (int pass = 0; pass < 3;) {
         if (!accel_intersect(it->accel, &r, h)) break;
-        if (!hit_world_sphere(h)) return true; // quads, triangles, instances: offset origins keep them apart
-        if (h->prim != sr->from) {
-            h->t = refine_t(&s->spheres[h->prim], &r, h->t);
-            return true;
+        float t = h->t;
+        if (hit_world_sphere(h)) {
+            if (h->prim == sr->from) {
+                r.tmin = t;
+                pass++;
+                continue;
+            }
+            h->t = refine_t(&s->spheres[h->prim], &r, t);
+        } // quads, triangles, instances: offset origins keep them apart
+        if (cuts < ALPHA_MAX_LAYERS && alpha_cut(s, &r, h)) {
+            r.tmin = t;
+            cuts++;
+            continue;
         }
-        r.tmin = h->t;
+        return true;
     }
     if (t_own < 0.0f) return false;
     h->t = t_own;
@@ -354,6 +367,11 @@ static bool color_intersect(const integrator *it, const spawned *sr, hit *h) {
     h->kind = HIT_SPHERE;
     h->instance = HIT_NO_INSTANCE;
     h->b1 = h->b2 = 0.0f;
+    if (cuts < ALPHA_MAX_LAYERS && alpha_cut(s, &r, h)) { // the far side of a masked sphere: on beyond it
+        r.tmin = t_own;
+        r.tmax = sr->r.tmax;
+        return alpha_intersect(it->accel, s, &r, h);
+    }
     return true;
 }
 

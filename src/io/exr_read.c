@@ -249,8 +249,7 @@ static int channel_slot(const char *name) {
 }
 
 glint_status exr_read_open(FILE *f, const char *path, image_rgb *out, glint_error *err) {
-    out->width = out->height = 0;
-    out->pixels = NULL;
+    *out = (image_rgb){0};
     exr_part *p = NULL;
     exr_part_info info;
     glint_status status = exr_part_open(f, path, MAP_READ_MAX_PIXELS, &p, &info, err);

@@ -162,8 +162,7 @@ static glint_status check_pixels(hdr_scan *s, int width, int height) {
 }
 
 glint_status hdr_read_open(FILE *f, const char *path, image_rgb *out, glint_error *err) {
-    out->width = out->height = 0;
-    out->pixels = NULL;
+    *out = (image_rgb){0};
     struct stat st;
     if (fstat(fileno(f), &st) != 0) {
         snprintf(err->message, sizeof err->message, "%s: cannot read: %s", path, strerror(errno));

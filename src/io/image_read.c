@@ -1,4 +1,5 @@
-// image_read.c — PNG (libpng's simplified API) and JPEG (libjpeg, any scan mode) to linear RGB floats.
+// image_read.c — PNG (libpng's simplified API) and JPEG (libjpeg, any scan mode) to linear RGB floats (and PNG's
+// alpha, where it has one).
 #include "io/image_read.h"
 
 #include <stdbool.h>
@@ -76,7 +77,9 @@ static glint_status decode_png(const char *name, const unsigned char *data, size
         png_image_free(&img);
         return st;
     }
-    // 8-bit sRGB RGBA whatever the file holds (palette, grey, 16 bit); alpha is not used by textures.
+    // 8-bit sRGB RGBA whatever the file holds (palette, grey, 16 bit); the alpha channel (RGBA, grey + alpha, a
+    // tRNS chunk) is kept only when the file has one (alpha masks; image_rgb.alpha).
+    bool has_alpha = (img.format & PNG_FORMAT_FLAG_ALPHA) != 0;
     img.format = PNG_FORMAT_RGBA;
     float *pixels;
     glint_status st = alloc_pixels(name, img.width, img.height, &pixels, err);
@@ -100,10 +103,24 @@ static glint_status decode_png(const char *name, const unsigned char *data, size
     decode_table(decode, table);
     for (size_t i = 0; i < n; i++)
         for (int c = 0; c < 3; c++) pixels[i * 3 + c] = table[buf[i * 4 + c]];
+    // Alpha is coverage, never sRGB-encoded: byte / 255. An alpha channel that is 255 everywhere costs nothing.
+    float *alpha = NULL;
+    bool translucent = false;
+    for (size_t i = 0; has_alpha && i < n && !translucent; i++) translucent = buf[i * 4 + 3] != 255;
+    if (translucent) {
+        if (!(alpha = malloc(n * sizeof *alpha))) {
+            free(buf);
+            free(pixels);
+            png_image_free(&img);
+            return out_of_memory(name, err);
+        }
+        for (size_t i = 0; i < n; i++) alpha[i] = (float)(buf[i * 4 + 3] / 255.0);
+    }
     free(buf);
     out->width = (int)img.width;
     out->height = (int)img.height;
     out->pixels = pixels;
+    out->alpha = alpha;
     png_image_free(&img);
     return GLINT_OK;
 }
@@ -189,8 +206,7 @@ static glint_status decode_jpeg(const char *name, const unsigned char *data, siz
 
 glint_status image_read_memory(const char *name, const unsigned char *data, size_t size, image_decode decode,
                                image_rgb *out, glint_error *err) {
-    out->width = out->height = 0;
-    out->pixels = NULL;
+    *out = (image_rgb){0};
     static const unsigned char png_magic[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
     if (size >= 8 && memcmp(data, png_magic, 8) == 0) return decode_png(name, data, size, decode, out, err);
     if (size >= 3 && data[0] == 0xff && data[1] == 0xd8 && data[2] == 0xff)
@@ -200,8 +216,7 @@ glint_status image_read_memory(const char *name, const unsigned char *data, size
 }
 
 glint_status image_read(const char *path, image_decode decode, image_rgb *out, glint_error *err) {
-    out->width = out->height = 0;
-    out->pixels = NULL;
+    *out = (image_rgb){0};
     FILE *f = fopen(path, "rb");
     if (!f) {
         if (errno == ENOMEM) return out_of_memory(path, err);

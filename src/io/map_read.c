@@ -9,8 +9,7 @@
 #include <sys/stat.h>
 
 glint_status map_read(const char *path, map_kind kind, image_rgb *out, glint_error *err) {
-    out->width = out->height = 0;
-    out->pixels = NULL;
+    *out = (image_rgb){0};
     struct stat st;
     int problem = 0;
     FILE *f = filepath_open_regular(path, &st, &problem);

@@ -24,6 +24,9 @@ material material_default(material_kind kind) {
     m.transmission = 0.0f;
     m.normal_scale = 1.0f;
     m.metallic_texture = m.roughness_texture = m.transmission_texture = m.normal_texture = -1;
+    m.alpha = 1.0f;
+    m.alpha_texture = -1;
+    m.alpha_cutoff = 0.0f; // not masked
     if (kind == MAT_CONDUCTOR) material_conductor_preset("Al", &m.eta, &m.k);
     return m;
 }

@@ -54,6 +54,10 @@ typedef struct material {
     int32_t roughness_texture;    ///< pbr: texture whose green channel (linear) scales `roughness`, or -1
     int32_t transmission_texture; ///< pbr: texture whose red channel (linear) scales `transmission`, or -1
     int32_t normal_texture;       ///< pbr: tangent-space normal map (linear, [0, 1] -> [-1, 1]), or -1
+    // Alpha masks (glTF alphaMode MASK): rays pass through the surface where its alpha is below the cutoff.
+    float alpha;          ///< coverage factor in [0, 1] (glTF baseColorFactor's A), times alpha_texture's alpha
+    int32_t alpha_texture; ///< texture whose alpha plane (texture_alpha) scales `alpha`, or -1
+    float alpha_cutoff;   ///< > 0: the surface is cut where alpha x texture alpha < alpha_cutoff; 0: not masked
 } material;
 
 /// A material of the given kind with every parameter at its documented default.
@@ -63,6 +67,8 @@ material material_default(material_kind kind);
 bool material_conductor_preset(const char *name, vec3 *eta, vec3 *k);
 /// The name of preset i (0, 1, ...), NULL past the last: for messages and documentation.
 const char *material_conductor_preset_name(size_t i);
+/// Whether m has an alpha mask: hits where material_alpha < alpha_cutoff do not count (integrator/alpha_mask.h).
+static inline bool material_masked(const material *m) { return m->alpha_cutoff > 0.0f; }
 /// Whether surfaces of m emit light (diffuse_light, or pbr with an emission): the light index samples them.
 bool material_emits(const material *m);
 /// The scene-file name of a kind ("lambertian", ...).

@@ -126,25 +126,55 @@ static int wrap(int i, int n) {
     return i < 0 ? i + n : i;
 }
 
-static vec3 image_value(const image_rgb *img, texture_filter filter, float u, float v) {
-    if (!img->pixels || img->width <= 0 || img->height <= 0) return v3(0.0f, 1.0f, 1.0f); // the book's cyan
+/// The texels a lookup at (u, v) reads, and their weights: (x0, y0) alone for the nearest filter (fx = fy = 0),
+/// else the four around it, (x1, y1) the far corner, bilinear weights fx, fy.
+typedef struct texel_site {
+    int x0, y0, x1, y1;
+    float fx, fy;
+} texel_site;
+
+static texel_site texel_site_of(const image_rgb *img, texture_filter filter, float u, float v) {
+    texel_site ts = {0, 0, 0, 0, 0.0f, 0.0f};
     if (!isfinite(u)) u = 0.0f;
     if (!isfinite(v)) v = 0.0f;
     u -= floorf(u);
     v = 1.0f - (v - floorf(v)); // image rows run top to bottom, v bottom to top
     if (filter == FILTER_NEAREST) { // u = 1 - epsilon may round to width: stay inside the image
         int x = (int)(u * (float)img->width), y = (int)(v * (float)img->height);
-        return texel(img, x < img->width ? x : img->width - 1, y < img->height ? y : img->height - 1);
+        ts.x0 = ts.x1 = x < img->width ? x : img->width - 1;
+        ts.y0 = ts.y1 = y < img->height ? y : img->height - 1;
+        return ts;
     }
     // Texel centres sit at (i + 0.5) / width: there the filter returns exactly that texel.
     float x = u * (float)img->width - 0.5f, y = v * (float)img->height - 0.5f;
     float x0f = floorf(x), y0f = floorf(y);
-    float fx = x - x0f, fy = y - y0f;
-    int x0 = wrap((int)x0f, img->width), y0 = wrap((int)y0f, img->height);
-    int x1 = wrap(x0 + 1, img->width), y1 = wrap(y0 + 1, img->height);
-    vec3 top = v3_lerp(texel(img, x0, y0), texel(img, x1, y0), fx);
-    vec3 bottom = v3_lerp(texel(img, x0, y1), texel(img, x1, y1), fx);
-    return v3_lerp(top, bottom, fy);
+    ts.fx = x - x0f, ts.fy = y - y0f;
+    ts.x0 = wrap((int)x0f, img->width), ts.y0 = wrap((int)y0f, img->height);
+    ts.x1 = wrap(ts.x0 + 1, img->width), ts.y1 = wrap(ts.y0 + 1, img->height);
+    return ts;
+}
+
+static vec3 image_value(const image_rgb *img, texture_filter filter, float u, float v) {
+    if (!img->pixels || img->width <= 0 || img->height <= 0) return v3(0.0f, 1.0f, 1.0f); // the book's cyan
+    texel_site ts = texel_site_of(img, filter, u, v);
+    if (filter == FILTER_NEAREST) return texel(img, ts.x0, ts.y0);
+    vec3 top = v3_lerp(texel(img, ts.x0, ts.y0), texel(img, ts.x1, ts.y0), ts.fx);
+    vec3 bottom = v3_lerp(texel(img, ts.x0, ts.y1), texel(img, ts.x1, ts.y1), ts.fx);
+    return v3_lerp(top, bottom, ts.fy);
+}
+
+float texture_alpha(const texture *t, float u, float v) {
+    const image_rgb *img = &t->image;
+    if (t->kind != TEX_IMAGE || !img->alpha || img->width <= 0 || img->height <= 0) return 1.0f;
+    texel_site ts = texel_site_of(img, t->filter, u, v);
+    const float *a = img->alpha;
+    size_t w = (size_t)img->width;
+    float a00 = a[(size_t)ts.y0 * w + (size_t)ts.x0];
+    if (t->filter == FILTER_NEAREST) return a00;
+    float a10 = a[(size_t)ts.y0 * w + (size_t)ts.x1], a01 = a[(size_t)ts.y1 * w + (size_t)ts.x0];
+    float a11 = a[(size_t)ts.y1 * w + (size_t)ts.x1];
+    float top = a00 + (a10 - a00) * ts.fx, bottom = a01 + (a11 - a01) * ts.fx;
+    return top + (bottom - top) * ts.fy;
 }
 
 vec3 texture_value(const texture *t, float u, float v, vec3 p) {

@@ -42,7 +42,7 @@ typedef struct texture {
     noise_kind noise; ///< noise: which function
     int depth;        ///< noise: octaves of turbulence
     perlin *perlin;   ///< noise: owned tables
-    image_rgb image;  ///< image: owned linear RGB pixels
+    image_rgb image;  ///< image: owned linear RGB pixels (and alpha, when the image has it)
     texture_filter filter; ///< image: how texels are looked up
 } texture;
 
@@ -63,6 +63,10 @@ void texture_free(texture *t);
 /// The texture's linear RGB value at surface coordinates (u, v) and point p. Image textures repeat outside
 /// [0, 1]^2 and are looked up as their filter says.
 vec3 texture_value(const texture *t, float u, float v, vec3 p);
+
+/// The texture's coverage (alpha) at (u, v), looked up as texture_value looks up colours: an image texture's
+/// alpha plane, 1 for an image without one and for every other kind (alpha masks, material.alpha_cutoff).
+float texture_alpha(const texture *t, float u, float v);
 
 /// Fills the tables from `seed` (deterministic, no shared state).
 void perlin_init(perlin *pn, uint64_t seed);

@@ -317,8 +317,26 @@ glint_status scene_call_add_image(glint_scene *s, const char *call, const char *
     ld->r = (json_reader){s->path, "", 0, NULL, &ss->scratch, GLINT_ERR_INPUT, true};
     if (st != GLINT_OK) return st;
     size_t n = (size_t)px->width * (size_t)px->height, c = (size_t)px->channels;
-    image_rgb img = {px->width, px->height, malloc(n * 3 * sizeof(float))};
+    image_rgb img = {px->width, px->height, malloc(n * 3 * sizeof(float)), NULL};
     if (!img.pixels) return out_of_memory(call, err);
+    // RGBA: the alpha channel is coverage (alpha masks), byte / 255 whatever the encoding; kept unless it is 1
+    // everywhere, as an image file's.
+    bool translucent = false;
+    for (size_t i = 0; c == 4 && i < n && !translucent; i++)
+        translucent = px->values ? px->values[i * 4 + 3] != 1.0f : px->bytes[i * 4 + 3] != 255;
+    if (translucent && !(img.alpha = malloc(n * sizeof(float)))) {
+        image_rgb_free(&img);
+        return out_of_memory(call, err);
+    }
+    for (size_t i = 0; img.alpha && i < n; i++) {
+        float a = px->values ? px->values[i * 4 + 3] : (float)(px->bytes[i * 4 + 3] / 255.0);
+        if (!(a >= 0.0f && a <= 1.0f)) {
+            image_rgb_free(&img);
+            return status_fail(err, GLINT_ERR_INPUT, "%s: values[%zu] (the alpha of pixel %zu, %zu) is %g; expected a "
+                               "value in [0, 1]", call, i * 4 + 3, i % (size_t)px->width, i / (size_t)px->width, (double)a);
+        }
+        img.alpha[i] = a;
+    }
     for (size_t i = 0; i < n; i++)
         for (size_t k = 0; k < 3; k++) {
             size_t from = i * c + (c == 1 ? 0 : k);

@@ -48,7 +48,7 @@ glint_status scene_call_add_mesh(glint_scene *s, const char *call, const char *n
 
 /// Pixels in a program's array (glint_pixels, field for field), row 0 at the top.
 typedef struct scene_pixels {
-    int width, height, channels; ///< channels: 1 (grey), 3 (RGB) or 4 (RGBA: alpha ignored)
+    int width, height, channels; ///< channels: 1 (grey), 3 (RGB) or 4 (RGBA: alpha, linear in [0, 1], for masks)
     const float *values;         ///< linear values, or NULL
     const uint8_t *bytes;        ///< 8-bit values, decoded as the options' "encoding" says, or NULL
 } scene_pixels;

@@ -111,15 +111,19 @@ bool sf_model_material(sf_loader *ld, jr_val file, const model_file *model, size
          !model_texture(ld, where, prefix, model, mm->emissive_image, IMAGE_DECODE_SRGB, &m.emission_texture)))
         return false;
     m.metallic_texture = m.roughness_texture = metal_rough; // glTF: blue is metal, green is roughness
-    // MASK: alpha = baseColorFactor.a x the texture's alpha, at most the factor: a factor below the cutoff cuts every
-    // fragment (such meshes are never placed: sf_model_fully_cut); otherwise only the texture's alpha could cut.
-    bool partly_cut = mm->alpha_mode == MODEL_ALPHA_MASK && mm->alpha >= mm->alpha_cutoff && mm->base_color_image >= 0;
-    if (mm->alpha_mode == MODEL_ALPHA_BLEND || partly_cut) {
+    // MASK: alpha = baseColorFactor.a x the base colour texture's alpha, at most the factor: a factor below the cutoff
+    // cuts every fragment (such meshes are never placed: sf_model_fully_cut); otherwise the texture's alpha may cut
+    // parts of the surface (material.alpha_cutoff; a texture without alpha cuts nothing, so the mask is left off).
+    const texture *base = m.albedo_texture >= 0 ? &ld->scene->textures[m.albedo_texture] : NULL;
+    if (mm->alpha_mode == MODEL_ALPHA_MASK && base && base->kind == TEX_IMAGE && base->image.alpha) {
+        m.alpha = mm->alpha;
+        m.alpha_texture = m.albedo_texture;
+        m.alpha_cutoff = mm->alpha_cutoff;
+    }
+    if (mm->alpha_mode == MODEL_ALPHA_BLEND) {
         char shown2[204];
-        sf_warn_at(ld, where, "model file \"%s\": material \"%.100s\": alphaMode %s%s is not supported; rendered opaque",
-                   filepath_tail(written, 200, shown2, sizeof shown2), mm->name,
-                   mm->alpha_mode == MODEL_ALPHA_MASK ? "MASK" : "BLEND",
-                   partly_cut ? " with the base colour texture's alpha" : "");
+        sf_warn_at(ld, where, "model file \"%s\": material \"%.100s\": alphaMode BLEND is not supported; rendered opaque",
+                   filepath_tail(written, 200, shown2, sizeof shown2), mm->name);
     }
     if (ld->scene->material_count >= SF_MAX_ITEMS)
         return jr_fail_at(&ld->r, where, "too many materials (the limit is %d)", SF_MAX_ITEMS);

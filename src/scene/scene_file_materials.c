@@ -285,7 +285,8 @@ static const char *const diffuse_light_keys[] = {"type", "emission", "two_sided"
 static const char *const conductor_keys[] = {"type", "roughness", "anisotropy", "eta", "k", "metal", "f0", NULL};
 static const char *const rough_dielectric_keys[] = {"type", "ior", "roughness", "tint", NULL};
 static const char *const pbr_keys[] = {"type",         "base_color", "metallic",          "roughness", "ior",
-                                       "transmission", "emission",   "emission_strength", "normal_map", NULL};
+                                       "transmission", "emission",   "emission_strength", "normal_map", "alpha",
+                                       "alpha_cutoff", NULL};
 
 // Every colour parameter but Phong's specular_color may be a texture (read_material_color).
 static bool read_lambertian(sf_loader *ld, const jr_obj *o, material *m) {
@@ -404,6 +405,30 @@ static bool read_rough_dielectric(sf_loader *ld, const jr_obj *o, material *m) {
            read_material_color(ld, o, "tint", &JR_UNIT, &m->albedo, &m->albedo_texture);
 }
 
+// An alpha mask (glTF alphaMode MASK): "alpha_cutoff" in [0, 1] turns it on; "alpha" is a number in [0, 1] or a
+// texture whose alpha channel gives it (an image without alpha gives 1), and needs the cutoff (no blending here).
+static bool read_alpha_mask(sf_loader *ld, const jr_obj *o, material *m) {
+    const jr_member *alpha = jr_get(o, "alpha");
+    if (alpha && !jr_get(o, "alpha_cutoff"))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, alpha->val.tok),
+                          "\"alpha\" needs \"alpha_cutoff\": glint cuts surfaces where alpha < alpha_cutoff (an alpha "
+                          "mask) and does not blend");
+    if (!jr_read_float(&ld->r, o, "alpha_cutoff", false, &JR_UNIT, &m->alpha_cutoff)) return false;
+    if (!alpha) return true;
+    jr_val v = alpha->val;
+    if (cJSON_IsNumber(v.item)) return jr_read_float(&ld->r, o, "alpha", false, &JR_UNIT, &m->alpha);
+    char got[96];
+    if (!cJSON_IsString(v.item) && !cJSON_IsObject(v.item))
+        return jr_fail_at(&ld->r, jr_offset(&ld->r, v.tok),
+                          "\"alpha\" must be a number in [0, 1], a texture name or a texture object (its alpha "
+                          "channel), got %s", jr_describe(&ld->r, v, got, sizeof got));
+    uint32_t index;
+    if (!read_texture_ref(ld, o, "alpha", v, &index)) return false;
+    m->alpha = 1.0f;
+    m->alpha_texture = (int32_t)index;
+    return true;
+}
+
 // glTF 2.0's metallic-roughness material: the textures' channels are glTF's (metallic B, roughness G, transmission R).
 static bool read_pbr(sf_loader *ld, const jr_obj *o, material *m) {
     float strength = 1.0f;
@@ -419,6 +444,7 @@ static bool read_pbr(sf_loader *ld, const jr_obj *o, material *m) {
     // KHR_materials_emissive_strength).
     if (m->emission_texture >= 0 && v3_max_comp(m->emission) <= 0.0f) m->emission = v3s(1.0f);
     m->emission = v3_scale(m->emission, strength);
+    if (!read_alpha_mask(ld, o, m)) return false;
     const jr_member *nm = jr_get(o, "normal_map");
     if (nm) {
         char got[96];

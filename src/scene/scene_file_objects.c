@@ -244,7 +244,7 @@ static bool read_sphere_shape(sf_loader *ld, const jr_obj *o, const char *what) 
     }
     double scale;
     const material *m = &ld->scene->materials[s.material];
-    bool textured = m->albedo_texture >= 0 || m->emission_texture >= 0;
+    bool textured = m->albedo_texture >= 0 || m->emission_texture >= 0 || m->alpha_texture >= 0;
     if (!textured && mat4_similarity_scale(&xf.m, &scale)) {
         sphere w = s;
         w.center = mat4_apply_point(&xf.m, s.center);

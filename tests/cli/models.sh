@@ -5,7 +5,7 @@
 # glTF camera and a glTF spot light reproduce their JSON equivalents; BoxTextured's texture is the right way up.
 source "$2/tests/cli/common.bash"
 MODELS=$DATA/models
-cp "$MODELS"/*.gltf "$MODELS"/*.ply "$TMP"/ && chmod u+w "$TMP"/*
+cp "$MODELS"/*.gltf "$MODELS"/*.ply "$MODELS"/*.png "$TMP"/ && chmod u+w "$TMP"/*
 cd "$TMP" || exit 1
 
 # run_bounded ARGS...: run, but a hang is a failure (rc 137) rather than a test that never ends.
@@ -131,6 +131,26 @@ check "a fully masked glTF mesh is cut away" cmp -s masked.ppm unmasked.ppm
 scene_with mesh masked.gltf
 run_bounded s.json -q -o masked.ppm
 check "and as a mesh too (exit $rc)" test "$rc" -eq 0
+
+# ---- alphaMode MASK with the base colour texture's alpha (an embedded RGBA PNG checker): the bytes of the JSON pbr
+# material with "alpha" and "alpha_cutoff" on the same quad (quad-uv.ply, checker-rgba.png); cells cut away show the
+# floor and let the light through to it, so the picture differs from the opaque material's ----
+floor_low='{"type": "quad", "q": [-3, -1, -3], "u": [0, 0, 6], "v": [6, 0, 0], "material": {"type": "lambertian", "albedo": [0.2, 0.6, 0.3]}}'
+checker='{"type": "image", "file": "checker-rgba.png"}'
+leaf="{\"type\": \"pbr\", \"base_color\": $checker, \"metallic\": 0, \"roughness\": 1, \"alpha\": $checker, \"alpha_cutoff\": 0.5}"
+opaque="{\"type\": \"pbr\", \"base_color\": $checker, \"metallic\": 0, \"roughness\": 1}"
+printf '{%s, %s, %s, "objects": [%s, {"type": "import", "file": "masked-texture.gltf", "transform": [{"scale": 4}]}]}\n' \
+    "$render" "$camera" "$light" "$floor_low" >leaf.json
+for m in leaf opaque; do
+    printf '{%s, %s, %s, "objects": [%s, {"type": "mesh", "file": "quad-uv.ply", "material": %s, "transform": [{"scale": 4}]}]}\n' \
+        "$render" "$camera" "$light" "$floor_low" "${!m}" >"$m-json.json"
+done
+run_bounded leaf.json -o leaf.ppm
+check "masked-texture.gltf imports without a warning: $(cat err)" test "$rc" -eq 0 -a "$(grep -c warning err)" -eq 0
+run_bounded leaf-json.json -q -o leaf-json.ppm
+check "a glTF alpha mask cuts as the JSON pbr alpha mask does, byte for byte" cmp -s leaf.ppm leaf-json.ppm
+run_bounded opaque-json.json -q -o opaque-json.ppm
+check "and it does cut (exit $rc)" bash -c '! cmp -s leaf.ppm opaque-json.ppm'
 
 # ---- cameras: the file's view, as the equivalent look-at camera ----
 for cam in 'front|[0.25, 1, 4]|[0.25, 1, 3]|34.37746771' 'side|[4, 1, 0]|[3, 1, 0]|28.64788976'; do

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the small glTF and PLY files of tests/cli/models.sh (run from this directory; the outputs are committed).
 Every file here is made by this script: no third-party data."""
-import base64, json, struct
+import base64, json, struct, zlib
 
 QUAD = [(-0.5, 0.0, -0.5), (0.5, 0.0, -0.5), (0.5, 0.0, 0.5), (-0.5, 0.0, 0.5)]
 QUAD_TRIS = [0, 2, 1, 0, 3, 2]  # facing +y
@@ -83,6 +83,45 @@ write('emissive.gltf', gltf(extra={"extensionsUsed": ["KHR_materials_emissive_st
 # alphaMode MASK with baseColorFactor's alpha below the cutoff: every fragment is cut away.
 write('masked.gltf', gltf(extra={"materials": [{"name": "cut", "alphaMode": "MASK", "alphaCutoff": 0.5,
                                                 "pbrMetallicRoughness": {"baseColorFactor": [1.0, 1.0, 1.0, 0.25]}}]}))
+
+# alphaMode MASK with the base colour texture's alpha: a 4x4 checker of opaque and clear cells (an RGBA PNG, embedded
+# as a data URI), over the quad with texture coordinates; checker-rgba.png (the same bytes) and quad-uv.ply (the
+# quad with the coordinates glint reads from the glTF: assimp flips v) make its JSON twin.
+def png_rgba(width, height, pixel):
+    raw = b''.join(b'\0' + b''.join(bytes(pixel(x, y)) for x in range(width)) for y in range(height))
+    def chunk(kind, data):
+        return struct.pack('>I', len(data)) + kind + data + struct.pack('>I', zlib.crc32(kind + data) & 0xffffffff)
+    return (b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', width, height, 8, 6, 0, 0, 0)) +
+            chunk(b'IDAT', zlib.compress(raw, 9)) + chunk(b'IEND', b''))
+
+
+CHECKER = png_rgba(4, 4, lambda x, y: (200, 60, 40, 255 if (x + y) % 2 == 0 else 0))
+with open('checker-rgba.png', 'wb') as f:
+    f.write(CHECKER)
+QUAD_UV = [(p[0] + 0.5, p[2] + 0.5) for p in QUAD]  # glTF's: v = 0 at the image's top row
+pb, ib = buffer_of(QUAD, QUAD_TRIS)
+tb = b''.join(struct.pack('<2f', *t) for t in QUAD_UV)
+uv_data = pb + ib + tb
+masked_texture = json.loads(gltf())
+masked_texture["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 2
+masked_texture["buffers"][0] = {"byteLength": len(uv_data), "uri": "data:application/octet-stream;base64," +
+                                base64.b64encode(uv_data).decode()}
+masked_texture["bufferViews"].append({"buffer": 0, "byteOffset": len(pb) + len(ib), "byteLength": len(tb)})
+masked_texture["accessors"].append({"bufferView": 2, "componentType": 5126, "count": len(QUAD_UV), "type": "VEC2"})
+masked_texture["materials"] = [{"name": "leaf", "alphaMode": "MASK",
+                                "pbrMetallicRoughness": {"baseColorTexture": {"index": 0}, "metallicFactor": 0.0,
+                                                         "roughnessFactor": 1.0}}]
+masked_texture["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(CHECKER).decode()}]
+masked_texture["textures"] = [{"source": 0}]
+write('masked-texture.gltf', json.dumps(masked_texture, indent=1) + '\n')
+with open('quad-uv.ply', 'wb') as f:
+    f.write(b'ply\nformat binary_little_endian 1.0\ncomment written by glint tests/data/models/make.py\n'
+            b'element vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float u\n'
+            b'property float v\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n')
+    for p, t in zip(QUAD, QUAD_UV):
+        f.write(struct.pack('<5f', p[0], p[1], p[2], t[0], 1.0 - t[1]))
+    for k in range(0, len(QUAD_TRIS), 3):
+        f.write(struct.pack('<B3i', 3, *QUAD_TRIS[k:k + 3]))
 
 # A point light moved by its node, a directional light turned by its node to shine along -y.
 write('lights.gltf', gltf(nodes=[{"mesh": 0},
