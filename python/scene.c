@@ -16,12 +16,6 @@ PyObject *glintpy_scene_wrap(glint_scene *scene) {
     return (PyObject *)self;
 }
 
-int glintpy_scene_check_idle(glintpy_scene *self, const char *what) {
-    if (!self->busy) return 0;
-    PyErr_Format(glintpy_error, "%s: the scene is being rendered on another thread", what);
-    return -1;
-}
-
 static PyObject *scene_new(PyTypeObject *type, PyObject *args, PyObject *kwargs) {
     (void)type;
     static char *keywords[] = {"name", NULL};

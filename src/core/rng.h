@@ -7,6 +7,8 @@
 #define GLINT_RNG_H
 
 #include <stdbool.h>
+#include "core/hash.h"
+
 #include <stdint.h>
 
 /// PCG32: state and stream (inc, always odd). The Sobol' sampler: state is the pixel's key (rng_pixel_key), inc
@@ -49,11 +51,7 @@ static inline uint32_t rng_u32(rng *r) {
 }
 
 /// SplitMix64 finaliser: spreads nearby integers (pixel and sample indices) over the state space.
-static inline uint64_t rng_mix64(uint64_t z) {
-    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
-    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
-    return z ^ (z >> 31);
-}
+static inline uint64_t rng_mix64(uint64_t z) { return hash_mix64(z); }
 
 /// The stream (increment) of every generator of a render with this seed: the part of rng_for_sample that
 /// depends on the seed alone.
@@ -95,7 +93,7 @@ static inline bool rng_is_sobol(const rng *r) { return (r->inc & 1u) == 0; }
 /// The dimension (depth field and offset: core/sobol.h's `dim`) of a Sobol' sampler's next draw.
 static inline uint32_t rng_sobol_dimension(const rng *r) { return (uint32_t)(r->inc >> 1) & 0x7fffffffu; }
 
-/// The Sobol' sampler's next value, its offset advanced (core/sobol.c: out of line, off PCG32's path).
+/// The Sobol' sampler's next value, its offset advanced (core/rng.c: out of line, off PCG32's path).
 float rng_sobol_float(rng *r);
 
 /// Uniform float in [0, 1): the top 24 bits, so 1.0 is never returned. PCG32's next number, or the Sobol'

@@ -1,5 +1,5 @@
-// sobol.c — the generator matrices of the first Sobol' dimensions, from Joe & Kuo's direction numbers, and the
-// Sobol' sampler's draw (rng_float's path for it).
+// sobol.c — the generator matrices of the first Sobol' dimensions, from Joe & Kuo's direction numbers (the
+// sampler's draw, rng_float's path for it, is core/rng.c).
 #include "core/sobol.h"
 
 // Joe and Kuo's primitive polynomials and initial direction numbers for dimensions 2-10 of their table
@@ -49,10 +49,4 @@ uint32_t sobol_point(uint32_t index, int dim) {
     for (int k = 0; index; k++, index >>= 1)
         if (index & 1u) v ^= columns[k];
     return v;
-}
-
-float rng_sobol_float(rng *r) {
-    float u = sobol_sampler_float(r->state, (uint32_t)(r->inc >> 32), rng_sobol_dimension(r));
-    r->inc = (r->inc & ~0xfffeULL) | ((r->inc + 2u) & 0xfffeu); // the next offset of the same depth field
-    return u;
 }

@@ -8,7 +8,7 @@
 #ifndef GLINT_SOBOL_H
 #define GLINT_SOBOL_H
 
-#include "core/rng.h"
+#include "core/hash.h"
 
 #include <stdint.h>
 
@@ -56,13 +56,13 @@ static inline uint32_t sobol_owen_reversed(uint32_t x, uint32_t seed) {
 }
 
 /// A 32-bit seed from a 64-bit hash and a salt (its high half after another SplitMix64 round).
-static inline uint32_t sobol_seed(uint64_t h, uint64_t salt) { return (uint32_t)(rng_mix64(h ^ salt) >> 32); }
+static inline uint32_t sobol_seed(uint64_t h, uint64_t salt) { return (uint32_t)(hash_mix64(h ^ salt) >> 32); }
 
 /// The sampler's value of dimension `dim` (rng_sobol_dimension: the depth field and the offset) of sample
 /// `sample` of the pixel of key `key` (rng_pixel_key), as a 32-bit fraction. The dimensions 2j and 2j + 1 of a
 /// depth share one shuffle of the sample index (a pair: one 2-D decision), and take Sobol' dimensions 0 and 1.
 static inline uint32_t sobol_sampler_u32(uint64_t key, uint32_t sample, uint32_t dim) {
-    uint64_t pair = rng_mix64(key ^ ((uint64_t)(dim >> 1) * 0x9e3779b97f4a7c15ULL));
+    uint64_t pair = hash_mix64(key ^ ((uint64_t)(dim >> 1) * 0x9e3779b97f4a7c15ULL));
     // The index shuffled: a nested uniform scramble of its bits read from the top (so the first 2^m indices
     // map onto one aligned block of 2^m, which is a (0,m,2)-net of dimensions 0 and 1).
     uint32_t shuffled = sobol_reverse_bits(sobol_owen_reversed(sobol_reverse_bits(sample), (uint32_t)pair));
