@@ -457,7 +457,24 @@ static void test_strategies_agree(void) {
     }
 }
 
+// glTF's baseColorFactor multiplies a base colour texture (the importer sets base_factor); without a texture the
+// base colour is the constant itself.
+static void test_base_factor(void) {
+    texture tex = texture_solid(v3(0.8f, 0.6f, 0.4f));
+    material m = pbr(0.5f, 0.0f, 0.0f, v3s(0.3f));
+    m.albedo_texture = 0;
+    m.base_factor = v3(0.5f, 1.0f, 0.25f);
+    bsdf_site site = {v3(0, 0, 1), v3(1, 0, 0), v3(0, 0, 0), 0.5f, 0.5f, v3(0, 0, 0), true};
+    bsdf b;
+    bsdf_init(&b, &m, &tex, v3(0.8f, 0.6f, 0.4f), &site);
+    CHECK(b.base.x == 0.4f && b.base.y == 0.6f && b.base.z == 0.1f);
+    m.albedo_texture = -1;
+    bsdf_init(&b, &m, &tex, m.albedo, &site);
+    CHECK(b.base.x == 0.3f && b.base.y == 0.3f && b.base.z == 0.3f);
+}
+
 int main(void) {
+    test_base_factor();
     test_strategies_agree();
     test_fresnel();
     test_classic_materials();

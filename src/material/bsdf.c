@@ -138,7 +138,8 @@ static vec3 mapped_normal(const texture *map, float scale, const bsdf_site *site
 
 void bsdf_init(bsdf *b, const material *m, const texture *textures, vec3 albedo, const bsdf_site *site) {
     b->m = m;
-    b->base = albedo;
+    // glTF multiplies the base colour texture by baseColorFactor (a constant base colour is the factor itself).
+    b->base = m->kind == MAT_PBR && m->albedo_texture >= 0 ? v3_mul(albedo, m->base_factor) : albedo;
     b->front = site->front;
     b->compensate = true;
     b->metallic = b->transmission = 0.0f;

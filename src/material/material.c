@@ -12,6 +12,7 @@ material material_default(material_kind kind) {
     m.emission = v3s(kind == MAT_PBR ? 0.0f : 1.0f);
     m.two_sided = false;
     m.albedo_texture = -1;
+    m.base_factor = v3s(1.0f);
     m.emission_texture = -1;
     // Microfacet defaults: Blender's Principled BSDF's roughness 0.5, a dielectric pbr, aluminium for a conductor.
     m.roughness = 0.5f;

@@ -40,6 +40,7 @@ typedef struct material {
     vec3 emission;        ///< diffuse_light, pbr: emitted radiance (pbr: glTF emissiveFactor x emissive_strength)
     bool two_sided;       ///< diffuse_light: emit on both sides
     int32_t albedo_texture;   ///< scene texture giving albedo/colour (pbr: base colour) at the hit, or -1: `albedo`
+    vec3 base_factor;         ///< pbr: multiplies the base colour texture (glTF's baseColorFactor); (1, 1, 1)
     int32_t emission_texture; ///< scene texture scaling `emission`, or -1
     // The microfacet materials. pbr's base colour is `albedo` (its texture `albedo_texture`), its ior `ior`.
     float roughness;      ///< conductor, rough_dielectric, pbr: perceptual roughness in [0, 1]; GGX alpha = roughness^2

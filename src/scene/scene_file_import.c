@@ -110,6 +110,7 @@ bool sf_model_material(sf_loader *ld, jr_val file, const model_file *model, size
         (v3_max_comp(m.emission) > 0.0f &&
          !model_texture(ld, where, prefix, model, mm->emissive_image, IMAGE_DECODE_SRGB, &m.emission_texture)))
         return false;
+    if (m.albedo_texture >= 0) m.base_factor = mm->base_color; // the texture times baseColorFactor, as glTF says
     m.metallic_texture = m.roughness_texture = metal_rough; // glTF: blue is metal, green is roughness
     // MASK: alpha = baseColorFactor.a x the base colour texture's alpha, at most the factor: a factor below the cutoff
     // cuts every fragment (such meshes are never placed: sf_model_fully_cut); otherwise the texture's alpha may cut
