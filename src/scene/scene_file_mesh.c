@@ -253,7 +253,7 @@ static bool flatten_model(sf_loader *ld, size_t where, model_file *model, mesh *
         const model_mesh *mm = &model->meshes[pl->mesh];
         const mesh *g = &mm->geometry;
         if (!g->triangle_count || sf_model_fully_cut(model, mm)) continue;
-        transform xf;
+        transform xf = transform_identity(); // (used only when invertible; gcc's LTO cannot see that)
         bool invertible = transform_make(&pl->xf, &xf);
         for (size_t k = 0; k < g->position_count; k++) {
             vec3 p = mat4_apply_point(&pl->xf, g->positions[k]);
