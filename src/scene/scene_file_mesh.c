@@ -143,6 +143,24 @@ static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model
     return true;
 }
 
+// Hands a mesh read from file `path` to the scene (ok: it was read; else its arrays are freed) and records it in
+// the loader's cache entry, so that placing the file again adds an instance, not a copy.
+static bool add_file_mesh(sf_loader *ld, bool ok, scene_mesh *sm, const char *path, sf_file_id id, bool face_normals,
+                          sf_mesh_entry *entry) {
+    if (ok && !(sm->path = malloc(strlen(path) + 1))) ok = sf_fail_oom(ld);
+    if (!ok) {
+        mesh_free(&sm->geometry);
+        free(sm->slot_material);
+        free(sm->path);
+        return false;
+    }
+    memcpy(sm->path, path, strlen(path) + 1);
+    long i = scene_add_mesh(ld->scene, sm);
+    if (i < 0) return sf_fail_oom(ld);
+    *entry = (sf_mesh_entry){id, face_normals, entry->needs_fallback, false, (uint32_t)i};
+    return true;
+}
+
 /// Loads an OBJ file into a new scene mesh; *entry records it in the cache.
 static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id id, bool face_normals, sf_mesh_entry *entry) {
     obj_model model;
@@ -190,18 +208,7 @@ static bool load_mesh(sf_loader *ld, jr_val file, const char *path, sf_file_id i
     sm.geometry = model.mesh;
     memset(&model.mesh, 0, sizeof model.mesh);
     obj_model_free(&model);
-    if (ok && !(sm.path = malloc(strlen(path) + 1))) ok = sf_fail_oom(ld);
-    if (!ok) {
-        mesh_free(&sm.geometry);
-        free(sm.slot_material);
-        free(sm.path);
-        return false;
-    }
-    memcpy(sm.path, path, strlen(path) + 1);
-    long i = scene_add_mesh(ld->scene, &sm);
-    if (i < 0) return sf_fail_oom(ld);
-    *entry = (sf_mesh_entry){id, face_normals, entry->needs_fallback, false, (uint32_t)i};
-    return true;
+    return add_file_mesh(ld, ok, &sm, path, id, face_normals, entry);
 }
 
 // n / |n|, or fallback when n has no direction (or overflows).
@@ -315,18 +322,7 @@ static bool load_model_mesh(sf_loader *ld, jr_val file, const char *path, sf_fil
             ok = mesh_compute_normals(&sm.geometry) || sf_fail_oom(ld);
     }
     if (ok) ok = sm.slot_count ? (sm.default_material = sm.slot_material[0], true) : sf_fallback_material(ld, &sm.default_material);
-    if (ok && !(sm.path = malloc(strlen(path) + 1))) ok = sf_fail_oom(ld);
-    if (!ok) {
-        mesh_free(&sm.geometry);
-        free(sm.slot_material);
-        free(sm.path);
-        return false;
-    }
-    memcpy(sm.path, path, strlen(path) + 1);
-    long i = scene_add_mesh(ld->scene, &sm);
-    if (i < 0) return sf_fail_oom(ld);
-    *entry = (sf_mesh_entry){id, face_normals, entry->needs_fallback, false, (uint32_t)i};
-    return true;
+    return add_file_mesh(ld, ok, &sm, path, id, face_normals, entry);
 }
 
 // Places scene mesh `index` with the object's transform (and transform2) and, when it gives one (`override`), its
