@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# gallery.sh — renders the README's gallery from this repository's scenes: one thread, reduced sizes and sample
-# counts so that the files stay small. The committed PNGs are exactly what it makes (tests/cli/gallery.sh).
+# gallery.sh — renders the README's gallery from this repository's scenes at reduced sizes and sample counts so
+# that the files stay small, on every CPU (the bytes are the same for any thread count; GLINT_GALLERY_THREADS
+# sets it). The committed PNGs are exactly what it makes (tests/cli/gallery.sh).
 # usage: bash tools/gallery.sh [GLINT_BINARY [OUTPUT_DIR]]   (defaults: build/glint, docs/gallery)
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -11,7 +12,7 @@ mkdir -p "$out"
 while read -r name width height spp; do
     # GLINT_GALLERY_SKIP_GLTF=1: a glint built without assimp cannot read the glTF scenes.
     [[ ${GLINT_GALLERY_SKIP_GLTF:-0} != 0 && $name == gltf-* ]] && continue
-    "$glint" "$root/scenes/$name.json" --width "$width" --height "$height" --spp "$spp" --threads 1 -q \
+    "$glint" "$root/scenes/$name.json" --width "$width" --height "$height" --spp "$spp" --threads "${GLINT_GALLERY_THREADS:-0}" -q \
         -o "$out/$name.png"
 done <<'LIST'
 paper 384 384 1
