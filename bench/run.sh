@@ -643,7 +643,7 @@ cycles_bench() {
         local -a steps=(blend gref cref)
         for th in $THREAD_LIST; do steps+=("t$th"); done
         steps+=(report)
-        GLINT=$GLINT SCENE=$ROOT/$scene OUT=$out LOCK=$WORK/cpu.lock W=200 H=200 REF_SPP=$ref_spp REF_PARTS=$ref_parts \
+        GLINT=$(cd "$(dirname "$GLINT")" && pwd)/$(basename "$GLINT") SCENE=$ROOT/$scene OUT=$out LOCK=$WORK/cpu.lock W=200 H=200 REF_SPP=$ref_spp REF_PARTS=$ref_parts \
             CREF_PARTS=$ref_parts SPP=$spp_list TAG=$tag bash "$yard/run_cornell.sh" "${steps[@]}" >"$out/log" 2>&1 ||
             { echo "cycles: the yardstick failed on $scene" >&2; tail -n 20 "$out/log" >&2; exit 1; }
         local md=$out/$tag-report-bothref.md
@@ -675,6 +675,7 @@ if ls "$DATA"/*.dat >/dev/null 2>&1; then
     rm -rf "${RESULT%.md}"
     mkdir -p "${RESULT%.md}"
     cp "$DATA"/*.dat "${RESULT%.md}/"
+    if ls "$DATA"/*-report.md >/dev/null 2>&1; then cp "$DATA"/*-report.md "${RESULT%.md}/"; fi
     emit "## Data and plots"
     emit ""
     if [ $PLOTS = 1 ] && command -v gnuplot >/dev/null; then
