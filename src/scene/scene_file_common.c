@@ -144,3 +144,18 @@ bool sf_fallback_material(sf_loader *ld, uint32_t *index) {
     *index = (uint32_t)ld->fallback_material;
     return true;
 }
+
+bool sf_add_file_material(sf_loader *ld, size_t where, const char *file, const char *name, const material *m,
+                          uint32_t *index) {
+    if (ld->scene->material_count >= SF_MAX_ITEMS)
+        return jr_fail_at(&ld->r, where, "too many materials (the limit is %d)", SF_MAX_ITEMS);
+    size_t n = strlen(file) + strlen(name) + 2;
+    char *full = malloc(n);
+    if (!full) return sf_fail_oom(ld);
+    snprintf(full, n, "%s:%s", file, name);
+    long k = scene_add_material(ld->scene, m, full);
+    free(full);
+    if (k < 0) return sf_fail_oom(ld);
+    *index = (uint32_t)k;
+    return true;
+}

@@ -153,6 +153,10 @@ bool sf_read_file_path(sf_loader *ld, const jr_obj *o, const char *key, const ch
 /// would make samples NaN); otherwise writes "<what> reaches <x> on the <axis> axis; ..." at `offset`.
 bool sf_check_extent(sf_loader *ld, size_t offset, const char *what, bounds3 b);
 
+/// Adds material m of a mesh or model file as "FILE:NAME" (file as the scene wrote it), blaming `where` when the
+/// scene has too many; *index is its number.
+bool sf_add_file_material(sf_loader *ld, size_t where, const char *file, const char *name, const material *m,
+                          uint32_t *index);
 /// The grey Lambertian of faces without a material (meshes from any file or array), created on first use; false
 /// when out of memory.
 bool sf_fallback_material(sf_loader *ld, uint32_t *index);

@@ -126,17 +126,7 @@ bool sf_model_material(sf_loader *ld, jr_val file, const model_file *model, size
         sf_warn_at(ld, where, "model file \"%s\": material \"%.100s\": alphaMode BLEND is not supported; rendered opaque",
                    filepath_tail(written, 200, shown2, sizeof shown2), mm->name);
     }
-    if (ld->scene->material_count >= SF_MAX_ITEMS)
-        return jr_fail_at(&ld->r, where, "too many materials (the limit is %d)", SF_MAX_ITEMS);
-    size_t n = strlen(written) + strlen(mm->name) + 2;
-    char *name = malloc(n);
-    if (!name) return sf_fail_oom(ld);
-    snprintf(name, n, "%s:%s", written, mm->name);
-    long k = scene_add_material(ld->scene, &m, name);
-    free(name);
-    if (k < 0) return sf_fail_oom(ld);
-    *index = (uint32_t)k;
-    return true;
+    return sf_add_file_material(ld, where, written, mm->name, &m, index);
 }
 
 // ---------------------------------------------------------------------------------------------

@@ -127,16 +127,7 @@ static bool map_obj_materials(sf_loader *ld, jr_val file, const obj_model *model
                 return false;
             m.albedo_texture = (int32_t)t;
         }
-        if (ld->scene->material_count >= SF_MAX_ITEMS)
-            return jr_fail_at(&ld->r, where, "too many materials (the limit is %d)", SF_MAX_ITEMS);
-        size_t n = strlen(written) + strlen(om->name) + 2;
-        char *name = malloc(n);
-        if (!name) return sf_fail_oom(ld);
-        snprintf(name, n, "%s:%s", written, om->name);
-        long k = scene_add_material(ld->scene, &m, name);
-        free(name);
-        if (k < 0) return sf_fail_oom(ld);
-        sm->slot_material[i] = (uint32_t)k;
+        if (!sf_add_file_material(ld, where, written, om->name, &m, &sm->slot_material[i])) return false;
     }
     if (*needs_fallback || sm->slot_count == 0) return sf_fallback_material(ld, &sm->default_material);
     sm->default_material = sm->slot_material[0];
