@@ -186,7 +186,7 @@ static void test_rng_state(void) {
     CHECK(rng_float(&s) == sobol_sampler_float(key, 9, dim_of(4, RNG_DIM_MEDIUM + 1)));
     rng_start_bounce(&s, 0);
     CHECK(rng_float(&s) == sobol_sampler_float(key, 9, dim_of(1, 0)));
-    CHECK((uint32_t)(s.inc >> 32) == 9u && s.state == key); // the sample and the pixel stay
+    CHECK((uint32_t)(s.inc >> 32) == sobol_reverse_bits(9u) && s.state == key); // the sample and the pixel stay
     // Values lie in [0, 1).
     bool in_range = true;
     for (uint32_t i = 0; i < 100000; i++) {
@@ -206,6 +206,28 @@ static void test_rng_state(void) {
     CHECK(same && p.state == q.state && p.inc == q.inc);
 }
 
+// rng_float2 draws one pair: PCG32's next two numbers; the Sobol' sampler's pair at an even offset, and the next
+// pair (one offset skipped) at an odd one, the offset past it either way.
+static void test_float2(void) {
+    rng p = rng_for_sample(5, 77, 3), q = p;
+    float a, b;
+    rng_float2(&p, &a, &b);
+    CHECK(a == rng_float(&q) && b == rng_float(&q) && p.state == q.state);
+    uint64_t key = rng_pixel_key(5, 77);
+    for (uint32_t sample = 0; sample < 64; sample++) {
+        rng s = rng_sobol(key, sample);
+        rng_start_bounce(&s, 2);
+        rng_decision(&s, RNG_DIM_BSDF);
+        rng_float2(&s, &a, &b);
+        CHECK(a == sobol_sampler_float(key, sample, dim_of(3, 0)) && b == sobol_sampler_float(key, sample, dim_of(3, 1)));
+        rng_decision(&s, RNG_DIM_LIGHT); // odd: the pair after it
+        rng_float2(&s, &a, &b);
+        CHECK(a == sobol_sampler_float(key, sample, dim_of(3, RNG_DIM_LIGHT + 1)) &&
+              b == sobol_sampler_float(key, sample, dim_of(3, RNG_DIM_LIGHT + 2)));
+        CHECK(rng_sobol_dimension(&s) == dim_of(3, RNG_DIM_LIGHT + 3));
+    }
+}
+
 int main(void) {
     test_published_points();
     test_fast_dimensions();
@@ -214,5 +236,6 @@ int main(void) {
     test_sampler_net();
     test_discrepancy();
     test_rng_state();
+    test_float2();
     return check_summary();
 }

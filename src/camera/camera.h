@@ -74,8 +74,9 @@ static inline bool camera_has_shutter(const camera *c) { return c->shutter_open 
 /// RNG_DIM_LENS), then, with an open shutter, a time uniform in it (one draw, after the others, so that a closed
 /// shutter leaves every other draw where it was; RNG_DIM_TIME; camera_batch.h makes sixteen at once).
 static inline ray camera_sample_ray(const camera *c, int x, int y, rng *r) {
-    float fx = (float)x + rng_float(r);
-    float fy = (float)y + rng_float(r);
+    float jx, jy;
+    rng_float2(r, &jx, &jy);
+    float fx = (float)x + jx, fy = (float)y + jy;
     ray out = camera_ray_unnormalised(c, fx, fy, r);
     if (camera_has_shutter(c)) {
         rng_decision(r, RNG_DIM_TIME);

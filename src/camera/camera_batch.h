@@ -84,20 +84,24 @@ static __attribute__((noinline, unused)) void camera_batch_sobol(camera_batch *b
                                                                  camera_batch_draws *u) {
     for (int i = 0; i < CAMERA_BATCH; i++) {
         uint64_t key = b->key[i];
-        uint32_t sample = (uint32_t)b->sample[i];
-        u->jx[i] = sobol_sampler_float(key, sample, RNG_DIM_FILM);
-        u->jy[i] = sobol_sampler_float(key, sample, RNG_DIM_FILM + 1);
+        uint32_t reversed = sobol_reverse_bits((uint32_t)b->sample[i]);
+        uint64_t h = sobol_pair_hash(key, RNG_DIM_FILM / 2); // each 2-D decision: one hash, one shuffle
+        uint32_t index = sobol_pair_index(h, reversed);
+        u->jx[i] = sobol_float(sobol_pair_value(h, index, 0));
+        u->jy[i] = sobol_float(sobol_pair_value(h, index, 1));
         int next = RNG_DIM_FILM + 2;
         if (lens) {
-            u->u1[i] = sobol_sampler_float(key, sample, RNG_DIM_LENS);
-            u->u2[i] = sobol_sampler_float(key, sample, RNG_DIM_LENS + 1);
+            h = sobol_pair_hash(key, RNG_DIM_LENS / 2);
+            index = sobol_pair_index(h, reversed);
+            u->u1[i] = sobol_float(sobol_pair_value(h, index, 0));
+            u->u2[i] = sobol_float(sobol_pair_value(h, index, 1));
             next = RNG_DIM_LENS + 2;
         }
         if (shutter) {
-            u->ut[i] = sobol_sampler_float(key, sample, RNG_DIM_TIME);
+            u->ut[i] = sobol_float(sobol_sampler_u32_reversed(key, reversed, RNG_DIM_TIME));
             next = RNG_DIM_TIME + 1;
         }
-        b->r[i] = rng_sobol(key, sample);
+        b->r[i] = rng_sobol(key, b->sample[i]);
         rng_decision(&b->r[i], next);
     }
 }

@@ -2,8 +2,21 @@
 #include "core/rng.h"
 #include "core/sobol.h"
 
+// The sampler's offset advanced by n within the same depth field.
+static void advance(rng *r, unsigned n) { r->inc = (r->inc & ~0xfffeULL) | ((r->inc + 2u * n) & 0xfffeu); }
+
 float rng_sobol_float(rng *r) {
-    float u = sobol_sampler_float(r->state, (uint32_t)(r->inc >> 32), rng_sobol_dimension(r));
-    r->inc = (r->inc & ~0xfffeULL) | ((r->inc + 2u) & 0xfffeu); // the next offset of the same depth field
+    float u = sobol_float(sobol_sampler_u32_reversed(r->state, (uint32_t)(r->inc >> 32), rng_sobol_dimension(r)));
+    advance(r, 1);
     return u;
+}
+
+void rng_sobol_float2(rng *r, float *a, float *b) {
+    if (rng_sobol_dimension(r) & 1u) advance(r, 1); // a 2-D decision takes a whole pair: its values form nets
+    uint32_t dim = rng_sobol_dimension(r);
+    uint64_t h = sobol_pair_hash(r->state, dim >> 1);
+    uint32_t index = sobol_pair_index(h, (uint32_t)(r->inc >> 32));
+    *a = sobol_float(sobol_pair_value(h, index, 0));
+    *b = sobol_float(sobol_pair_value(h, index, 1));
+    advance(r, 2);
 }

@@ -8,11 +8,12 @@
 
 #include <stdbool.h>
 #include "core/hash.h"
+#include "core/sobol.h"
 
 #include <stdint.h>
 
 /// PCG32: state and stream (inc, always odd). The Sobol' sampler: state is the pixel's key (rng_pixel_key), inc
-/// holds the sample index (bits 32-63), the depth field (bits 16-31: 0 for the camera, d + 1 for bounce d), the
+/// holds the sample index with its bits reversed (bits 32-63: the index shuffle starts from it), the depth field (bits 16-31: 0 for the camera, d + 1 for bounce d), the
 /// next draw's offset in it (bits 1-15) and a clear bit 0.
 typedef struct rng {
     uint64_t state, inc;
@@ -79,7 +80,9 @@ static inline rng rng_for_sample(uint64_t seed, uint64_t pixel, uint64_t sample)
 
 /// The Sobol' sampler of sample `sample` of the pixel of key `key` (rng_pixel_key), at the camera's first
 /// dimension.
-static inline rng rng_sobol(uint64_t key, uint64_t sample) { return (rng){key, (uint64_t)(uint32_t)sample << 32}; }
+static inline rng rng_sobol(uint64_t key, uint64_t sample) {
+    return (rng){key, (uint64_t)sobol_reverse_bits((uint32_t)sample) << 32};
+}
 
 /// The generator of sample `sample` of the pixel of key `key` in a render of stream `stream`: PCG32
 /// (rng_for_key), or the Sobol' sampler where the stream is RNG_SOBOL_STREAM.
@@ -115,6 +118,21 @@ static inline void rng_start_bounce(rng *r, int depth) {
 /// for PCG32.
 static inline void rng_decision(rng *r, int offset) {
     if (rng_is_sobol(r)) r->inc = (r->inc & ~0xfffeULL) | (((uint64_t)offset << 1) & 0xfffeu);
+}
+
+/// The Sobol' sampler's next pair of dimensions (from the next even offset: a pair's values form (0,m,2)-nets,
+/// two values of different pairs do not), sharing one hash and one shuffle; the offset moves past it (core/rng.c).
+void rng_sobol_float2(rng *r, float *a, float *b);
+
+/// Two uniform floats in [0, 1) for one 2-D decision: PCG32's next two (what rng_float draws twice), or the
+/// Sobol' sampler's next pair of dimensions, skipping an odd offset (rng_sobol_float2).
+static inline __attribute__((always_inline)) void rng_float2(rng *r, float *a, float *b) {
+    if (__builtin_expect(rng_is_sobol(r), 0)) {
+        rng_sobol_float2(r, a, b);
+        return;
+    }
+    *a = (float)(rng_u32(r) >> 8) * 0x1.0p-24f;
+    *b = (float)(rng_u32(r) >> 8) * 0x1.0p-24f;
 }
 
 /// Uniform float in [lo, hi).

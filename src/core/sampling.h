@@ -55,7 +55,8 @@ static inline __attribute__((always_inline)) void sincos_turn(float u, float *c,
 /// Uniform point in the unit disk from exactly two random numbers, without rejection: radius sqrt(u1), angle
 /// 2 pi u2 (sincos_turn).
 static inline void sample_unit_disk(rng *r, float *x, float *y) {
-    float u1 = rng_float(r), u2 = rng_float(r);
+    float u1, u2;
+    rng_float2(r, &u1, &u2);
     float c, s, rad = sqrtf(u1);
     sincos_turn(u2, &c, &s);
     *x = rad * c;
@@ -68,7 +69,8 @@ static inline void sample_unit_disk(rng *r, float *x, float *y) {
 // Always inlined: in the path tracer's lean bounce a call costs more than the sampling (gcc stopped inlining it
 // once the path tracer grew).
 static inline __attribute__((always_inline)) vec3 sample_sphere_uniform(rng *r) {
-    float u1 = rng_float(r), u2 = rng_float(r);
+    float u1, u2;
+    rng_float2(r, &u1, &u2);
     float c, s;
     sincos_turn(u2, &c, &s);
     float rad = 2.0f * sqrtf(u1 * (1.0f - u1));
@@ -79,7 +81,8 @@ static inline __attribute__((always_inline)) vec3 sample_sphere_uniform(rng *r) 
 /// uniform disk point lifted onto the hemisphere), drawn from exactly two random numbers, in the frame of
 /// v3_basis. (The path tracer's Lambertian uses unit(n + sample_sphere_uniform), which measured faster.)
 static inline vec3 sample_cosine_hemisphere(rng *r, vec3 n) {
-    float u1 = rng_float(r), u2 = rng_float(r);
+    float u1, u2;
+    rng_float2(r, &u1, &u2);
     float c, s;
     sincos_turn(u2, &c, &s);
     float rad = sqrtf(u1), z = sqrtf(1.0f - u1); // u1 < 1: z >= 2^-12, strictly above the surface

@@ -55,26 +55,48 @@ static inline uint32_t sobol_owen_reversed(uint32_t x, uint32_t seed) {
     return x;
 }
 
-/// A 32-bit seed from a 64-bit hash and a salt (its high half after another SplitMix64 round).
-static inline uint32_t sobol_seed(uint64_t h, uint64_t salt) { return (uint32_t)(hash_mix64(h ^ salt) >> 32); }
-
-/// The sampler's value of dimension `dim` (rng_sobol_dimension: the depth field and the offset) of sample
-/// `sample` of the pixel of key `key` (rng_pixel_key), as a 32-bit fraction. The dimensions 2j and 2j + 1 of a
-/// depth share one shuffle of the sample index (a pair: one 2-D decision), and take Sobol' dimensions 0 and 1.
-static inline uint32_t sobol_sampler_u32(uint64_t key, uint32_t sample, uint32_t dim) {
-    uint64_t pair = hash_mix64(key ^ ((uint64_t)(dim >> 1) * 0x9e3779b97f4a7c15ULL));
-    // The index shuffled: a nested uniform scramble of its bits read from the top (so the first 2^m indices
-    // map onto one aligned block of 2^m, which is a (0,m,2)-net of dimensions 0 and 1).
-    uint32_t shuffled = sobol_reverse_bits(sobol_owen_reversed(sobol_reverse_bits(sample), (uint32_t)pair));
-    // The coordinate with its bits reversed: Sobol' dimension 0 is the reversed index itself.
-    uint32_t v = (dim & 1u) ? sobol_dim1_reversed(shuffled) : shuffled;
-    return sobol_reverse_bits(sobol_owen_reversed(v, sobol_seed(pair, dim & 1u ? 0xb5ad4eceda1ce2a9ULL
-                                                                                  : 0x2545f4914f6cdd1dULL)));
+/// The hash of one 2-D decision (dimensions 2 * pair and 2 * pair + 1) of the pixel of key `key` (rng_pixel_key):
+/// its low half seeds the shuffle of the sample index, its high half the scramble of the pair's first value.
+static inline uint64_t sobol_pair_hash(uint64_t key, uint32_t pair) {
+    return hash_mix64(key ^ ((uint64_t)pair * 0x9e3779b97f4a7c15ULL));
 }
+
+/// The pair's shuffled index from the sample index with its bits reversed (a nested uniform scramble of the
+/// index's bits read from the top, so the first 2^m indices map onto one aligned block of 2^m, which is a
+/// (0,m,2)-net of Sobol' dimensions 0 and 1).
+static inline uint32_t sobol_pair_index(uint64_t pair_hash, uint32_t reversed_sample) {
+    return sobol_reverse_bits(sobol_owen_reversed(reversed_sample, (uint32_t)pair_hash));
+}
+
+/// Value `which` (0 or 1) of a pair at its shuffled index, as a 32-bit fraction: Sobol' dimension `which`,
+/// Owen-scrambled with a seed of its own (the second value's from one more SplitMix64 round).
+static inline uint32_t sobol_pair_value(uint64_t pair_hash, uint32_t index, unsigned which) {
+    // The coordinate with its bits reversed: Sobol' dimension 0 is the reversed index itself.
+    uint32_t v = which ? sobol_dim1_reversed(index) : index;
+    uint32_t seed = (uint32_t)((which ? hash_mix64(pair_hash) : pair_hash) >> 32);
+    return sobol_reverse_bits(sobol_owen_reversed(v, seed));
+}
+
+/// The sampler's value of dimension `dim` (rng_sobol_dimension: the depth field and the offset) of the sample
+/// whose index has its bits reversed (what the sampler keeps: the shuffle starts from it) of the pixel of key
+/// `key` (rng_pixel_key), as a 32-bit fraction. The dimensions 2j and 2j + 1 of a depth are a pair (one 2-D
+/// decision): one shuffle of the index, Sobol' dimensions 0 and 1.
+static inline uint32_t sobol_sampler_u32_reversed(uint64_t key, uint32_t reversed_sample, uint32_t dim) {
+    uint64_t h = sobol_pair_hash(key, dim >> 1);
+    return sobol_pair_value(h, sobol_pair_index(h, reversed_sample), dim & 1u);
+}
+
+/// sobol_sampler_u32_reversed of sample index `sample`.
+static inline uint32_t sobol_sampler_u32(uint64_t key, uint32_t sample, uint32_t dim) {
+    return sobol_sampler_u32_reversed(key, sobol_reverse_bits(sample), dim);
+}
+
+/// A 32-bit fraction as a float in [0, 1): its top 24 bits, as rng_float takes PCG32's.
+static inline float sobol_float(uint32_t u) { return (float)(u >> 8) * 0x1.0p-24f; }
 
 /// sobol_sampler_u32 as a float in [0, 1): its top 24 bits, as rng_float takes PCG32's.
 static inline float sobol_sampler_float(uint64_t key, uint32_t sample, uint32_t dim) {
-    return (float)(sobol_sampler_u32(key, sample, dim) >> 8) * 0x1.0p-24f;
+    return sobol_float(sobol_sampler_u32(key, sample, dim));
 }
 
 #endif

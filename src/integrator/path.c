@@ -149,7 +149,8 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
                          rng *r, thread_stats *ts) {
     const glint_scene *s = it->scene;
     rng_decision(r, RNG_DIM_LIGHT);
-    float xi = rng_float(r), a = rng_float(r), b = rng_float(r), select;
+    float xi = rng_float(r), a, b, select;
+    rng_float2(r, &a, &b);
     size_t chosen = light_sampler_choose(pl, sp->p, xi, &select);
     if (chosen == SIZE_MAX) return v3s(0.0f); // no light can reach the point
     light_ref ref = pl->lights[chosen];
@@ -213,7 +214,8 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
 static vec3 sample_environment(const integrator *it, const envmap_sampler *es, const nee_vertex *vx,
                                const spawn_point *sp, rng *r, thread_stats *ts) {
     rng_decision(r, RNG_DIM_ENVIRONMENT);
-    float a = rng_float(r), b = rng_float(r);
+    float a, b;
+    rng_float2(r, &a, &b);
     vec3 wi, le;
     float pdf;
     if (!envmap_sample(es, &it->scene->environment, a, b, &wi, &pdf, &le)) return v3s(0.0f);
@@ -288,7 +290,8 @@ static float aim_diffuse(const glint_scene *s, vec3 p, vec3 n, rng *r, scatter_e
     rng_decision(r, RNG_DIM_IMPORTANCE);
     if (rng_float(r) < 0.5f) {
         size_t i = (size_t)(rng_float(r) * (float)count);
-        float a = rng_float(r), b = rng_float(r), dist, pdf;
+        float a, b, dist, pdf;
+        rng_float2(r, &a, &b);
         vec3 wi;
         if (light_sphere_sample(&s->spheres[s->importance_spheres[i < count ? i : count - 1]], p, a, b, &wi, &dist, &pdf))
             ev->dir = wi;
@@ -454,7 +457,8 @@ static inline __attribute__((always_inline)) int path_medium_step(const path_int
     spawn_point mp = {me.p, v3s(0.0f), 0.0f, cur->time}; // no surface to step off; the path's time
     path_nee(pi, setup, ps, &nv, &mp, v3s(1.0f), 0.0f, ps->depth + 1 < s->settings.max_depth, r, ts);
     rng_decision(r, RNG_DIM_BSDF);
-    float a = rng_float(r), b = rng_float(r);
+    float a, b;
+    rng_float2(r, &a, &b);
     vec3 wi = phase_hg_sample(g, cur->d, a, b);
     ps->bsdf_pdf = phase_hg(g, v3_dot(cur->d, wi));
     *cur = (ray){me.p, wi, 0.0f, INFINITY, cur->time};

@@ -239,7 +239,8 @@ static float spec_pdf(const bsdf *b, vec3 wo, vec3 wi) {
 // A reflection direction: the multiple-scattering lobe's (cosine) with probability ms_probability, else the mirror
 // image of wo about a visible normal. False when it points below the surface.
 static bool spec_sample(const bsdf *b, vec3 wo, rng *r, vec3 *wi) {
-    float q = ms_probability(b, wo), u0 = rng_float(r), u1 = rng_float(r), u2 = rng_float(r);
+    float q = ms_probability(b, wo), u0 = rng_float(r), u1, u2;
+    rng_float2(r, &u1, &u2);
     if (u0 < q) {
         float c, s, rad = sqrtf(u1);
         sincos_turn(u2, &c, &s);
@@ -324,7 +325,9 @@ static float glass_pdf(const bsdf *b, vec3 wo, vec3 wi) {
 // A direction of the glass lobe: a visible normal, then reflection with the Fresnel probability, else refraction.
 // The weight is G2 / G1 (tinted for transmission), over the albedo where compensated.
 static bool glass_sample(const bsdf *b, vec3 wo, vec3 tint, rng *r, bsdf_sample_record *s) {
-    float u1 = rng_float(r), u2 = rng_float(r), u3 = rng_float(r);
+    float u1, u2;
+    rng_float2(r, &u1, &u2);
+    float u3 = rng_float(r);
     float ax = b->ax, ay = b->ay;
     vec3 h = mf_sample_visible(wo, ax, ay, u1, u2);
     float oh = v3_dot(wo, h);
@@ -439,7 +442,9 @@ static bool pbr_sample(const bsdf *b, vec3 wo, rng *r, bsdf_sample_record *s) {
         if (!glass_sample(b, wo, b->base, r, &g)) return false;
         wi = g.wi;
     } else if (u < pg + pd) {
-        float u1 = rng_float(r), u2 = rng_float(r), c, sn, rad = sqrtf(u1);
+        float u1, u2, c, sn;
+        rng_float2(r, &u1, &u2);
+        float rad = sqrtf(u1);
         sincos_turn(u2, &c, &sn);
         wi = v3(rad * c, rad * sn, sqrtf(fmaxf(0.0f, 1.0f - u1)));
         if (!(wi.z > 0.0f)) return false;
