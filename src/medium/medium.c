@@ -16,13 +16,23 @@ static bool line_sphere(const double o[3], const double d[3], const double c[3],
     double oc[3] = {o[0] - c[0], o[1] - c[1], o[2] - c[2]};
     double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
     double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+    // A unit direction in float has |a - 1| < 1e-6: dividing by a would move the roots by less than the float
+    // they become, so the path's free flights skip the three divisions (a chain with the square root).
+    bool unit = fabs(a - 1.0) < 1e-6;
+    double ba = unit ? b : b / a;
     double l2 = 0.0;
     for (int k = 0; k < 3; k++) {
-        double l = oc[k] - (b / a) * d[k]; // the line's closest point to the centre, relative to it
+        double l = oc[k] - ba * d[k]; // the line's closest point to the centre, relative to it
         l2 += l * l;
     }
     double disc = r * r - l2;
     if (!(disc >= 0.0) || !(a > 0.0)) return false;
+    if (unit) {
+        double h = sqrt(disc);
+        *t0 = -b - h;
+        *t1 = -b + h;
+        return true;
+    }
     double h = sqrt(a * disc);
     *t0 = (-b - h) / a;
     *t1 = (-b + h) / a;
@@ -78,8 +88,11 @@ bool medium_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, flo
     return *t0 < *t1;
 }
 
-// exp(-tau) per channel.
-static vec3 exp_neg(const double tau[3]) { return v3((float)exp(-tau[0]), (float)exp(-tau[1]), (float)exp(-tau[2])); }
+// exp(-tau) per channel (one exp where the channels are equal: grey media).
+static vec3 exp_neg(const double tau[3]) {
+    if (tau[0] == tau[1] && tau[1] == tau[2]) return v3s((float)exp(-tau[0]));
+    return v3((float)exp(-tau[0]), (float)exp(-tau[1]), (float)exp(-tau[2]));
+}
 
 // Adds to tau each medium's sigma_t times the length of o + t d (length |d| per unit t) inside it, tmin < t < tmax.
 static void optical_depth(const medium *media, size_t count, vec3 o, vec3 d, float tmin, float tmax, double tau[3]) {
@@ -124,7 +137,8 @@ medium_event medium_sample(const medium *media, size_t count, const texture *tex
         float u = rng_float(r);
         double rate = v3_comp(media[i].sigma_t, mp->hero);
         if (!(rate > 0.0)) continue;
-        double t = (double)t0 - log1p(-(double)u) / rate; // u < 1: finite
+        // -ln(1 - u): 1 - u is exact in float (u has 24 bits) and positive, and float's logarithm is the cheaper
+        double t = (double)t0 - (double)logf(1.0f - u) / rate;
         if (t < (double)t1 && t < (double)first) {
             first = (float)t;
             ev.scattered = true;
