@@ -4,6 +4,7 @@
 #
 # usage: bash bench/run.sh [--quick] [--runs N] [--only LIST] [--threads LIST] [--mesh-spp N]
 #                          [--mesh-max N] [--no-embree] [--no-plots] [--glint PATH]
+#                          [--meshyard-meshes LIST] [--cycles-scenes LIST]
 #   --quick       fewer samples and runs (the Howard scenes at 10 spp instead of 100, the mesh
 #                 yardstick at 4 spp instead of 16, 3 runs)
 #   --runs N      runs per measurement (alternating pairs against a yardstick); the tables show
@@ -19,6 +20,8 @@
 #   --no-embree   skip the Embree-based yardsticks even when they are found
 #   --no-plots    do not draw the SVG plots (bench/plot.sh, gnuplot)
 #   --glint PATH  measure this binary instead of building one
+#   --meshyard-meshes LIST  comma-separated meshes of the meshyard section (default bunny, bunny1m, dragon,
+#                 engine, engine-2m: bench/meshes/README.md)
 #   --cycles-scenes LIST  comma-separated scene files (relative to the repository) of the cycles section
 #                 (default scenes/cornell-box.json; envmap-bunny and bench/scenes/many-lights.json also work)
 # Environment: CMAKE_BUILD_PARALLEL_LEVEL for the build; GLINT_BENCH_BUILD for the build directory.
@@ -35,7 +38,7 @@ export LC_ALL=C # decimal points in awk, printf and EPOCHREALTIME
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 SECTIONS=rtiow,howard,paper,scaling,mesh,meshyard,meshscale,cycles
 QUICK=0 RUNS='' ONLY=$SECTIONS EMBREE=1 PLOTS=1 GLINT='' THREADS='' MESH_SPP='' MESH_MAX=5000000
-CYCLES_SCENES=scenes/cornell-box.json
+CYCLES_SCENES=scenes/cornell-box.json MESHYARD_MESHES=bunny,bunny1m,dragon,engine,engine-2m
 usage_error() { echo "bench/run.sh: $*" >&2; exit 2; }
 while [ $# -gt 0 ]; do
     case "$1" in
@@ -49,6 +52,7 @@ while [ $# -gt 0 ]; do
     --no-plots) PLOTS=0 ;;
     --glint) GLINT=${2:?--glint needs a path}; shift ;;
     --cycles-scenes) CYCLES_SCENES=${2:?--cycles-scenes needs a list}; shift ;;
+    --meshyard-meshes) MESHYARD_MESHES=${2:?--meshyard-meshes needs a list}; shift ;;
     -h | --help) awk 'NR > 1 && !/^#/ { exit } NR > 1 { sub(/^# ?/, ""); print }' "$0"; exit 0 ;;
     *) usage_error "unknown option '$1' (try --help)" ;;
     esac
@@ -188,14 +192,15 @@ meshyard_run() {
     yard_fields "$1" "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f", b - a }')"
 }
 
-# meshyard_direct OUTFILE OBJ SPP IMAGE: the mesh yardstick's renderer (built by its run.sh) on its bunny
-# scene with OBJ in place of the bunny, one thread, pinned as pin_for chose; appends yard_fields' figures.
+# meshyard_direct OUTFILE OBJ SPP IMAGE [THREADS]: the mesh yardstick's renderer (built by its run.sh) on its
+# bunny scene with OBJ in place of the bunny, on THREADS threads (default 1), pinned as pin_for chose; appends
+# yard_fields' figures.
 meshyard_direct() {
     local t0 t1 args
     # shellcheck disable=SC2207 # the yardstick's arguments, split as its run.sh splits them
     args=($(bash "$MESHYARD/scene_args.sh" bunny | sed "s|--mesh [^ ]*|--mesh $2|"))
     t0=$(now)
-    timed "$WORK/time" "$MESHYARD_BUILD/render_mesh" -w 400 -h 300 -s "$3" -d 50 -t 1 "${args[@]}" -o "$4" \
+    timed "$WORK/time" "$MESHYARD_BUILD/render_mesh" -w 400 -h 300 -s "$3" -d 50 -t "${5:-1}" "${args[@]}" -o "$4" \
         >"$WORK/yout" 2>"$WORK/yerr" || { echo "the mesh yardstick failed on $2" >&2; cat "$WORK/yerr" >&2; exit 1; }
     t1=$(now)
     yard_fields "$1" "$(awk -v a="$t0" -v b="$t1" 'BEGIN { printf "%.4f", b - a }')"
@@ -387,9 +392,21 @@ mesh_tool() {
 # bunny-10k the bunny simplified by bench/decimate.c to about 10,000 triangles; bunny-278k, bunny-1m,
 # bunny-4m and bunny-18m the bunny subdivided 4:1 by bench/subdivide.c once to four times.
 bench_mesh() {
-    local name=$1 tool arg obj bin
+    local name=$1 tool arg obj bin src
     case $name in
     bunny) echo "$MESH_SRC"; return 0 ;;
+    dragon) yard_mesh "$name" "$ROOT/bench/meshes/stanford-dragon/dragon_vrip.ply.gz"; return ;;
+    engine) yard_mesh "$name" "$ROOT/bench/meshes/2cylinder-engine/2CylinderEngine.glb"; return ;;
+    engine-2m) # the engine subdivided 4:1 twice
+        src=$(bench_mesh engine) || return 1
+        obj=$ROOT/bench/work/$name.obj
+        if [ ! -s "$obj" ] || [ "$ROOT/bench/subdivide.c" -nt "$obj" ] || [ "$src" -nt "$obj" ]; then
+            echo "generating $obj ..." >&2
+            bin=$(mesh_tool subdivide) || return 1
+            "$bin" "$src" "$WORK/$name.obj" 2 >&2 || return 1
+            mv "$WORK/$name.obj" "$obj"
+        fi
+        echo "$obj"; return 0 ;;
     bunny-10k) tool=decimate arg=10000 ;;
     bunny-278k) tool=subdivide arg=1 ;;
     bunny-1m) tool=subdivide arg=2 ;;
@@ -406,6 +423,19 @@ bench_mesh() {
         # written in the work directory (removed on exit) and moved into place: no partial mesh is left behind
         "$bin" "$MESH_SRC" "$WORK/$name.obj" "$arg" >&2 || return 1
         mv "$WORK/$name.obj" "$obj"
+    fi
+    echo "$obj"
+}
+
+# yard_mesh NAME SOURCE: prints the path of bench/work/NAME.obj, SOURCE (bench/meshes/) in the bunny's place
+# (bench/yard_meshes.py), generating it when it is missing or older than its source or the script.
+yard_mesh() {
+    local obj=$ROOT/bench/work/$1.obj
+    if [ ! -s "$obj" ] || [ "$2" -nt "$obj" ] || [ "$ROOT/bench/yard_meshes.py" -nt "$obj" ]; then
+        echo "generating $obj ..." >&2
+        mkdir -p "$ROOT/bench/work"
+        python3 "$ROOT/bench/yard_meshes.py" "$2" "$MESH_SRC" "$WORK/$1.obj" >&2 || return 1
+        mv "$WORK/$1.obj" "$obj"
     fi
     echo "$obj"
 }
@@ -465,7 +495,9 @@ if want mesh; then mesh_bench; fi
 # The embree-mesh yardstick (GLINT_EMBREE_MESH) renders the bunny and the bunny subdivided twice on a ground
 # quad, 400x300, depth 50, with glint's path-integrator semantics; bench/scenes/bunny-yardstick.json is the
 # same scene for glint. For bunny1m glint reads the very OBJ file the yardstick reads (which its run.sh
-# writes): the same bytes to parse. Runs alternate A B A B; one-thread runs of both are pinned to one CPU.
+# writes): the same bytes to parse. The meshes of other character (bench/meshes/: a dense scan, a CAD mesh of
+# long thin triangles, that mesh subdivided into tiny coplanar ones) stand in the bunny's place in the same
+# scene, one OBJ file for both. Runs alternate A B A B; one-thread runs of both are pinned to one CPU.
 meshyard_bench() {
     local spp=$MESH_SPP scene name t
     emit "## The mesh yardstick: glint against Embree 3's triangles, 400x300, $spp spp, depth 50"
@@ -479,21 +511,30 @@ meshyard_bench() {
     emit "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     declare -A mg=() me=()
     local notes=()
-    for name in bunny bunny1m; do
+    for name in ${MESHYARD_MESHES//,/ }; do
         # Warm-up, not timed: builds the yardstick, writes its bunny1m.obj and glint's scene of it the first
-        # time (a minute: Python), and brings the mesh into the page cache for both renderers.
+        # time (a minute: Python), the other meshes' OBJ files, and brings the mesh into the page cache for both
+        # renderers.
         echo "meshyard: $name, warm-up ..." >&2
         PIN=()
-        meshyard_run "$WORK/warm" "$name" 1 "$NPROC" "$WORK/warm.pfm"
-        if [ $name = bunny ]; then
-            scene=$ROOT/bench/scenes/bunny-yardstick.json
-        else
+        meshyard_run "$WORK/warm" bunny 1 "$NPROC" "$WORK/warm.pfm" # builds the yardstick's renderer
+        local obj=''
+        case $name in
+        bunny) scene=$ROOT/bench/scenes/bunny-yardstick.json obj=$MESH_SRC ;;
+        bunny1m)
+            meshyard_run "$WORK/warm" bunny1m 1 "$NPROC" "$WORK/warm.pfm"
             [ -s "$MESHYARD_BUILD/bunny1m.obj" ] || { echo "bench/run.sh: the yardstick wrote no $MESHYARD_BUILD/bunny1m.obj" >&2; exit 1; }
-            scene=$WORK/bunny1m.json
-            sed "s|\"file\": \"[^\"]*\"|\"file\": \"$MESHYARD_BUILD/bunny1m.obj\"|" "$ROOT/bench/scenes/bunny-yardstick.json" >"$scene"
+            obj=$MESHYARD_BUILD/bunny1m.obj ;;
+        *) # a mesh of bench/meshes/ in the bunny's place: both renderers read the same OBJ file
+            obj=$(bench_mesh "$name") || exit 1
+            meshyard_direct "$WORK/warm" "$obj" 1 "$WORK/warm.pfm" "$NPROC" ;;
+        esac
+        if [ $name != bunny ]; then
+            scene=$WORK/$name.json
+            sed "s|\"file\": \"[^\"]*\"|\"file\": \"$obj\"|" "$ROOT/bench/scenes/bunny-yardstick.json" >"$scene"
         fi
         glint_measure "$WORK/warm" "$WORK/warm.pfm" "$scene" --spp 1 --threads "$NPROC"
-        local tris; tris=$(mesh_triangles "$([ $name = bunny ] && echo "$MESH_SRC" || echo "$MESHYARD_BUILD/bunny1m.obj")")
+        local tris; tris=$(mesh_triangles "$obj")
         local first=''
         for t in $THREAD_LIST; do
             pin_for "$t"
@@ -501,7 +542,10 @@ meshyard_bench() {
             for i in $(seq "$RUNS"); do
                 echo "meshyard: $name, $t thread(s), pair $i of $RUNS" >&2
                 glint_measure "$WORK/yg" "$WORK/glint.pfm" "$scene" --spp "$spp" --threads "$t"
-                meshyard_run "$WORK/ye" "$name" "$spp" "$t" "$WORK/embree.pfm"
+                case $name in
+                bunny | bunny1m) meshyard_run "$WORK/ye" "$name" "$spp" "$t" "$WORK/embree.pfm" ;;
+                *) meshyard_direct "$WORK/ye" "$obj" "$spp" "$WORK/embree.pfm" "$t" ;;
+                esac
             done
             # glint: process render mrays build_ms peak_kb; Embree: process load build render mrays peak_kb r g b
             paste -d ' ' "$WORK/yg" "$WORK/ye" >"$WORK/ypairs"
@@ -535,7 +579,7 @@ meshyard_bench() {
     done
     emit ""
     for t in $THREAD_LIST; do
-        for name in bunny bunny1m; do
+        for name in ${MESHYARD_MESHES//,/ }; do
             data speedup.dat "$name glint $t $(oversub "$t") ${mg[$name.$t]} $(dratio "${mg[$name.$t]}" "${mg[$name.1]:-nan}")" \
                 "$name embree-mesh $t $(oversub "$t") ${me[$name.$t]} $(dratio "${me[$name.$t]}" "${me[$name.1]:-nan}")"
         done
