@@ -588,11 +588,12 @@ static __attribute__((noinline)) bool path_bsdf_vertex(const path_integrator *pi
     }
     vec3 tp = surface_texture_point(s, sf, 0);
     vec3 albedo = mat_albedo(m, s->textures, sf->u, sf->v, tp);
-    if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, albedo, sf->n, m);
     bsdf_site site = {sf->n, v3s(0.0f), v3s(0.0f), sf->u, sf->v, tp, sf->front};
     path_tangents(s, sf, &site.tangent, &site.bitangent);
     bsdf b;
     bsdf_init(&b, m, s->textures, albedo, &site);
+    // The base colour the BSDF shades with (a texture times glTF's baseColorFactor), not the texture alone.
+    if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, b.base, sf->n, m);
     vec3 wo = v3_neg(cur->d);
     // The direction first, then the lights: next-event estimation counts whether or not the sample is absorbed
     // (a rough lobe at a grazing angle loses many below the horizon, and the light they would have found is

@@ -152,6 +152,20 @@ check "a glTF alpha mask cuts as the JSON pbr alpha mask does, byte for byte" cm
 run_bounded opaque-json.json -q -o opaque-json.ppm
 check "and it does cut (exit $rc)" bash -c '! cmp -s leaf.ppm opaque-json.ppm'
 
+# ---- a base colour texture times baseColorFactor: the albedo AOV is what the BSDF shades with (white x the factor),
+# not the texture alone ----
+printf '{%s, %s, %s, "objects": [{"type": "import", "file": "tinted-texture.gltf", "transform": [{"scale": 4}]}]}\n' \
+    "$render" "$camera" "$light" >tinted.json
+run_bounded tinted.json -q --aov albedo -o tinted.pfm
+check "tinted-texture.gltf renders with an albedo AOV: $(cat err)" test "$rc" -eq 0
+check "the albedo AOV of a textured glTF material carries its baseColorFactor" python3 -c "
+import struct, sys
+d = open('tinted.albedo.pfm', 'rb').read()
+h = d.split(b'\n', 3)
+v = struct.unpack('<%df' % ((len(h[3])) // 4), h[3])
+px = {tuple(round(c, 5) for c in v[i:i + 3]) for i in range(0, len(v), 3)}
+sys.exit(0 if (0.5, 0.25, 0.75) in px and (1.0, 1.0, 1.0) not in px else 1)"
+
 # ---- cameras: the file's view, as the equivalent look-at camera ----
 for cam in 'front|[0.25, 1, 4]|[0.25, 1, 3]|34.37746771' 'side|[4, 1, 0]|[3, 1, 0]|28.64788976'; do
     IFS='|' read -r name from at vfov <<<"$cam"

@@ -114,6 +114,14 @@ masked_texture["materials"] = [{"name": "leaf", "alphaMode": "MASK",
 masked_texture["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(CHECKER).decode()}]
 masked_texture["textures"] = [{"source": 0}]
 write('masked-texture.gltf', json.dumps(masked_texture, indent=1) + '\n')
+# An opaque white base colour texture times a baseColorFactor: the colour (and the albedo AOV) is the factor.
+WHITE = png_rgba(2, 2, lambda x, y: (255, 255, 255, 255))
+tinted = json.loads(json.dumps(masked_texture))
+tinted["materials"] = [{"name": "tinted", "pbrMetallicRoughness": {"baseColorTexture": {"index": 0},
+                                                                   "baseColorFactor": [0.5, 0.25, 0.75, 1.0],
+                                                                   "metallicFactor": 0.0, "roughnessFactor": 1.0}}]
+tinted["images"] = [{"uri": "data:image/png;base64," + base64.b64encode(WHITE).decode()}]
+write('tinted-texture.gltf', json.dumps(tinted, indent=1) + '\n')
 with open('quad-uv.ply', 'wb') as f:
     f.write(b'ply\nformat binary_little_endian 1.0\ncomment written by glint tests/data/models/make.py\n'
             b'element vertex 4\nproperty float x\nproperty float y\nproperty float z\nproperty float u\n'
