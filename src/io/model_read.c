@@ -1,5 +1,6 @@
 // model_read.c — glTF 2.0 and PLY files through assimp's C API, checked and turned into glint records (model_read.h).
 #include "io/model_read.h"
+#include "io/ply_fast.h"
 
 #include "core/file_read.h"
 #include "core/filepath.h"
@@ -11,45 +12,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-model_format model_format_of(const char *path) {
-    const char *dot = strrchr(path, '.'), *slash = strrchr(path, '/');
-    if (!dot || (slash && dot < slash)) return MODEL_FORMAT_NONE;
-    char ext[6] = {0};
-    size_t n = strlen(dot + 1);
-    if (n == 0 || n >= sizeof ext) return MODEL_FORMAT_NONE;
-    for (size_t i = 0; i < n; i++) ext[i] = (char)tolower((unsigned char)dot[1 + i]);
-    if (strcmp(ext, "ply") == 0) return MODEL_FORMAT_PLY;
-    if (strcmp(ext, "gltf") == 0) return MODEL_FORMAT_GLTF;
-    if (strcmp(ext, "glb") == 0) return MODEL_FORMAT_GLB;
-    return MODEL_FORMAT_NONE;
-}
-
-static void free_mesh_list(model_file *m) {
-    for (size_t i = 0; i < m->mesh_count; i++) mesh_free(&m->meshes[i].geometry);
-    free(m->meshes);
-}
-
-void model_file_free(model_file *m) {
-    if (!m) return;
-    free_mesh_list(m);
-    free(m->placements);
-    for (size_t i = 0; i < m->material_count; i++) free(m->materials[i].name);
-    free(m->materials);
-    for (size_t i = 0; i < m->image_count; i++) {
-        free(m->images[i].path);
-        free(m->images[i].data);
-        free(m->images[i].name);
-    }
-    free(m->images);
-    for (size_t i = 0; i < m->light_count; i++) free(m->lights[i].name);
-    free(m->lights);
-    for (size_t i = 0; i < m->camera_count; i++) free(m->cameras[i].name);
-    free(m->cameras);
-    for (size_t i = 0; i < m->input_count; i++) free(m->inputs[i].path);
-    free(m->inputs);
-    memset(m, 0, sizeof *m);
-}
 
 #ifndef GLINT_HAVE_ASSIMP
 
@@ -146,18 +108,6 @@ static enum aiReturn file_seek_proc(struct aiFile *af, size_t offset, enum aiOri
 }
 static void file_flush_proc(struct aiFile *af) { (void)af; }
 
-static bool add_input(model_file *m, const struct stat *st, const char *path) {
-    for (size_t i = 0; i < m->input_count; i++)
-        if (m->inputs[i].dev == (uint64_t)st->st_dev && m->inputs[i].ino == (uint64_t)st->st_ino) return true;
-    model_input *grown = realloc(m->inputs, (m->input_count + 1) * sizeof *grown);
-    if (!grown) return false;
-    m->inputs = grown;
-    char *copy = strdup(path);
-    if (!copy) return false;
-    m->inputs[m->input_count++] = (model_input){(uint64_t)st->st_dev, (uint64_t)st->st_ino, copy};
-    return true;
-}
-
 static struct aiFile *file_open_proc(struct aiFileIO *io, const char *path, const char *mode) {
     read_context *c = (read_context *)(void *)io->UserData;
     if (!mode || mode[0] != 'r') return NULL; // glint never lets assimp write
@@ -176,7 +126,7 @@ static struct aiFile *file_open_proc(struct aiFileIO *io, const char *path, cons
         return NULL;
     }
     glint_file *g = calloc(1, sizeof *g);
-    if (!g || !add_input(c->out, &st, path)) {
+    if (!g || !model_file_add_input(c->out, &st, path)) {
         c->oom = true;
         free(g);
         fclose(f);
@@ -218,14 +168,10 @@ static glint_status fail_oom(converter *cv) {
 
 static void warn(converter *cv, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void warn(converter *cv, const char *fmt, ...) {
-    if (!cv->warn) return;
-    char msg[1024], prefix[400];
-    snprintf(prefix, sizeof prefix, "%s: warning: ", cv->path);
     va_list ap;
     va_start(ap, fmt);
-    status_vformat(msg, sizeof msg, prefix, fmt, ap);
+    model_file_warn(cv->warn, cv->user, cv->path, fmt, ap);
     va_end(ap);
-    cv->warn(msg, cv->user);
 }
 
 static bool finite3(struct aiVector3D v) { return isfinite(v.x) && isfinite(v.y) && isfinite(v.z); }
@@ -641,136 +587,6 @@ static glint_status convert(converter *cv) {
 }
 
 // ---------------------------------------------------------------------------------------------
-// PLY headers, checked before assimp reads the body: assimp allocates what the header declares
-
-enum { PLY_MAX_HEADER = 64 << 10 };
-
-// The bytes of a PLY scalar type, 0 for an unknown name.
-static unsigned ply_type_size(const char *t) {
-    static const struct { const char *name; unsigned size; } types[] = {
-        {"char", 1}, {"uchar", 1}, {"int8", 1}, {"uint8", 1}, {"short", 2}, {"ushort", 2}, {"int16", 2},
-        {"uint16", 2}, {"int", 4}, {"uint", 4}, {"int32", 4}, {"uint32", 4}, {"float", 4}, {"float32", 4},
-        {"double", 8}, {"float64", 8}};
-    for (size_t i = 0; i < sizeof types / sizeof types[0]; i++)
-        if (strcmp(t, types[i].name) == 0) return types[i].size;
-    return 0;
-}
-
-/// The layout of the PLY files glint reads itself (ply_read_fast): binary little-endian, the element "vertex" of
-/// float properties (x, y, z; optionally nx, ny, nz and a texture coordinate pair; others skipped) and then the
-/// element "face" of one list property (uchar count, 32-bit indices) whose every face is a triangle.
-typedef struct ply_layout {
-    bool fast;              ///< the header is of that layout
-    size_t header_bytes;    ///< where the body starts
-    uint32_t vertices, faces;
-    unsigned stride;        ///< bytes of a vertex
-    int pos[3], nrm[3], uv[2]; ///< byte offsets in a vertex, -1 when absent
-} ply_layout;
-
-// The offset slot of vertex property `name` in the layout, or NULL when glint does not use it.
-static int *ply_slot(ply_layout *l, const char *name) {
-    static const char *const pos[] = {"x", "y", "z"}, *const nrm[] = {"nx", "ny", "nz"};
-    static const char *const uv[][2] = {{"u", "v"}, {"s", "t"}, {"texture_u", "texture_v"}, {"texture_s", "texture_t"}};
-    for (int k = 0; k < 3; k++) {
-        if (strcmp(name, pos[k]) == 0) return &l->pos[k];
-        if (strcmp(name, nrm[k]) == 0) return &l->nrm[k];
-    }
-    for (int i = 0; i < 4; i++)
-        for (int k = 0; k < 2; k++)
-            if (strcmp(name, uv[i][k]) == 0) return &l->uv[k];
-    return NULL;
-}
-
-/// Refuses a PLY file whose header declares more elements than its body could hold: every element needs at least
-/// its properties' bytes (binary; a list at least its count) or two characters a property (ASCII: a digit and a
-/// separator). A forged count would otherwise have assimp allocate gigabytes before it finds the file short.
-/// Fills *layout (layout->fast: glint reads the body itself).
-static glint_status check_ply_header(const char *path, ply_layout *layout, glint_error *err) {
-    *layout = (ply_layout){false, 0, 0, 0, 0, {-1, -1, -1}, {-1, -1, -1}, {-1, -1}};
-    struct stat st;
-    int problem;
-    FILE *f = filepath_open_regular(path, &st, &problem);
-    if (!f) return status_fail(err, GLINT_ERR_INPUT, "%s: cannot open: %s", path, filepath_problem_text(problem));
-    char *text = malloc(PLY_MAX_HEADER + 1);
-    if (!text) {
-        fclose(f);
-        return status_fail(err, GLINT_ERR_RENDER, "%s: out of memory while reading the model", path);
-    }
-    size_t n = fread(text, 1, PLY_MAX_HEADER, f);
-    fclose(f);
-    text[n] = '\0';
-    char *end = strstr(text, "end_header");
-    glint_status result = GLINT_OK;
-    if (strncmp(text, "ply", 3) != 0 || !end) {
-        free(text);
-        return GLINT_OK; // not a PLY header glint can read: assimp says what is wrong
-    }
-    char *body = strchr(end, '\n');
-    double header_bytes = body ? (double)(body + 1 - text) : (double)n, body_bytes = (double)st.st_size - header_bytes;
-    *end = '\0';
-    bool ascii = strstr(text, "format ascii") != NULL;
-    // The fast layout, checked statement by statement: elements seen (1 vertex, 2 face), properties of the face.
-    const uint32_t one = 1;
-    unsigned char little;
-    memcpy(&little, &one, 1);
-    bool fast = little && strstr(text, "format binary_little_endian 1.0") != NULL;
-    int element = 0, face_props = 0;
-    double need = 0.0, per_item = 0.0, count = 0.0;
-    char name[64] = "", current[64] = "";
-    char *save = NULL;
-    for (char *line = strtok_r(text, "\r\n", &save); line; line = strtok_r(NULL, "\r\n", &save)) {
-        char a[32], b[32], c[32];
-        unsigned long long declared;
-        if (sscanf(line, "element %63s %llu", name, &declared) == 2) {
-            need += count * per_item;
-            count = (double)declared;
-            per_item = 0.0;
-            snprintf(current, sizeof current, "%s", name);
-            if (declared > (unsigned long long)INT32_MAX) {
-                result = status_fail(err, GLINT_ERR_INPUT, "%s: the header declares %llu elements \"%s\"; at most 2^31 - 1",
-                                     path, declared, current);
-                break;
-            }
-            element++;
-            if (element == 1 && strcmp(name, "vertex") == 0) layout->vertices = (uint32_t)declared;
-            else if (element == 2 && strcmp(name, "face") == 0) layout->faces = (uint32_t)declared;
-            else fast = false;
-        } else if (sscanf(line, "property list %31s %31s %31s", a, b, c) == 3) {
-            per_item += ascii ? 2.0 : (double)ply_type_size(a);
-            fast = fast && element == 2 && ++face_props == 1 && (strcmp(a, "uchar") == 0 || strcmp(a, "uint8") == 0) &&
-                   ply_type_size(b) == 4 && strncmp(b, "float", 5) != 0 &&
-                   (strcmp(c, "vertex_indices") == 0 || strcmp(c, "vertex_index") == 0);
-        } else if (sscanf(line, "property %31s %31s", a, b) == 2) {
-            per_item += ascii ? 2.0 : (double)ply_type_size(a);
-            if (element != 1 || !(strcmp(a, "float") == 0 || strcmp(a, "float32") == 0)) {
-                fast = false;
-            } else {
-                int *slot = ply_slot(layout, b);
-                if (slot && *slot >= 0) fast = false; // the same property twice
-                if (slot) *slot = (int)layout->stride;
-                layout->stride += 4;
-            }
-        } else if (strncmp(line, "ply", 3) != 0 && strncmp(line, "format", 6) != 0 && strncmp(line, "comment", 7) != 0 &&
-                   strncmp(line, "obj_info", 8) != 0) {
-            fast = false; // a statement glint does not know: assimp reads the file
-        }
-    }
-    // Normals come in threes and texture coordinates in pairs, or not at all.
-    bool some_n = layout->nrm[0] >= 0 || layout->nrm[1] >= 0 || layout->nrm[2] >= 0;
-    bool all_n = layout->nrm[0] >= 0 && layout->nrm[1] >= 0 && layout->nrm[2] >= 0;
-    layout->fast = fast && element == 2 && face_props == 1 && layout->pos[0] >= 0 && layout->pos[1] >= 0 &&
-                   layout->pos[2] >= 0 && some_n == all_n && (layout->uv[0] >= 0) == (layout->uv[1] >= 0) && body;
-    layout->header_bytes = body ? (size_t)(body + 1 - text) : 0;
-    need += count * per_item;
-    if (result == GLINT_OK && need > body_bytes)
-        result = status_fail(err, GLINT_ERR_INPUT,
-                             "%s: the header declares elements that need at least %.0f bytes, but the file has %.0f "
-                             "after its header (truncated, or a forged count)", path, need, body_bytes > 0 ? body_bytes : 0.0);
-    free(text);
-    return result;
-}
-
-// ---------------------------------------------------------------------------------------------
 // What assimp 5.2 does not read of a glTF file: KHR_materials_emissive_strength
 
 /// Multiplies the emission of material i by its KHR_materials_emissive_strength, read from the file's JSON (the
@@ -817,119 +633,6 @@ static void apply_emissive_strength(const char *path, model_file *m) {
     cJSON_Delete(root);
 }
 
-/// Reads a PLY file of the fast layout into *out as the assimp path would (one mesh placed once, its material
-/// none): the same vertices, triangles, checks and warnings, without assimp's generic element tables (which take
-/// most of a large file's load). *taken is false, and *out empty, when a face is not a triangle: assimp reads the
-/// file then (its triangulation).
-static glint_status ply_read_fast(converter *cv, const ply_layout *l, bool *taken) {
-    model_file *m = cv->out;
-    *taken = false;
-    struct stat st;
-    int problem;
-    FILE *f = filepath_open_regular(cv->path, &st, &problem);
-    if (!f) return status_fail(cv->err, GLINT_ERR_INPUT, "%s: cannot open: %s", cv->path, filepath_problem_text(problem));
-    size_t len;
-    int errnum;
-    unsigned char *data = (unsigned char *)file_read_stream(f, (size_t)st.st_size, MODEL_MAX_FILE_BYTES, &len, &errnum);
-    fclose(f);
-    if (!data)
-        return errnum == ENOMEM ? fail_oom(cv)
-                                : status_fail(cv->err, GLINT_ERR_INPUT, "%s: cannot read it: %s", cv->path,
-                                              errnum == EFBIG ? "larger than 1 GiB, the limit of a model's file" : strerror(errnum));
-    size_t nv = l->vertices, nf = l->faces, at = l->header_bytes + nv * l->stride;
-    glint_status result = GLINT_OK;
-    if (at > len || nf * 13 > len - at) { // check_ply_header saw the sizes; a file may change between two opens
-        free(data);
-        return status_fail(cv->err, GLINT_ERR_INPUT, "%s: the file ends before the elements its header declares", cv->path);
-    }
-    // Every face a triangle (a count byte of 3), or assimp reads the file.
-    for (size_t i = 0; i < nf; i++)
-        if (data[at + 13 * i] != 3) {
-            free(data);
-            return GLINT_OK;
-        }
-    *taken = true;
-    bool has_n = l->nrm[0] >= 0, has_uv = l->uv[0] >= 0;
-    if (!(m->meshes = calloc(1, sizeof *m->meshes)) || !(m->materials = calloc(1, sizeof *m->materials)) ||
-        !(m->placements = malloc(sizeof *m->placements)) || !(m->materials[0].name = strdup(""))) {
-        free(data);
-        return fail_oom(cv);
-    }
-    m->mesh_count = m->material_count = m->placement_count = 1;
-    m->placements[0] = (model_placement){0, mat4_identity()};
-    model_material *mat = &m->materials[0];
-    mat->is_default = true;
-    mat->base_color = v3s(1.0f), mat->alpha = 1.0f, mat->metallic = mat->roughness = 1.0f, mat->ior = 1.5f;
-    mat->base_color_image = mat->metallic_roughness_image = mat->normal_image = mat->emissive_image = -1;
-    mat->transmission_image = -1, mat->normal_scale = 1.0f, mat->alpha_cutoff = 0.5f;
-    mesh *g = &m->meshes[0].geometry;
-    if ((nv && !(g->positions = malloc(nv * sizeof *g->positions))) || (nf && !(g->triangles = malloc(nf * sizeof *g->triangles))) ||
-        (has_n && nv && !(g->normals = malloc(nv * sizeof *g->normals))) || (has_uv && nv && !(g->uvs = malloc(nv * sizeof *g->uvs))) ||
-        (has_uv && nf && !(g->uv_corners = malloc(nf * sizeof *g->uv_corners)))) {
-        free(data);
-        return fail_oom(cv);
-    }
-    for (size_t i = 0; i < nv && result == GLINT_OK; i++) {
-        const unsigned char *v = data + l->header_bytes + i * l->stride;
-        float p[3], n[3], t[2];
-        for (int k = 0; k < 3; k++) memcpy(&p[k], v + l->pos[k], 4);
-        g->positions[i] = v3(p[0], p[1], p[2]);
-        if (!v3_is_finite(g->positions[i])) {
-            result = status_fail(cv->err, GLINT_ERR_INPUT,
-                                 "%s: mesh 0, vertex %zu: the position (%g, %g, %g) is not finite; expected finite numbers",
-                                 cv->path, i, (double)p[0], (double)p[1], (double)p[2]);
-            break;
-        }
-        if (has_n) {
-            for (int k = 0; k < 3; k++) memcpy(&n[k], v + l->nrm[k], 4);
-            g->normals[i] = v3(n[0], n[1], n[2]);
-            if (!v3_is_finite(g->normals[i]))
-                result = status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh 0, vertex %zu: the normal is not finite", cv->path, i);
-        }
-        if (has_uv) {
-            for (int k = 0; k < 2; k++) memcpy(&t[k], v + l->uv[k], 4);
-            g->uvs[i] = (uv2){t[0], t[1]};
-            if (!(isfinite(t[0]) && isfinite(t[1])))
-                result = status_fail(cv->err, GLINT_ERR_INPUT, "%s: mesh 0, vertex %zu: the texture coordinate is not finite",
-                                     cv->path, i);
-        }
-    }
-    g->position_count = nv;
-    if (has_n) g->normal_count = nv, g->smooth = true, g->smooth_base = 0;
-    if (has_uv) g->uv_count = nv;
-    size_t tri = 0;
-    for (size_t i = 0; i < nf && result == GLINT_OK; i++) {
-        uint32_t ix[3];
-        memcpy(ix, data + at + 13 * i + 1, 12);
-        for (int k = 0; k < 3; k++)
-            if (ix[k] >= nv) {
-                // An int index below 0 reads as a large unsigned one, as assimp reads it: out of range either way.
-                result = status_fail(cv->err, GLINT_ERR_INPUT,
-                                     "%s: mesh 0, face %zu: vertex index %u is out of range (the mesh has %zu vertices)",
-                                     cv->path, i, (unsigned)ix[k], nv);
-                break;
-            }
-        if (result != GLINT_OK) break;
-        int32_t a = (int32_t)ix[0], b = (int32_t)ix[1], c = (int32_t)ix[2];
-        vec3 e = v3_cross(v3_sub(g->positions[b], g->positions[a]), v3_sub(g->positions[c], g->positions[a]));
-        if (e.x == 0.0f && e.y == 0.0f && e.z == 0.0f) {
-            cv->zero_area++;
-            continue;
-        }
-        g->triangles[tri] = (mesh_triangle){{a, b, c}, -1};
-        if (has_uv) g->uv_corners[tri] = (mesh_corners){{a, b, c}};
-        tri++;
-    }
-    free(data);
-    g->triangle_count = tri;
-    mesh_compute_bounds(g);
-    if (result != GLINT_OK) return result;
-    if (!add_input(m, &st, cv->path)) return fail_oom(cv);
-    if (cv->zero_area) warn(cv, "%zu triangles of zero area (collinear or repeated corners): skipped", cv->zero_area);
-    if (tri == 0) warn(cv, "the file places no triangles");
-    return GLINT_OK;
-}
-
 glint_status model_read(const char *path, model_warning_fn warn_fn, void *user, model_file *out, glint_error *err) {
     return model_read_ex(path, true, warn_fn, user, out, err);
 }
@@ -941,12 +644,11 @@ glint_status model_read_ex(const char *path, bool fast_ply, model_warning_fn war
         return status_fail(err, GLINT_ERR_INPUT, "%s: not a glTF (.gltf, .glb) or PLY (.ply) file", path);
     if (model_format_of(path) == MODEL_FORMAT_PLY) {
         ply_layout layout;
-        glint_status st = check_ply_header(path, &layout, err);
+        glint_status st = ply_check_header(path, &layout, err);
         if (st != GLINT_OK) return st;
         if (layout.fast && fast_ply) {
-            converter cv = {.path = path, .format = MODEL_FORMAT_PLY, .out = out, .err = err, .warn = warn_fn, .user = user};
             bool taken;
-            st = ply_read_fast(&cv, &layout, &taken);
+            st = ply_read_fast(path, &layout, warn_fn, user, out, err, &taken);
             if (st != GLINT_OK) model_file_free(out);
             if (st != GLINT_OK || taken) return st;
         }
