@@ -3,6 +3,7 @@
 // one by one (stopped at the first power of two >= 16 whose half-buffer error is below the threshold, else spp); the
 // same bytes for any thread count; a checkpoint resumed to a larger spp is the render made at that spp at once.
 #include "check.h"
+#include "test_load.h"
 #include "glint.h"
 #include "test_util.h"
 #include "film/film.h"
@@ -20,14 +21,6 @@ enum { W = 24, H = 16, SPP = 64 };
 static const double THRESHOLD = 0.05;
 
 static glint_scene *load(int spp, const char *sampler) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/tests/data/tiny-path.json", GLINT_SOURCE_DIR);
-    glint_scene *s = NULL;
-    glint_error err;
-    if (glint_scene_load(path, &s, &err) != GLINT_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        return NULL;
-    }
     glint_overrides o;
     glint_overrides_init(&o);
     o.width = W;
@@ -35,7 +28,8 @@ static glint_scene *load(int spp, const char *sampler) {
     o.spp = spp;
     o.sampler = sampler;
     o.noise_threshold = THRESHOLD;
-    CHECK(glint_scene_override(s, &o, &err) == GLINT_OK);
+    glint_scene *s = test_load(test_data_path("tiny-path.json"), &o);
+    CHECK(s != NULL);
     return s;
 }
 

@@ -2,6 +2,7 @@
 // bytes), on any thread count, with either sampler and with adaptive sampling; bad regions are refused; region PNGs merge back into the full
 // image.
 #include "check.h"
+#include "test_load.h"
 #include "glint.h"
 #include "render/render.h"
 #include "scene/scene.h"
@@ -11,14 +12,6 @@
 #include <string.h>
 
 static glint_scene *load(const char *name, long width, long height, const char *sampler, double noise_threshold) {
-    char path[4096];
-    snprintf(path, sizeof path, "%s/tests/data/%s", GLINT_SOURCE_DIR, name);
-    glint_scene *s = NULL;
-    glint_error err;
-    if (glint_scene_load(path, &s, &err) != GLINT_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        return NULL;
-    }
     glint_overrides o;
     glint_overrides_init(&o);
     o.width = width;
@@ -26,7 +19,8 @@ static glint_scene *load(const char *name, long width, long height, const char *
     o.sampler = sampler;
     o.noise_threshold = noise_threshold;
     if (noise_threshold > 0) o.spp = 64;
-    CHECK(glint_scene_override(s, &o, &err) == GLINT_OK);
+    glint_scene *s = test_load(test_data_path(name), &o);
+    CHECK(s != NULL);
     return s;
 }
 

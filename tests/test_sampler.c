@@ -3,6 +3,7 @@
 // "independent" (the noise measured from two independent renders of different seeds); the Whitted scenes ignore the
 // sampler, byte for byte.
 #include "check.h"
+#include "test_load.h"
 #include "glint.h"
 #include "scene/scene.h"
 
@@ -16,12 +17,8 @@ enum { W = 32, H = 24, SPP = 64 };
 
 // The scene at W x H and SPP samples with the given sampler and seed, rendered on two threads; NULL on failure.
 static glint_image *render(const char *path, const char *sampler, long seed, bool *path_traced) {
-    glint_scene *s = NULL;
-    glint_error err;
-    if (glint_scene_load(path, &s, &err) != GLINT_OK) {
-        fprintf(stderr, "%s\n", err.message);
-        return NULL;
-    }
+    glint_scene *s = test_load(path, NULL);
+    if (!s) return NULL;
     *path_traced = s->settings.integrator == INTEGRATOR_PATH;
     glint_overrides o;
     glint_overrides_init(&o);
@@ -32,6 +29,7 @@ static glint_image *render(const char *path, const char *sampler, long seed, boo
     o.sampler = sampler;
     glint_image *img = NULL;
     glint_render_options opt = {.threads = 2};
+    glint_error err;
     if (glint_scene_override(s, &o, &err) != GLINT_OK || glint_render(s, &opt, NULL, NULL, &img, NULL, &err) != GLINT_OK) {
         fprintf(stderr, "%s: %s\n", path, err.message);
         glint_image_free(img);

@@ -149,7 +149,8 @@ static vec3 sample_light(const integrator *it, const light_sampler *pl, const ne
                          rng *r, thread_stats *ts) {
     const glint_scene *s = it->scene;
     rng_decision(r, RNG_DIM_LIGHT);
-    float xi = rng_float(r), a, b, select;
+    // One light needs no choice: its number is not drawn (the point on it keeps its pair of dimensions).
+    float xi = pl->count > 1 || pl->tree.node_count ? rng_float(r) : 0.0f, a, b, select;
     rng_float2(r, &a, &b);
     size_t chosen = light_sampler_choose(pl, sp->p, xi, &select);
     if (chosen == SIZE_MAX) return v3s(0.0f); // no light can reach the point
