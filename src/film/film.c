@@ -247,3 +247,19 @@ void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int 
     if (f->odd_sums) film_tile_load_odd(t);
     film_tile_load_aovs(t);
 }
+
+bool film_tile_next_pixel(film_tile *t) {
+    film_tile_store(t, t->k1);
+    t->k = t->k0;
+    if (++t->x == t->x1) {
+        t->x = t->x0;
+        t->y++;
+    }
+    if (t->y == t->y1) return false;
+    t->pixel = film_pixel_index(t->film, t->x, t->y);
+    t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
+    if (t->k0 > 0) memcpy(t->sum, &t->film->sums[t->pixel * 3u], sizeof t->sum);
+    if (t->film->odd_sums) film_tile_load_odd(t);
+    if (t->film->aovs) film_tile_load_aovs(t);
+    return true;
+}

@@ -183,6 +183,10 @@ static inline size_t film_pixel_index(const film *f, int x, int y) {
     return (size_t)(y - f->y0) * (size_t)f->image->width + (size_t)(x - f->x0);
 }
 
+/// Stores the tile's current pixel, whose samples of the pass are done, and moves to the next; false once the pass
+/// is complete (film_tile_add's rare part, out of line so that the per-sample part stays small enough to inline).
+bool film_tile_next_pixel(film_tile *t);
+
 /// Adds the next sample of the tile pass; false once the pass is complete.
 static inline bool film_tile_add(film_tile *t, vec3 c) {
     t->stats->samples++;
@@ -200,19 +204,7 @@ static inline bool film_tile_add(film_tile *t, vec3 c) {
         }
     }
     if (++t->k < t->k1) return true;
-    film_tile_store(t, t->k1); // the pixel's samples of the pass are done
-    t->k = t->k0;
-    if (++t->x == t->x1) {
-        t->x = t->x0;
-        t->y++;
-    }
-    if (t->y == t->y1) return false;
-    t->pixel = film_pixel_index(t->film, t->x, t->y);
-    t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
-    if (t->k0 > 0) memcpy(t->sum, &t->film->sums[t->pixel * 3u], sizeof t->sum);
-    if (t->film->odd_sums) film_tile_load_odd(t);
-    if (t->film->aovs) film_tile_load_aovs(t);
-    return true;
+    return film_tile_next_pixel(t);
 }
 
 /// film_tile_add for a film that keeps AOVs: adds the sample's AOVs to the pixel's, then its colour. Non-finite
