@@ -163,6 +163,8 @@ def main():
     if len(sys.argv) != 4:
         raise SystemExit(__doc__)
     src, bunny, out = sys.argv[1:]
+    if not src.endswith((".glb", ".ply", ".ply.gz")):
+        raise SystemExit("yard_meshes.py: %s: expected a .ply, .ply.gz or .glb file" % src)
     verts, tris = read_glb(src) if src.endswith(".glb") else read_ply(src)
     if not verts or not tris:
         raise SystemExit("yard_meshes.py: %s holds no triangles" % src)

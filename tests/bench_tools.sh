@@ -63,11 +63,40 @@ sed "s|\"file\": \"[^\"]*\"|\"file\": \"$TMP/d1.obj\"|" "$SRC/bench/scenes/bunny
 run -q --width 8 --height 6 --spp 1 "$TMP/y10k.json" -o "$TMP/y10k.pfm"
 check "the yardstick's scene with the decimated bunny renders (exit $rc: $(head -c 300 "$TMP/err"))" test "$rc" -eq 0
 
+# --- bench/yard_meshes.py: a PLY (ASCII, and binary gzip-compressed) and a glTF binary with node transforms, put in
+# the bunny's place: the triangles fanned and counted, the largest extent the bunny's, standing on its lowest point
+printf 'ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\nproperty float z\nelement face 2\nproperty list uchar int vertex_indices\nend_header\n0 0 0\n2 0 0\n2 1 0\n0 1 0\n1 3 1\n4 0 1 2 3\n3 0 1 4\n' >"$TMP/quad.ply"
+python3 "$SRC/bench/yard_meshes.py" "$TMP/quad.ply" "$BUNNY" "$TMP/quad.obj" 2>"$TMP/err"
+st=$?
+check "yard_meshes.py: an ASCII PLY (exit $st: $(cat "$TMP/err"))" test "$st" -eq 0
+check "yard_meshes.py: the quad fanned, the header gives the count run.sh reads" grep -q ': 3 triangles$' "$TMP/quad.obj"
+check "yard_meshes.py: 3 faces, every index names a vertex" test "$(faces "$TMP/quad.obj")" -eq 3 -a "$(indices_ok "$TMP/quad.obj"; echo $?)" -eq 0
+# extents (x, y, z max - min) and lowest y of an OBJ file's vertices
+extent() { awk '/^v / { for (k = 2; k <= 4; k++) { if (!(k in lo) || $k < lo[k]) lo[k] = $k; if (!(k in hi) || $k > hi[k]) hi[k] = $k } }
+    END { e = 0; for (k = 2; k <= 4; k++) if (hi[k] - lo[k] > e) e = hi[k] - lo[k]; printf "%.5f %.5f\n", e, lo[3] }' "$1"; }
+check "yard_meshes.py: the largest extent and the lowest point are the bunny's ($(extent "$TMP/quad.obj") against $(extent "$BUNNY"))" \
+    test "$(extent "$TMP/quad.obj")" = "$(extent "$BUNNY")"
+python3 - "$SRC/tests/data/models/quad-uv.ply" "$TMP/quad-bin.ply.gz" <<'PY'
+import gzip, sys
+gzip.open(sys.argv[2], "wb").write(open(sys.argv[1], "rb").read())
+PY
+python3 "$SRC/bench/yard_meshes.py" "$TMP/quad-bin.ply.gz" "$BUNNY" "$TMP/quad-bin.obj" 2>"$TMP/err"
+st=$?
+check "yard_meshes.py: a binary PLY, gzip-compressed (exit $st: $(cat "$TMP/err"))" test "$st" -eq 0 -a "$(faces "$TMP/quad-bin.obj")" -eq 2
+python3 "$SRC/bench/yard_meshes.py" "$SRC/tests/data/models/deep-nodes.gltf" "$BUNNY" "$TMP/x.obj" 2>"$TMP/err"
+st=$?
+check "yard_meshes.py: a .gltf (not binary) is refused with a message" test "$st" -ne 0 -a -s "$TMP/err"
+python3 "$SRC/bench/yard_meshes.py" "$SRC/bench/meshes/2cylinder-engine/2CylinderEngine.glb" "$BUNNY" "$TMP/engine.obj" 2>"$TMP/err"
+st=$?
+check "yard_meshes.py: the engine (GLB, 82 nodes) gives 121,496 triangles (exit $st: $(cat "$TMP/err"))" \
+    grep -q ': 121496 triangles$' "$TMP/engine.obj"
+check "yard_meshes.py: the engine's largest extent and lowest point are the bunny's" test "$(extent "$TMP/engine.obj")" = "$(extent "$BUNNY")"
+
 # --- bench/run.sh: its options, checked before it builds or measures anything
 bash "$SRC/bench/run.sh" --help >"$TMP/help" 2>&1
 st=$?
 check "run.sh --help: exit 0" test "$st" -eq 0
-for word in meshyard meshscale --threads --mesh-spp --mesh-max --no-plots GLINT_EMBREE_MESH GLINT_EMBREE_PROBE; do
+for word in meshyard meshscale --threads --mesh-spp --mesh-max --no-plots --meshyard-meshes GLINT_EMBREE_MESH GLINT_EMBREE_PROBE; do
     check "run.sh --help names $word" grep -q -- "$word" "$TMP/help"
 done
 for bad in "--only meshes" "--threads 0" "--threads 1,x" "--mesh-spp 0" "--mesh-max many" "--runs -1" "--bogus"; do
