@@ -85,16 +85,10 @@ static __attribute__((noinline, unused)) void camera_batch_sobol(camera_batch *b
     for (int i = 0; i < CAMERA_BATCH; i++) {
         uint64_t key = b->key[i];
         uint32_t reversed = sobol_reverse_bits((uint32_t)b->sample[i]);
-        uint64_t h = sobol_pair_hash(key, RNG_DIM_FILM / 2); // each 2-D decision: one hash, one shuffle
-        uint32_t index = sobol_pair_index(h, reversed);
-        u->jx[i] = sobol_float(sobol_pair_value(h, index, 0));
-        u->jy[i] = sobol_float(sobol_pair_value(h, index, 1));
+        sobol_pair_floats(key, reversed, RNG_DIM_FILM / 2, &u->jx[i], &u->jy[i]);
         int next = RNG_DIM_FILM + 2;
         if (lens) {
-            h = sobol_pair_hash(key, RNG_DIM_LENS / 2);
-            index = sobol_pair_index(h, reversed);
-            u->u1[i] = sobol_float(sobol_pair_value(h, index, 0));
-            u->u2[i] = sobol_float(sobol_pair_value(h, index, 1));
+            sobol_pair_floats(key, reversed, RNG_DIM_LENS / 2, &u->u1[i], &u->u2[i]);
             next = RNG_DIM_LENS + 2;
         }
         if (shutter) {

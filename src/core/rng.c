@@ -14,9 +14,6 @@ float rng_sobol_float(rng *r) {
 void rng_sobol_float2(rng *r, float *a, float *b) {
     if (rng_sobol_dimension(r) & 1u) advance(r, 1); // a 2-D decision takes a whole pair: its values form nets
     uint32_t dim = rng_sobol_dimension(r);
-    uint64_t h = sobol_pair_hash(r->state, dim >> 1);
-    uint32_t index = sobol_pair_index(h, (uint32_t)(r->inc >> 32));
-    *a = sobol_float(sobol_pair_value(h, index, 0));
-    *b = sobol_float(sobol_pair_value(h, index, 1));
+    sobol_pair_floats(r->state, (uint32_t)(r->inc >> 32), dim >> 1, a, b);
     advance(r, 2);
 }

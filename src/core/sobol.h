@@ -94,6 +94,15 @@ static inline uint32_t sobol_sampler_u32(uint64_t key, uint32_t sample, uint32_t
 /// A 32-bit fraction as a float in [0, 1): its top 24 bits, as rng_float takes PCG32's.
 static inline float sobol_float(uint32_t u) { return (float)(u >> 8) * 0x1.0p-24f; }
 
+/// Both values of pair `pair` (dimensions 2 pair and 2 pair + 1) of the sample whose index has its bits reversed,
+/// as floats: one hash and one shuffle for the two.
+static inline void sobol_pair_floats(uint64_t key, uint32_t reversed_sample, uint32_t pair, float *a, float *b) {
+    uint64_t h = sobol_pair_hash(key, pair);
+    uint32_t index = sobol_pair_index(h, reversed_sample);
+    *a = sobol_float(sobol_pair_value(h, index, 0));
+    *b = sobol_float(sobol_pair_value(h, index, 1));
+}
+
 /// sobol_sampler_u32 as a float in [0, 1): its top 24 bits, as rng_float takes PCG32's.
 static inline float sobol_sampler_float(uint64_t key, uint32_t sample, uint32_t dim) {
     return sobol_float(sobol_sampler_u32(key, sample, dim));
