@@ -969,16 +969,20 @@ static glint_scene *stream_scene(int kind, int depth) {
 // bytes as its paths one by one, with their rays traversed together (forced by interleave_min_bytes) on 1 and 3
 // threads and one by one, at depth limits 1, 3 and 50, with and without lights and media, and so do their AOVs. In
 // the box of quads and triangles only (kind 1) the streams take their camera rays' hits from packets
-// (stream_camera_packets): a path given another lane's first hit fails here.
+// (stream_camera_packets): a path given another lane's first hit fails here. The lean scenes (kinds 0 and 1) also
+// with the independent sampler: its lean stream loop is a copy of its own (path_render_tile_stream_lean_pcg).
 static void test_streams_same_bytes(void) {
     enum { VARIANTS = 4 }; // paths one by one; streams together on 1 and 3 threads; streams one by one
-    for (int kind = 0; kind < 4; kind++) {
+    for (int run = 0; run < 6; run++) {
+        int kind = run % 4;
+        sampler_kind sampler = run < 4 ? SAMPLER_SOBOL : SAMPLER_INDEPENDENT;
         for (int d = 0; d < 4; d++) {
             bool aovs = d == 3; // depth 50 again, with every AOV
             const int depths[4] = {1, 3, 50, 50};
             glint_image *img[VARIANTS];
             for (int i = 0; i < VARIANTS; i++) {
                 glint_scene *s = stream_scene(kind, depths[d]);
+                s->settings.sampler = sampler;
                 accel_build_options knobs = {.stream_min_bytes = i == 0 ? SIZE_MAX : 1,
                                              .interleave_min_bytes = i == 3 ? SIZE_MAX : 1};
                 if (i == 1 || i == 3) { // the structure this scene renders with does stream (with the SIMD traversal)

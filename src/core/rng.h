@@ -93,6 +93,12 @@ static inline rng rng_for_stream(uint64_t stream, uint64_t key, uint64_t sample)
 /// Whether r is the Sobol' sampler (not PCG32).
 static inline bool rng_is_sobol(const rng *r) { return (r->inc & 1u) == 0; }
 
+/// Tells the compiler that r is a PCG32 generator (the caller knows): the inlined draws after it lose their
+/// Sobol' branch, while r (a local whose `inc` nothing changes) keeps the fact.
+static inline void rng_assume_pcg(const rng *r) {
+    if (rng_is_sobol(r)) __builtin_unreachable();
+}
+
 /// The dimension (depth field and offset: core/sobol.h's `dim`) of a Sobol' sampler's next draw.
 static inline uint32_t rng_sobol_dimension(const rng *r) { return (uint32_t)(r->inc >> 1) & 0x7fffffffu; }
 
