@@ -228,6 +228,43 @@ static void test_float2(void) {
     }
 }
 
+// Values prepared ahead (rng_prepare) are the values drawn without it, single or in pairs, at even and odd offsets;
+// pairs not prepared, another bounce's and the camera's are computed as before; PCG32 is untouched.
+static void test_prepare(void) {
+    uint64_t key = rng_pixel_key(7, 4242);
+    const unsigned all = RNG_AHEAD_BSDF | RNG_AHEAD_LIGHT | RNG_AHEAD_ENVIRONMENT | RNG_AHEAD_MEDIUM;
+    const int offsets[] = {RNG_DIM_BSDF, RNG_DIM_BSDF + 1, RNG_DIM_LIGHT, RNG_DIM_LIGHT + 1, RNG_DIM_LIGHT + 2,
+                           RNG_DIM_ENVIRONMENT, RNG_DIM_IMPORTANCE, RNG_DIM_MEDIUM, RNG_DIM_MEDIUM + 1,
+                           RNG_DIM_MEDIUM + 2};
+    int wrong = 0;
+    for (uint32_t sample = 0; sample < 32; sample++)
+        for (unsigned pairs = 0; pairs <= all; pairs++) {
+            if (pairs & ~all) continue;
+            for (size_t o = 0; o < sizeof offsets / sizeof offsets[0]; o++) {
+                rng s = rng_sobol(key, sample), plain = s;
+                rng_prepare(&s, 2, pairs);
+                rng_start_bounce(&s, 2);
+                rng_start_bounce(&plain, 2);
+                rng_decision(&s, offsets[o]);
+                rng_decision(&plain, offsets[o]);
+                float a, b, c, d;
+                a = rng_float(&s), c = rng_float(&plain);
+                rng_float2(&s, &a, &b);
+                rng_float2(&plain, &c, &d);
+                wrong += a != c || b != d || rng_float(&s) != rng_float(&plain) || s.inc != plain.inc;
+                wrong += rng_float(&s) != sobol_sampler_float(key, sample, rng_sobol_dimension(&plain));
+                rng_start_bounce(&s, 1); // another bounce: nothing prepared for it
+                rng_float2(&s, &a, &b);
+                wrong += a != sobol_sampler_float(key, sample, dim_of(2, 0)) ||
+                         b != sobol_sampler_float(key, sample, dim_of(2, 1));
+            }
+        }
+    CHECK(wrong == 0);
+    rng p = rng_for_sample(7, 4242, 5), q = p;
+    rng_prepare(&p, 0, all);
+    CHECK(p.ahead_pairs == 0 && rng_float(&p) == rng_float(&q) && p.state == q.state);
+}
+
 int main(void) {
     test_published_points();
     test_fast_dimensions();
@@ -237,5 +274,6 @@ int main(void) {
     test_discrepancy();
     test_rng_state();
     test_float2();
+    test_prepare();
     return check_summary();
 }

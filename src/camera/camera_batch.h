@@ -125,7 +125,7 @@ static inline __attribute__((always_inline)) void camera_batch_make(const camera
             batch_float(st, stream, u.u2);
         }
         if (shutter) batch_float(st, stream, u.ut);
-        for (int i = 0; i < CAMERA_BATCH; i++) b->r[i] = (rng){st[i], stream};
+        for (int i = 0; i < CAMERA_BATCH; i++) b->r[i] = (rng){.state = st[i], .inc = stream};
     }
     float tx[CAMERA_BATCH], ty[CAMERA_BATCH], tz[CAMERA_BATCH];
     for (int i = 0; i < CAMERA_BATCH; i++) {

@@ -12,11 +12,18 @@
 
 #include <stdint.h>
 
+/// Pairs of Sobol' values computed ahead for one bounce (rng_prepare): at most this many of its decisions.
+enum { RNG_AHEAD = 3 };
+
 /// PCG32: state and stream (inc, always odd). The Sobol' sampler: state is the pixel's key (rng_pixel_key), inc
-/// holds the sample index with its bits reversed (bits 32-63: the index shuffle starts from it), the depth field (bits 16-31: 0 for the camera, d + 1 for bounce d), the
-/// next draw's offset in it (bits 1-15) and a clear bit 0.
+/// holds the sample index with its bits reversed (bits 32-63: the index shuffle starts from it), the depth field
+/// (bits 16-31: 0 for the camera, d + 1 for bounce d), the next draw's offset in it (bits 1-15) and a clear bit 0;
+/// and the values of up to RNG_AHEAD pairs of the next bounce, computed while its ray is traced (rng_prepare).
 typedef struct rng {
     uint64_t state, inc;
+    uint32_t ahead_base;  ///< Sobol': the pair index (dimension / 2) of the prepared bounce's offset 0
+    uint32_t ahead_pairs; ///< bit j: pair ahead_base + j is in `ahead` (in order of j; none for PCG32)
+    float ahead[2 * RNG_AHEAD];
 } rng;
 
 /// The `stream` argument (of camera_batch_make, integrator.stream) that stands for the Sobol' sampler: no PCG32
@@ -63,9 +70,7 @@ static inline uint64_t rng_pixel_key(uint64_t seed, uint64_t pixel) { return rng
 
 /// rng_for_sample from its precomputed parts: stream = rng_seed_stream(seed), key = rng_pixel_key(seed, pixel).
 static inline rng rng_for_key(uint64_t stream, uint64_t key, uint64_t sample) {
-    rng r;
-    r.state = 0;
-    r.inc = stream;
+    rng r = {.state = 0, .inc = stream};
     uint64_t init = rng_mix64(key ^ (sample + 0x2545f4914f6cdd1dULL));
     rng_u32(&r);
     r.state += init;
@@ -81,7 +86,7 @@ static inline rng rng_for_sample(uint64_t seed, uint64_t pixel, uint64_t sample)
 /// The Sobol' sampler of sample `sample` of the pixel of key `key` (rng_pixel_key), at the camera's first
 /// dimension.
 static inline rng rng_sobol(uint64_t key, uint64_t sample) {
-    return (rng){key, (uint64_t)sobol_reverse_bits((uint32_t)sample) << 32};
+    return (rng){.state = key, .inc = (uint64_t)sobol_reverse_bits((uint32_t)sample) << 32};
 }
 
 /// The generator of sample `sample` of the pixel of key `key` in a render of stream `stream`: PCG32
@@ -139,6 +144,26 @@ static inline __attribute__((always_inline)) void rng_float2(rng *r, float *a, f
     }
     *a = (float)(rng_u32(r) >> 8) * 0x1.0p-24f;
     *b = (float)(rng_u32(r) >> 8) * 0x1.0p-24f;
+}
+
+/// The bits of rng_prepare's `pairs`: the pair of a bounce's offset 2 j is bit j.
+enum rng_ahead_pair {
+    RNG_AHEAD_BSDF = 1u << (RNG_DIM_BSDF / 2),
+    RNG_AHEAD_LIGHT = 1u << ((RNG_DIM_LIGHT + 1) / 2), ///< the point on the light (not the light's choice)
+    RNG_AHEAD_ENVIRONMENT = 1u << (RNG_DIM_ENVIRONMENT / 2),
+    RNG_AHEAD_MEDIUM = 1u << (RNG_DIM_MEDIUM / 2), ///< the hero channel or a first free flight, and the next one
+};
+
+/// The Sobol' sampler's pairs `pairs` (rng_ahead_pair bits; the first RNG_AHEAD of them) of bounce `depth`
+/// computed now (core/rng.c).
+void rng_sobol_prepare(rng *r, int depth, unsigned pairs);
+
+/// Before the ray that reaches bounce `depth` is traced: the Sobol' values that bounce will draw first
+/// (`pairs`: rng_ahead_pair bits) are computed now, beside the traversal, instead of on the path's critical
+/// chain (each pair is a chain of about 80 cycles, which a path then waited for). The same values either way.
+/// Nothing for PCG32.
+static inline void rng_prepare(rng *r, int depth, unsigned pairs) {
+    if (rng_is_sobol(r)) rng_sobol_prepare(r, depth, pairs);
 }
 
 /// Uniform float in [lo, hi).

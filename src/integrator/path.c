@@ -360,14 +360,17 @@ typedef struct path_setup {
     const envmap_sampler *es;
     size_t media; ///< none: the vertex does no work for media but this one test
     bool lean;
+    unsigned ahead; ///< the Sobol' pairs a bounce draws first, computed before its ray is traced (rng_prepare)
 } path_setup;
 
 // The setup of pi's paths; known_lean (a constant after inlining, true only where path_lean holds) leaves the
 // code for lights and media out of the vertices that use it.
 static inline path_setup path_setup_of(const path_integrator *pi, bool known_lean) {
     const glint_scene *s = pi->base.scene;
-    if (known_lean) return (path_setup){false, NULL, NULL, 0, true};
-    return (path_setup){s->light_count > 0, pi->sampled, pi->env_sampled, s->medium_count, path_lean(pi)};
+    if (known_lean) return (path_setup){false, NULL, NULL, 0, true, RNG_AHEAD_BSDF};
+    unsigned ahead = RNG_AHEAD_BSDF | (pi->sampled ? RNG_AHEAD_LIGHT : 0u) |
+                     (pi->env_sampled ? RNG_AHEAD_ENVIRONMENT : 0u) | (s->medium_count ? RNG_AHEAD_MEDIUM : 0u);
+    return (path_setup){s->light_count > 0, pi->sampled, pi->env_sampled, s->medium_count, path_lean(pi), ahead};
 }
 
 // Makes the direction of the ray *cur that ended at hit *h a unit vector: the same ray, t in its units.
@@ -697,6 +700,7 @@ static vec3 path_trace(const integrator *it, vec3 o, vec3 d, float time, rng *r,
     for (; ps.depth < s->settings.max_depth; ps.depth++) {
         hit h;
         ts->rays++;
+        rng_prepare(r, ps.depth, setup.ahead); // beside the traversal below, which does not wait for it
         bool found;
         if (first && ps.depth == 0) { // the camera ray, traced with its neighbours (accel_intersect_coherent)
             h = *first;
@@ -747,9 +751,15 @@ static inline __attribute__((always_inline)) void scheduler_paths_start(schedule
 static inline __attribute__((always_inline)) bool scheduler_paths_step(scheduler_paths *p, int lane, ray *cur,
                                                                       bool found, hit *h, rng *r, thread_stats *ts,
                                                                       film_aov_sample *aov) {
-    if (!p->pcg)
-        return path_vertex(p->pi, p->setup, &p->ps[lane], cur, &p->mpath[lane], found, h, r, ts, aov) &&
-               ++p->ps[lane].depth < p->max_depth;
+    if (!p->pcg) {
+        // The Sobol' values of the path's next bounce are computed once it goes on, long before they are drawn
+        // (after the next round's traversal); the first bounce's here.
+        if (p->ps[lane].depth == 0) rng_prepare(r, 0, p->setup.ahead);
+        bool more = path_vertex(p->pi, p->setup, &p->ps[lane], cur, &p->mpath[lane], found, h, r, ts, aov) &&
+                    ++p->ps[lane].depth < p->max_depth;
+        if (more) rng_prepare(r, p->ps[lane].depth, p->setup.ahead);
+        return more;
+    }
     // A local generator known to be PCG32: the vertex's draws lose their sampler test.
     rng g = *r;
     rng_assume_pcg(&g);
