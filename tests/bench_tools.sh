@@ -1,7 +1,7 @@
 # bench_tools.sh — the benchmark's own tools, which nothing else would test until the owner's next long run:
 # bench/subdivide.c and bench/decimate.c (built by CMake with the project's warnings), the mesh yardstick's
-# scene for glint, bench/run.sh's options (it stops before building anything) and bench/plot.sh on made-up
-# data (where gnuplot is installed). Nothing here is timed.
+# scene for glint, bench/equal_error.sh on a tiny scene, bench/run.sh's options (it stops before building
+# anything) and bench/plot.sh on made-up data (where gnuplot is installed). Nothing here is timed.
 # usage: bash tests/bench_tools.sh GLINT SOURCE_DIR SUBDIVIDE DECIMATE
 source "$2/tests/cli/common.bash"
 SUBDIVIDE=$3
@@ -110,6 +110,23 @@ done
 bash "$SRC/bench/instructions.sh" rtiow >/dev/null 2>"$TMP/err"
 st=$?
 check "instructions.sh rtiow: exit 2 with its usage ($(cat "$TMP/err"))" test "$st" -eq 2 -a -s "$TMP/err"
+
+# --- bench/equal_error.sh: the table and the ratio on a tiny scene (glint against itself), and its refusals
+bash "$SRC/bench/equal_error.sh" "$GLINT" "$GLINT" "$SRC/tests/data/tiny-path.json" --spp 2,8 --seeds 2 --ref-spp 32 \
+    --out "$TMP/ee" -- --width 160 --height 120 >"$TMP/ee.out" 2>"$TMP/err"
+st=$?
+check "equal_error.sh: exit 0 ($(tail -1 "$TMP/err"))" test "$st" -eq 0
+check "equal_error.sh: a row per binary and sample count" test "$(grep -cE '^\| [AB] \| (2|8) \| [0-9.]+ \| [0-9.e-]+ \|$' "$TMP/ee.out")" -eq 4
+check "equal_error.sh: the errors fall with the samples" awk '$2 == "A" && $4 == 2 { e2 = $8 } $2 == "A" && $4 == 8 { e8 = $8 } END { exit !(e8 < e2) }' "$TMP/ee.out"
+check "equal_error.sh: the equal-error ratio" grep -qE "^A: error ~ time\^-[0-9.]+; .* [0-9.]+$" "$TMP/ee.out"
+check "equal_error.sh: 2 seeds x 2 counts x 2 binaries and the reference" test "$(ls "$TMP/ee"/*.pfm | wc -l)" -eq 9
+bash "$SRC/bench/equal_error.sh" "$GLINT" "$GLINT" "$SRC/tests/data/tiny-path.json" --spp 0 >/dev/null 2>"$TMP/err"
+st=$?
+check "equal_error.sh: --spp 0 is a usage error" test "$st" -eq 2
+check "equal_error.sh: --spp 0 says why" grep -q "'0' is not a positive whole number" "$TMP/err"
+bash "$SRC/bench/equal_error.sh" "$GLINT" "$TMP/none" "$SRC/tests/data/tiny-path.json" >/dev/null 2>"$TMP/err"
+st=$?
+check "equal_error.sh: a missing binary is a usage error" test "$st" -eq 2
 
 # --- bench/plot.sh on made-up data
 bash "$SRC/bench/plot.sh" >/dev/null 2>&1
