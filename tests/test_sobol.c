@@ -262,7 +262,7 @@ static void test_prepare(void) {
     CHECK(wrong == 0);
     rng p = rng_for_sample(7, 4242, 5), q = p;
     rng_prepare(&p, 0, all);
-    CHECK(p.ahead_pairs == 0 && rng_float(&p) == rng_float(&q) && p.state == q.state);
+    CHECK(p.ahead.pairs == 0 && rng_float(&p) == rng_float(&q) && p.state == q.state);
 }
 
 int main(void) {

@@ -7,27 +7,27 @@ static void advance(rng *r, unsigned n) { r->inc = (r->inc & ~0xfffeULL) | ((r->
 
 // Where pair `pair` waits in r->ahead (its first value; the second follows), or -1 when it was not prepared.
 static int ahead_slot(const rng *r, uint32_t pair) {
-    uint32_t j = pair - r->ahead_base; // wraps to a large number below the base
-    if (j >= 32 || !((r->ahead_pairs >> j) & 1u)) return -1;
-    return 2 * __builtin_popcount(r->ahead_pairs & ((1u << j) - 1u));
+    uint32_t j = pair - r->ahead.base; // wraps to a large number below the base
+    if (j >= 32 || !((r->ahead.pairs >> j) & 1u)) return -1;
+    return 2 * __builtin_popcount(r->ahead.pairs & ((1u << j) - 1u));
 }
 
 void rng_sobol_prepare(rng *r, int depth, unsigned pairs) {
     uint32_t base = (uint32_t)(uint16_t)(depth + 1) << 14; // the depth field's offset 0 as a pair index
-    r->ahead_base = base;
-    r->ahead_pairs = 0;
+    r->ahead.base = base;
+    r->ahead.pairs = 0;
     for (int n = 0; pairs && n < RNG_AHEAD; n++) {
         unsigned j = (unsigned)__builtin_ctz(pairs);
         pairs &= pairs - 1;
-        sobol_pair_floats(r->state, (uint32_t)(r->inc >> 32), base + j, &r->ahead[2 * n], &r->ahead[2 * n + 1]);
-        r->ahead_pairs |= 1u << j;
+        sobol_pair_floats(r->state, (uint32_t)(r->inc >> 32), base + j, &r->ahead.value[2 * n], &r->ahead.value[2 * n + 1]);
+        r->ahead.pairs |= 1u << j;
     }
 }
 
 float rng_sobol_float(rng *r) {
     uint32_t dim = rng_sobol_dimension(r);
     int slot = ahead_slot(r, dim >> 1);
-    float u = slot >= 0 ? r->ahead[slot + (int)(dim & 1u)]
+    float u = slot >= 0 ? r->ahead.value[slot + (int)(dim & 1u)]
                         : sobol_float(sobol_sampler_u32_reversed(r->state, (uint32_t)(r->inc >> 32), dim));
     advance(r, 1);
     return u;
@@ -38,8 +38,8 @@ void rng_sobol_float2(rng *r, float *a, float *b) {
     uint32_t dim = rng_sobol_dimension(r);
     int slot = ahead_slot(r, dim >> 1);
     if (slot >= 0) {
-        *a = r->ahead[slot];
-        *b = r->ahead[slot + 1];
+        *a = r->ahead.value[slot];
+        *b = r->ahead.value[slot + 1];
     } else {
         sobol_pair_floats(r->state, (uint32_t)(r->inc >> 32), dim >> 1, a, b);
     }

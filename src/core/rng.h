@@ -15,16 +15,42 @@
 /// Pairs of Sobol' values computed ahead for one bounce (rng_prepare): at most this many of its decisions.
 enum { RNG_AHEAD = 3 };
 
+/// The Sobol' values of up to RNG_AHEAD pairs of a path's next bounce, computed while its ray is traced
+/// (rng_prepare).
+typedef struct rng_ahead {
+    uint32_t base;  ///< the pair index (dimension / 2) of the prepared bounce's offset 0
+    uint32_t pairs; ///< bit j: pair base + j is in `value` (in order of j; none for PCG32)
+    float value[2 * RNG_AHEAD];
+} rng_ahead;
+
 /// PCG32: state and stream (inc, always odd). The Sobol' sampler: state is the pixel's key (rng_pixel_key), inc
 /// holds the sample index with its bits reversed (bits 32-63: the index shuffle starts from it), the depth field
 /// (bits 16-31: 0 for the camera, d + 1 for bounce d), the next draw's offset in it (bits 1-15) and a clear bit 0;
-/// and the values of up to RNG_AHEAD pairs of the next bounce, computed while its ray is traced (rng_prepare).
+/// and its values computed ahead. A loop over many paths keeps the two parts apart (rng_position, rng_ahead),
+/// so that PCG32's paths do not carry the second.
 typedef struct rng {
     uint64_t state, inc;
-    uint32_t ahead_base;  ///< Sobol': the pair index (dimension / 2) of the prepared bounce's offset 0
-    uint32_t ahead_pairs; ///< bit j: pair ahead_base + j is in `ahead` (in order of j; none for PCG32)
-    float ahead[2 * RNG_AHEAD];
+    rng_ahead ahead;
 } rng;
+
+/// Where a generator stands (rng's state and inc): with an rng_ahead, all of it.
+typedef struct rng_position {
+    uint64_t state, inc;
+} rng_position;
+
+/// The generator of position `at` and the values computed ahead `ahead` (NULL: none; the values then stay
+/// unset, as no draw reads them).
+static inline rng rng_join(rng_position at, const rng_ahead *ahead) {
+    rng r;
+    r.state = at.state;
+    r.inc = at.inc;
+    if (ahead) r.ahead = *ahead;
+    else r.ahead.pairs = 0;
+    return r;
+}
+
+/// The position of generator r.
+static inline rng_position rng_position_of(const rng *r) { return (rng_position){r->state, r->inc}; }
 
 /// The `stream` argument (of camera_batch_make, integrator.stream) that stands for the Sobol' sampler: no PCG32
 /// stream is even.

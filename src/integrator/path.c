@@ -496,25 +496,18 @@ static inline __attribute__((always_inline)) void scheduler_paths_start(schedule
     p->mpath[lane] = medium_path_start();
 }
 
-// One vertex of a lane's path, which goes on while it is under the depth limit.
+// One vertex of a lane's path, which goes on while it is under the depth limit, with a local generator at the
+// lane's position. Nothing is computed ahead here (rng_prepare): the stream's other paths give the processor
+// independent work while one waits for its Sobol' values, and the lanes stay small (computed ahead, the bunny
+// ran 0.95 times as fast).
 static inline __attribute__((always_inline)) bool scheduler_paths_step(scheduler_paths *p, int lane, ray *cur,
-                                                                      bool found, hit *h, rng *r, thread_stats *ts,
-                                                                      film_aov_sample *aov) {
-    if (!p->pcg) {
-        // The Sobol' values of the path's next bounce are computed once it goes on, long before they are drawn
-        // (after the next round's traversal); the first bounce's here.
-        if (p->ps[lane].depth == 0) rng_prepare(r, 0, p->setup.ahead);
-        bool more = path_vertex(p->pi, p->setup, &p->ps[lane], cur, &p->mpath[lane], found, h, r, ts, aov) &&
-                    ++p->ps[lane].depth < p->max_depth;
-        if (more) rng_prepare(r, p->ps[lane].depth, p->setup.ahead);
-        return more;
-    }
-    // A local generator known to be PCG32: the vertex's draws lose their sampler test.
-    rng g = *r;
-    rng_assume_pcg(&g);
+                                                                      bool found, hit *h, rng_position *at,
+                                                                      thread_stats *ts, film_aov_sample *aov) {
+    rng g = rng_join(*at, NULL);
+    if (p->pcg) rng_assume_pcg(&g); // the vertex's draws lose their sampler test
     bool more = path_vertex(p->pi, p->setup, &p->ps[lane], cur, &p->mpath[lane], found, h, &g, ts, aov) &&
                 ++p->ps[lane].depth < p->max_depth;
-    *r = g;
+    *at = rng_position_of(&g);
     return more;
 }
 

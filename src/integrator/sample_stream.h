@@ -21,7 +21,7 @@ enum { SCHEDULER_STREAM = 1024, SCHEDULER_WINDOW = 4096 };
 /// of each path's state in its scheduler_paths, by lane) and its window of finished samples: about 300 kB,
 /// on the heap rather than on the stack of a library caller's thread.
 typedef struct scheduler_stream {
-    rng gen[SCHEDULER_STREAM];
+    rng_position gen[SCHEDULER_STREAM]; ///< the lanes' generators (positions alone: 16 bytes a lane)
     int item[SCHEDULER_STREAM];
     ray rays[SCHEDULER_STREAM];
     hit hits[SCHEDULER_STREAM];
@@ -39,8 +39,8 @@ typedef struct scheduler_paths scheduler_paths;
 /// A new path in lane `lane`; aov (not NULL when the film takes AOVs) is its AOVs.
 static inline void scheduler_paths_start(scheduler_paths *p, int lane, film_aov_sample *aov);
 /// What lane `lane`'s path does where its ray *cur ends (at *h when found): true while the path goes on, with its
-/// next ray in *cur.
-static inline bool scheduler_paths_step(scheduler_paths *p, int lane, ray *cur, bool found, hit *h, rng *r,
+/// next ray in *cur; its generator stands at *at (updated).
+static inline bool scheduler_paths_step(scheduler_paths *p, int lane, ray *cur, bool found, hit *h, rng_position *at,
                                         thread_stats *ts, film_aov_sample *aov);
 /// The radiance lane `lane`'s path (ended) gathered.
 static inline vec3 scheduler_paths_radiance(const scheduler_paths *p, int lane);
@@ -94,7 +94,7 @@ static inline __attribute__((always_inline)) bool scheduler_tile_stream(const in
     film_aov_sample *finished_aov = sp->finished_aov, *aov = sp->aov;
     bool *is_finished = sp->is_finished;
     memset(is_finished, 0, sizeof sp->is_finished);
-    rng *gen = sp->gen;
+    rng_position *gen = sp->gen;
     int *item = sp->item;
     ray *rays = sp->rays; // each path's next ray
     hit *hits = sp->hits;
@@ -125,7 +125,7 @@ static inline __attribute__((always_inline)) bool scheduler_tile_stream(const in
             int i = started - batch_start;
             scheduler_paths_start(paths, lanes, aovs ? &aov[lanes] : NULL);
             rays[lanes] = scheduler_batch_ray(&cb, i);
-            gen[lanes] = cb.r[i];
+            gen[lanes] = rng_position_of(&cb.r[i]);
             has_hit[lanes] = packets;
             if (packets) hits[lanes] = first[i], found[lanes] = first_found[i];
             item[lanes++] = started++;
