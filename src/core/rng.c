@@ -1,4 +1,5 @@
-// rng.c — the out-of-line half of core/rng.h: the Sobol' sampler's draw, kept off PCG32's inlined path.
+// rng.c — the out-of-line half of core/rng.h: the Sobol' sampler's draw and its values computed ahead, kept off
+// PCG32's inlined path.
 #include "core/rng.h"
 #include "core/sobol.h"
 
@@ -19,7 +20,8 @@ void rng_sobol_prepare(rng *r, int depth, unsigned pairs) {
     for (int n = 0; pairs && n < RNG_AHEAD; n++) {
         unsigned j = (unsigned)__builtin_ctz(pairs);
         pairs &= pairs - 1;
-        sobol_pair_floats(r->state, (uint32_t)(r->inc >> 32), base + j, &r->ahead.value[2 * n], &r->ahead.value[2 * n + 1]);
+        float *v = &r->ahead.value[2 * n];
+        sobol_pair_floats(r->state, (uint32_t)(r->inc >> 32), base + j, &v[0], &v[1]);
         r->ahead.pairs |= 1u << j;
     }
 }
