@@ -45,7 +45,7 @@ static inline rng rng_join(rng_position at, const rng_ahead *ahead) {
     r.state = at.state;
     r.inc = at.inc;
     if (ahead) r.ahead = *ahead;
-    else r.ahead.pairs = 0;
+    else r.ahead.base = r.ahead.pairs = 0;
     return r;
 }
 
