@@ -32,6 +32,11 @@
 # against Blender's Cycles). Without them the suite runs and says which yardstick was skipped.
 # Results: bench/results/DATE-COMMIT[-quick].md, and beside it a directory of the same name with the
 # data files (.dat) and their plots (.svg) when a section wrote data.
+
+# The whole script is one compound command, which bash reads to its end before it runs any of it: an edit to this
+# file during a long run cannot change what the run does next (bash reads a plain script as it goes; a run once
+# died of an edit).
+{
 set -euo pipefail
 export LC_ALL=C # decimal points in awk, printf and EPOCHREALTIME
 
@@ -735,3 +740,5 @@ if ls "$DATA"/*.dat >/dev/null 2>&1; then
 fi
 cp "$TABLE" "$RESULT"
 echo "saved $RESULT" >&2
+exit 0
+}
