@@ -15,6 +15,7 @@
 #   GLINT ARGS    passed to every render (e.g. --width 200 --height 200)
 # The error is over every pixel and channel of the linear PFM images; the reference's own noise is not removed
 # (at 2,048 samples it is small against 16-64). Quote the table with the date, both commits and the machine.
+{ # one compound command, read whole before it runs (as bench/run.sh): an edit during a run cannot change it
 set -euo pipefail
 usage() { sed -n '9,16p' "$0" | sed 's/^# \{0,1\}//' >&2; exit 2; }
 [ $# -ge 3 ] || usage
@@ -98,3 +99,5 @@ awk '{ k = $1 " " $2; t[k] += $4; e[k] += $5 * $5; n[k]++ }
              printf "\nA: error ~ time^%.3f; A'"'"'s time / B'"'"'s at equal error (geometric mean over B'"'"'s %d points): %.3f\n", k, m, exp(g / m)
          }' "$OUT/table"
 } | tee "$OUT/result.md"
+exit 0
+}
