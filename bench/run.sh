@@ -512,8 +512,8 @@ meshyard_bench() {
         emit ""
         return 0
     fi
-    emit "| scene | triangles | threads | Embree Mrays/s | glint Mrays/s | glint / Embree | Embree build s | glint build s | Embree load+build+render s | glint process s | whole process, Embree / glint | Embree run.sh s |"
-    emit "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    emit "| scene | triangles | threads | Embree Mrays/s | glint Mrays/s | glint / Embree | the pairs' range | Embree build s | glint build s | Embree load+build+render s | glint process s | whole process, Embree / glint | Embree run.sh s |"
+    emit "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     declare -A mg=() me=()
     local notes=()
     for name in ${MESHYARD_MESHES//,/ }; do
@@ -554,16 +554,19 @@ meshyard_bench() {
             done
             # glint: process render mrays build_ms peak_kb; Embree: process load build render mrays peak_kb r g b
             paste -d ' ' "$WORK/yg" "$WORK/ye" >"$WORK/ypairs"
-            local gm em ratio pratio lbr
+            local gm em ratio range pratio lbr
             gm=$(col "$WORK/yg" 3) em=$(col "$WORK/ye" 5)
             mg[$name.$t]=$gm me[$name.$t]=$em
             ratio=$(awk '$10 > 0 { print $3 / $10 }' "$WORK/ypairs" | median)
+            # The lowest and highest pair's ratio beside the median: on a shared machine they can lie 10 % apart.
+            range=$(awk '$10 > 0 { print $3 / $10 }' "$WORK/ypairs" | sort -g |
+                awk 'NR == 1 { lo = $1 } { hi = $1 } END { if (NR) printf "%.3f-%.3f", lo, hi; else print "nan" }')
             pratio=$(awk '$1 > 0 { print ($7 + $8 + $9) / $1 }' "$WORK/ypairs" | median)
             lbr=$(awk '{ print $2 + $3 + $4 }' "$WORK/ye" | median)
             local gb eb gp er
             gb=$(awk '{ print $4 / 1000 }' "$WORK/yg" | median) eb=$(col "$WORK/ye" 3)
             gp=$(col "$WORK/yg" 1) er=$(col "$WORK/ye" 1)
-            emit "| $name | $tris | $(tlabel "$t") | $(fmt %.2f "$em") | $(fmt %.2f "$gm") | $(fmt %.3f "$ratio") | $(fmt %.3f "$eb") | $(fmt %.3f "$gb") | $(fmt %.3f "$lbr") | $(fmt %.3f "$gp") | $(fmt %.3f "$pratio") | $(fmt %.3f "$er") |"
+            emit "| $name | $tris | $(tlabel "$t") | $(fmt %.2f "$em") | $(fmt %.2f "$gm") | $(fmt %.3f "$ratio") | $range | $(fmt %.3f "$eb") | $(fmt %.3f "$gb") | $(fmt %.3f "$lbr") | $(fmt %.3f "$gp") | $(fmt %.3f "$pratio") | $(fmt %.3f "$er") |"
             data meshyard.dat "$name $tris $t $(oversub "$t") $em $gm $ratio $eb $gb $lbr $gp $er $pratio"
             data versus.dat "$name/${t}t $gm $em $ratio"
             # Fairness: the two images must be the same scene. glint's image is the same for any thread count,
