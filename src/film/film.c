@@ -228,6 +228,17 @@ void film_release(film *f) {
     f->odd_sums = NULL;
 }
 
+// Starts the tile's current pixel (t->x, t->y) at the pass's first sample: its sums, odd-numbered samples' sums and
+// AOV sums are zero, or what earlier passes left.
+static void film_tile_start_pixel(film_tile *t) {
+    t->k = t->k0;
+    t->pixel = film_pixel_index(t->film, t->x, t->y);
+    t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
+    if (t->k0 > 0) memcpy(t->sum, &t->film->sums[t->pixel * 3u], sizeof t->sum);
+    if (t->film->odd_sums) film_tile_load_odd(t);
+    film_tile_load_aovs(t);
+}
+
 void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int k0, int k1, thread_stats *stats,
                      _Atomic uint64_t *progress) {
     t->film = f;
@@ -238,28 +249,18 @@ void film_tile_begin(film_tile *t, film *f, int x0, int y0, int x1, int y1, int 
     t->k1 = k1;
     t->x = x0;
     t->y = y0;
-    t->k = k0;
-    t->pixel = film_pixel_index(f, x0, y0);
     t->stats = stats;
     t->progress = progress;
-    t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
-    if (k0 > 0) memcpy(t->sum, &f->sums[t->pixel * 3u], sizeof t->sum);
-    if (f->odd_sums) film_tile_load_odd(t);
-    film_tile_load_aovs(t);
+    film_tile_start_pixel(t);
 }
 
 bool film_tile_next_pixel(film_tile *t) {
     film_tile_store(t, t->k1);
-    t->k = t->k0;
     if (++t->x == t->x1) {
         t->x = t->x0;
         t->y++;
     }
     if (t->y == t->y1) return false;
-    t->pixel = film_pixel_index(t->film, t->x, t->y);
-    t->sum[0] = t->sum[1] = t->sum[2] = 0.0;
-    if (t->k0 > 0) memcpy(t->sum, &t->film->sums[t->pixel * 3u], sizeof t->sum);
-    if (t->film->odd_sums) film_tile_load_odd(t);
-    if (t->film->aovs) film_tile_load_aovs(t);
+    film_tile_start_pixel(t);
     return true;
 }
