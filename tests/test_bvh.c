@@ -371,6 +371,7 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
 
     g = rng_for_sample(seed, 78, 1);
     int bad = 0, kinds_seen[3] = {0, 0, 0}, instanced = 0;
+    uint32_t occluder = BVH_EMPTY; // carried from ray to ray as a path carries it: a stale hint must not matter
     for (int i = 0; i < RAYS_PER_SCENE; i++) {
         ray r;
         float pick = rng_float(&g);
@@ -405,8 +406,11 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
         }
         bool ok = same_hit(f[0], &h[0], f[1], &h[1]) && same_hit(f[0], &h[0], f[2], &h[2]) &&
                   same_hit(f[0], &h[0], f[3], &h[3]);
-        ok = ok && brute_force_occluded(&all, NULL, &r) == f[0] && bvh_occluded(&world_w, &r) == f[0] &&
+        ok = ok && brute_force_occluded(&all, NULL, &r) == f[0] && bvh_occluded(&world_w, &r, NULL) == f[0] &&
              bvh_occluded_scalar(&world_w, &r) == f[0] && bvh2_occluded(&world_b, &r) == f[0];
+        // With the last ray's occluder tested first: the same answer, and a leaf kept exactly when it is blocked.
+        ok = ok && bvh_occluded(&world_w, &r, &occluder) == f[0] && (occluder != BVH_EMPTY) == f[0];
+        ok = ok && (!f[0] || bvh_occluded(&world_w, &r, &occluder)); // the kept leaf answers again
         if (f[0] && h[0].kind < 3) kinds_seen[h[0].kind]++;
         if (f[0] && h[0].instance != HIT_NO_INSTANCE) instanced++;
         if (!ok && bad++ < 5)

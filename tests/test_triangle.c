@@ -204,7 +204,7 @@ static bool bvh_agrees(const bvh *b, const ray *r, bool found, float t) {
     bool fs = bvh_intersect_scalar(b, r, &hs), fv = bvh_intersect(b, r, &hv);
     bool ok = fs == found && fv == found && (!found || (hs.t == t && hv.t == t && hs.prim == hv.prim &&
                                                         hs.b1 == hv.b1 && hs.b2 == hv.b2));
-    ok = ok && bvh_occluded(b, r) == found && bvh_occluded_scalar(b, r) == found;
+    ok = ok && bvh_occluded(b, r, NULL) == found && bvh_occluded_scalar(b, r) == found;
     return ok;
 }
 

@@ -206,9 +206,13 @@ void accel_intersect_stream(const accel *a, int n, const ray *rays, hit *hits, b
     }
 }
 
-bool accel_occluded(const accel *a, const ray *r) {
+_Static_assert(ACCEL_NO_OCCLUDER == BVH_EMPTY, "the BVH keeps its no-leaf value in the caller's occluder");
+
+bool accel_occluded(const accel *a, const ray *r) { return accel_occluded_hinted(a, r, NULL); }
+
+bool accel_occluded_hinted(const accel *a, const ray *r, uint32_t *occluder) {
     switch (a->kind) {
-    case ACCEL_BVH: return bvh_occluded(&a->world, r);
+    case ACCEL_BVH: return bvh_occluded(&a->world, r, occluder);
     case ACCEL_BVH2: return bvh2_occluded(&a->world, r);
     case ACCEL_NONE: return brute_force_occluded(&a->geometry, (const mesh *const *)a->flat, r);
     }

@@ -189,8 +189,10 @@ bool bvh2_intersect(const bvh *b, const ray *r, hit *h);
 bool bvh2_occluded(const bvh *b, const ray *r);
 /// Closest hit in the wide BVH, SIMD when compiled in (BVH_SIMD), else scalar.
 bool bvh_intersect(const bvh *b, const ray *r, hit *h);
-/// Any hit in the wide BVH, SIMD when compiled in, else scalar.
-bool bvh_occluded(const bvh *b, const ray *r);
+/// Any hit in the wide BVH, SIMD when compiled in, else scalar. With `occluder` not NULL, the leaf it names (a leaf
+/// reference, or BVH_EMPTY) is tested first, and the leaf that answered (BVH_EMPTY: none) is left in it: the same
+/// answer, sooner where one leaf blocks a path's shadow rays one after another.
+bool bvh_occluded(const bvh *b, const ray *r, uint32_t *occluder);
 
 // ---- Streams (bvh_stream.c): rays traced together, one step of each in turn ----
 

@@ -21,9 +21,9 @@ __attribute__((noinline)) hit bvh_packet_hit(const bvh *b, const bvh_index_packe
 static bool blas_traverse(const bvh *blas, const ray *r, hit *best, uint32_t inst_id, bool any, trav_mode mode) {
     switch (mode) {
     case MODE_WIDE_SIMD: // a mesh's BVH holds only triangles
-        if (blas->triangles_only) return wide_run(blas, r, best, inst_id, any, BVH_SIMD, LEAVES_TRIANGLES);
-        return wide_run(blas, r, best, inst_id, any, BVH_SIMD, LEAVES_ANY);
-    case MODE_WIDE_SCALAR: return wide_run(blas, r, best, inst_id, any, false, LEAVES_ANY);
+        if (blas->triangles_only) return wide_run(blas, r, best, inst_id, any, BVH_SIMD, LEAVES_TRIANGLES, NULL);
+        return wide_run(blas, r, best, inst_id, any, BVH_SIMD, LEAVES_ANY, NULL);
+    case MODE_WIDE_SCALAR: return wide_run(blas, r, best, inst_id, any, false, LEAVES_ANY, NULL);
     case MODE_BINARY: break; // the binary BVH's instances: bvh2_traverse.c
     }
     return false;

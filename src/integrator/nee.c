@@ -57,10 +57,11 @@ static inline vec3 nee_contribution(const nee_vertex *vx, vec3 le, vec3 tr, floa
     return v3_scale(v3_mul(le, tr), f * w / pdf_light);
 }
 
-// Whether shadow ray r gets past every surface (glass included); *tr is then the transmittance of the media it
-// crosses (1 in a scene without media).
-static inline bool shadow_unblocked(const integrator *it, const ray *r, vec3 *tr) {
-    if (it->alpha_masks ? alpha_occluded(it->accel, it->scene, r) : accel_occluded(it->accel, r)) return false;
+// Whether shadow ray r from vertex vx gets past every surface (glass included); *tr is then the transmittance of
+// the media it crosses (1 in a scene without media).
+static inline bool shadow_unblocked(const integrator *it, const nee_vertex *vx, const ray *r, vec3 *tr) {
+    if (it->alpha_masks ? alpha_occluded(it->accel, it->scene, r) : accel_occluded_hinted(it->accel, r, vx->occluder))
+        return false;
     const glint_scene *s = it->scene;
     *tr = s->medium_count ? medium_transmittance(s->media, s->medium_count, r->o, r->d, r->tmin, r->tmax) : v3s(1.0f);
     return true;
@@ -97,7 +98,7 @@ static vec3 sample_sphere_light(const integrator *it, float select, uint32_t ind
     ray shadow = spawn_ray(sp, wi, 0.0f, dist * (1.0f - 1e-4f));
     ts->shadow_rays++;
     vec3 tr;
-    if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
+    if (!shadow_unblocked(it, vx, &shadow, &tr)) return v3s(0.0f);
     return nee_contribution(vx, le, tr, f, fc, pdf_light);
 }
 
@@ -163,7 +164,7 @@ vec3 nee_area_lights(const integrator *it, const light_sampler *pl, const nee_ve
     ray shadow = spawn_ray(sp, wi, 0.0f, dist * (1.0f - 1e-4f));
     ts->shadow_rays++;
     vec3 tr;
-    if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
+    if (!shadow_unblocked(it, vx, &shadow, &tr)) return v3s(0.0f);
     if (q) le = alpha_cut_at(&s->materials[q->material], s->textures, a, b) // a cut part emits nothing
                     ? v3s(0.0f) : mat_emitted(&s->materials[q->material], s->textures, true, a, b, x);
     return nee_contribution(vx, le, tr, f, fc, pdf_light);
@@ -187,7 +188,7 @@ vec3 nee_environment(const integrator *it, const envmap_sampler *es, const nee_v
     ray shadow = spawn_ray(sp, wi, 0.0f, INFINITY);
     ts->shadow_rays++;
     vec3 tr;
-    if (!shadow_unblocked(it, &shadow, &tr)) return v3s(0.0f);
+    if (!shadow_unblocked(it, vx, &shadow, &tr)) return v3s(0.0f);
     return nee_contribution(vx, le, tr, f, fc, pdf);
 }
 
@@ -234,7 +235,7 @@ vec3 nee_point_lights(const integrator *it, const spawn_point *sp, const nee_ver
         ray shadow = spawn_ray(sp, wl, 0.0f, dist * (1.0f - 0x1p-20f));
         ts->shadow_rays++;
         vec3 tr;
-        if (!shadow_unblocked(it, &shadow, &tr)) continue;
+        if (!shadow_unblocked(it, vx, &shadow, &tr)) continue;
         if (vx->b) sum = v3_add(sum, v3_mul(v3_mul(v3_scale(l->intensity, falloff), fc), tr));
         else sum = v3_add(sum, v3_mul(v3_scale(l->intensity, cos_l * falloff), tr));
     }

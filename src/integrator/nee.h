@@ -30,6 +30,7 @@ typedef struct nee_vertex {
     const bsdf *b;
     vec3 wo;
     bool light_only; ///< (tests) the light samples are not weighted against BSDF sampling
+    uint32_t *occluder; ///< what blocked the path's last shadow ray (accel_occluded_hinted), or NULL
 } nee_vertex;
 
 /// Direct light from the scene's point, spot and directional lights at vertex vx (spawned at sp), times `weight`:

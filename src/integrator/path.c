@@ -83,11 +83,13 @@ typedef struct path_state {
     bool env_sampled;         ///< the last vertex sampled the environment: an escaping ray is weighted
     bool unit;                ///< cur.d has unit length (not so camera rays and the lean bounce's Lambertian ones)
     bool aov_pending;         ///< the AOVs wait for the path's first diffuse or glossy vertex
+    uint32_t occluder;        ///< what blocked the path's last shadow ray (accel_occluded_hinted)
 } path_state;
 
 // A path that has traced nothing yet.
 static inline path_state path_start(film_aov_sample *aov) {
-    path_state ps = {.radiance = v3s(0.0f), .throughput = v3s(1.0f), .aov_pending = aov != NULL};
+    path_state ps = {.radiance = v3s(0.0f), .throughput = v3s(1.0f), .aov_pending = aov != NULL,
+                     .occluder = ACCEL_NO_OCCLUDER};
     if (aov) {
         aov->albedo = aov->normal = v3s(0.0f);
         aov->depth = INFINITY;
@@ -206,7 +208,7 @@ static inline __attribute__((always_inline)) int path_medium_step(const path_int
     // It scatters in the medium: the lights are sampled as at a diffuse surface, with the phase function in place
     // of the BSDF (weight 1), and the next direction is drawn from the phase function.
     float g = s->media[me.index].g;
-    nee_vertex nv = {NULL, 0.0f, cur->d, g, NULL, v3s(0.0f), false};
+    nee_vertex nv = {NULL, 0.0f, cur->d, g, NULL, v3s(0.0f), false, &ps->occluder};
     spawn_point mp = {me.p, v3s(0.0f), 0.0f, cur->time}; // no surface to step off; the path's time
     path_nee(pi, setup, ps, &nv, &mp, v3s(1.0f), 0.0f, ps->depth + 1 < s->settings.max_depth, r, ts);
     rng_decision(r, RNG_DIM_BSDF);
@@ -356,7 +358,7 @@ static __attribute__((noinline)) bool path_bsdf_vertex(const path_integrator *pi
     spawn_point sp = spawn_point_of(s, sf);
     float in_side = v3_dot(cur->d, sf->ng);
     if (bsdf_has_nee(&b)) {
-        nee_vertex nv = {sf, in_side, cur->d, 0.0f, &b, wo, pi->light_only};
+        nee_vertex nv = {sf, in_side, cur->d, 0.0f, &b, wo, pi->light_only, &ps->occluder};
         path_nee(pi, setup, ps, &nv, &sp, v3s(1.0f), scattered ? bs.pdf : 0.0f,
                  ps->depth + 1 < s->settings.max_depth, r, ts);
         if (!scattered) return false;
@@ -424,7 +426,7 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
     if (ev.diffuse) {
         float dir_pdf = s->importance_sphere_count ? aim_diffuse(s, sp.p, sf.n, r, &ev)
                                                    : v3_dot(ev.dir, sf.n) * inv_pi;
-        nee_vertex nv = {&sf, in_side, cur->d, 0.0f, NULL, v3s(0.0f), false};
+        nee_vertex nv = {&sf, in_side, cur->d, 0.0f, NULL, v3s(0.0f), false, &ps->occluder};
         path_nee(pi, setup, ps, &nv, &sp, ev.weight, dir_pdf, ps->depth + 1 < s->settings.max_depth, r, ts);
     } else {
         ps->light_sampled = ps->env_sampled = false;
