@@ -139,6 +139,24 @@ static void test_transmittance(void) {
     check_tr(medium_transmittance(&turned, 1, v3(0.5f, 0.5f, -5), v3(0, 0, 1), 0, INFINITY), st, 2.0);
     one = medium_transmittance(&turned, 1, v3(1.5f, 0.5f, -5), v3(0, 0, 1), 0, INFINITY);
     CHECK(one.x == 1.0f);
+    // A sphere in world space takes a path of its own (in scalars): the same segments, bit for bit, as the same
+    // sphere placed by the identity (through object space), on rays from inside, outside, near its boundary,
+    // with unit and other directions and clipped intervals.
+    medium placed = ball;
+    place(&placed, mat4_identity());
+    rng g = rng_for_sample(7, 1, 2);
+    int differ = 0;
+    for (int i = 0; i < 20000; i++) {
+        vec3 o = v3(rng_range(&g, -4, 6), rng_range(&g, -3, 7), rng_range(&g, -2, 8));
+        if (i % 4 == 0) o = v3_add(v3(1, 2, 3), v3_scale(v3_unit(v3(rng_range(&g, -1, 1), rng_range(&g, -1, 1), 0.5f)), 2));
+        vec3 d = v3_unit(v3_sub(v3(rng_range(&g, -1, 3), rng_range(&g, 0, 4), rng_range(&g, 1, 5)), o));
+        if (i % 3 == 0) d = v3_scale(d, rng_range(&g, 0.1f, 10.0f));
+        float lo = i % 5 == 0 ? rng_range(&g, 0, 2) : 0.0f, hi = i % 2 ? rng_range(&g, 0, 8) : INFINITY;
+        float a0 = -1, a1 = -1, b0 = -1, b1 = -1;
+        bool a = medium_segment(&ball, o, d, lo, hi, &a0, &a1), b = medium_segment(&placed, o, d, lo, hi, &b0, &b1);
+        if (a != b || (a && (a0 != b0 || a1 != b1))) differ++;
+    }
+    CHECK(differ == 0);
     // Overlapping media multiply: the slab and the sphere along one line.
     medium both[2] = {slab, ball};
     vec3 tr = medium_transmittance(both, 2, v3(-5, 2, 3), v3(1, 0, 0), 0, INFINITY);

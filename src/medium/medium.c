@@ -63,7 +63,36 @@ static bool line_box(const double o[3], const double d[3], const double lo[3], c
     return true;
 }
 
-bool medium_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0, float *t1) {
+// medium_segment for a sphere in world space (book 2's media), in scalars and inlined where the media are
+// looped over: line_sphere's arithmetic operation for operation (the same roots, the same clipping, hence the
+// same bytes) without the arrays that path copies through memory (book 2's final scene 1.034x).
+static inline bool world_sphere_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0,
+                                        float *t1) {
+    double ox = (double)o.x - (double)m->center.x, oy = (double)o.y - (double)m->center.y,
+           oz = (double)o.z - (double)m->center.z, dx = d.x, dy = d.y, dz = d.z;
+    double a = dx * dx + dy * dy + dz * dz;
+    double b = ox * dx + oy * dy + oz * dz;
+    bool unit = fabs(a - 1.0) < 1e-6;
+    double ba = unit ? b : b / a;
+    double lx = ox - ba * dx, ly = oy - ba * dy, lz = oz - ba * dz;
+    double l2 = lx * lx;
+    l2 += ly * ly;
+    l2 += lz * lz;
+    double r = m->radius, disc = r * r - l2;
+    if (!(disc >= 0.0) || !(a > 0.0)) return false;
+    double h = unit ? sqrt(disc) : sqrt(a * disc);
+    double near = unit ? -b - h : (-b - h) / a, far = unit ? -b + h : (-b + h) / a;
+    if (near < (double)tmin) near = tmin;
+    if (far > (double)tmax) far = tmax;
+    if (!(near < far)) return false;
+    float f0 = (float)near, f1 = (float)far;
+    *t0 = f0;
+    *t1 = f1;
+    return f0 < f1;
+}
+
+// medium_segment for the other boundaries (transformed spheres, boxes), through object space.
+static bool object_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0, float *t1) {
     double wo[3] = {o.x, o.y, o.z}, wd[3] = {d.x, d.y, d.z}, oo[3], od[3];
     // An affine map keeps the parameter t of every point of the line: the interval is the object space one.
     if (m->transformed) {
@@ -88,6 +117,16 @@ bool medium_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, flo
     return *t0 < *t1;
 }
 
+// medium_segment, inlined in the loops over media.
+static inline bool segment_of(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0, float *t1) {
+    if (m->shape == MEDIUM_SPHERE && !m->transformed) return world_sphere_segment(m, o, d, tmin, tmax, t0, t1);
+    return object_segment(m, o, d, tmin, tmax, t0, t1);
+}
+
+bool medium_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0, float *t1) {
+    return segment_of(m, o, d, tmin, tmax, t0, t1);
+}
+
 // exp(-tau) per channel (one exp where the channels are equal: grey media).
 static vec3 exp_neg(const double tau[3]) {
     if (tau[0] == tau[1] && tau[1] == tau[2]) return v3s((float)exp(-tau[0]));
@@ -99,7 +138,7 @@ static void optical_depth(const medium *media, size_t count, vec3 o, vec3 d, flo
     double len = sqrt((double)d.x * d.x + (double)d.y * d.y + (double)d.z * d.z);
     for (size_t i = 0; i < count; i++) {
         float t0, t1;
-        if (!medium_segment(&media[i], o, d, tmin, tmax, &t0, &t1)) continue;
+        if (!segment_of(&media[i], o, d, tmin, tmax, &t0, &t1)) continue;
         double l = ((double)t1 - (double)t0) * len;
         tau[0] += media[i].sigma_t.x * l;
         tau[1] += media[i].sigma_t.y * l;
@@ -126,7 +165,7 @@ medium_event medium_sample(const medium *media, size_t count, const texture *tex
     // falls in medium i with probability sigma_t,i / sum, as it must.
     for (size_t i = 0; i < count; i++) {
         float t0, t1;
-        if (!medium_segment(&media[i], o, d, 0.0f, tmax, &t0, &t1)) continue;
+        if (!segment_of(&media[i], o, d, 0.0f, tmax, &t0, &t1)) continue;
         crossed = true;
         vec3 st = media[i].sigma_t;
         media_grey = media_grey && st.x == st.y && st.y == st.z;
