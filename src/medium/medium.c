@@ -66,8 +66,14 @@ static bool line_box(const double o[3], const double d[3], const double lo[3], c
 // medium_segment for a sphere in world space (book 2's media), in scalars and inlined where the media are
 // looped over: line_sphere's arithmetic operation for operation (the same roots, the same clipping, hence the
 // same bytes) without the arrays that path copies through memory (book 2's final scene 1.034x).
-static inline bool world_sphere_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0,
-                                        float *t1) {
+// The part of a ray inside a medium's boundary: (t0, t1) where `inside`. By value: the loops over media keep it in
+// registers, where through pointers it went by the stack (the out-of-line path takes their address).
+typedef struct span {
+    float t0, t1;
+    bool inside;
+} span;
+
+static inline span world_sphere_span(const medium *m, vec3 o, vec3 d, float tmin, float tmax) {
     double ox = (double)o.x - (double)m->center.x, oy = (double)o.y - (double)m->center.y,
            oz = (double)o.z - (double)m->center.z, dx = d.x, dy = d.y, dz = d.z;
     double a = dx * dx + dy * dy + dz * dz;
@@ -79,20 +85,18 @@ static inline bool world_sphere_segment(const medium *m, vec3 o, vec3 d, float t
     l2 += ly * ly;
     l2 += lz * lz;
     double r = m->radius, disc = r * r - l2;
-    if (!(disc >= 0.0) || !(a > 0.0)) return false;
+    if (!(disc >= 0.0) || !(a > 0.0)) return (span){0.0f, 0.0f, false};
     double h = unit ? sqrt(disc) : sqrt(a * disc);
     double near = unit ? -b - h : (-b - h) / a, far = unit ? -b + h : (-b + h) / a;
     if (near < (double)tmin) near = tmin;
     if (far > (double)tmax) far = tmax;
-    if (!(near < far)) return false;
+    if (!(near < far)) return (span){0.0f, 0.0f, false};
     float f0 = (float)near, f1 = (float)far;
-    *t0 = f0;
-    *t1 = f1;
-    return f0 < f1;
+    return (span){f0, f1, f0 < f1};
 }
 
 // medium_segment for the other boundaries (transformed spheres, boxes), through object space.
-static bool object_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0, float *t1) {
+static span object_span(const medium *m, vec3 o, vec3 d, float tmin, float tmax) {
     double wo[3] = {o.x, o.y, o.z}, wd[3] = {d.x, d.y, d.z}, oo[3], od[3];
     // An affine map keeps the parameter t of every point of the line: the interval is the object space one.
     if (m->transformed) {
@@ -104,27 +108,29 @@ static bool object_segment(const medium *m, vec3 o, vec3 d, float tmin, float tm
     double a, b;
     if (m->shape == MEDIUM_SPHERE) {
         double c[3] = {m->center.x, m->center.y, m->center.z};
-        if (!line_sphere(oo, od, c, m->radius, &a, &b)) return false;
+        if (!line_sphere(oo, od, c, m->radius, &a, &b)) return (span){0.0f, 0.0f, false};
     } else {
         double lo[3] = {m->lo.x, m->lo.y, m->lo.z}, hi[3] = {m->hi.x, m->hi.y, m->hi.z};
-        if (!line_box(oo, od, lo, hi, &a, &b)) return false;
+        if (!line_box(oo, od, lo, hi, &a, &b)) return (span){0.0f, 0.0f, false};
     }
     if (a < (double)tmin) a = tmin;
     if (b > (double)tmax) b = tmax;
-    if (!(a < b)) return false;
-    *t0 = (float)a;
-    *t1 = (float)b;
-    return *t0 < *t1;
+    if (!(a < b)) return (span){0.0f, 0.0f, false};
+    float f0 = (float)a, f1 = (float)b;
+    return (span){f0, f1, f0 < f1};
 }
 
-// medium_segment, inlined in the loops over media.
-static inline bool segment_of(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0, float *t1) {
-    if (m->shape == MEDIUM_SPHERE && !m->transformed) return world_sphere_segment(m, o, d, tmin, tmax, t0, t1);
-    return object_segment(m, o, d, tmin, tmax, t0, t1);
+// medium_segment's span, inlined in the loops over media.
+static inline span span_of(const medium *m, vec3 o, vec3 d, float tmin, float tmax) {
+    if (m->shape == MEDIUM_SPHERE && !m->transformed) return world_sphere_span(m, o, d, tmin, tmax);
+    return object_span(m, o, d, tmin, tmax);
 }
 
 bool medium_segment(const medium *m, vec3 o, vec3 d, float tmin, float tmax, float *t0, float *t1) {
-    return segment_of(m, o, d, tmin, tmax, t0, t1);
+    span sp = span_of(m, o, d, tmin, tmax);
+    *t0 = sp.t0;
+    *t1 = sp.t1;
+    return sp.inside;
 }
 
 // exp(-tau) per channel (one exp where the channels are equal: grey media).
@@ -137,9 +143,9 @@ static vec3 exp_neg(const double tau[3]) {
 static void optical_depth(const medium *media, size_t count, vec3 o, vec3 d, float tmin, float tmax, double tau[3]) {
     double len = sqrt((double)d.x * d.x + (double)d.y * d.y + (double)d.z * d.z);
     for (size_t i = 0; i < count; i++) {
-        float t0, t1;
-        if (!segment_of(&media[i], o, d, tmin, tmax, &t0, &t1)) continue;
-        double l = ((double)t1 - (double)t0) * len;
+        span sp = span_of(&media[i], o, d, tmin, tmax);
+        if (!sp.inside) continue;
+        double l = ((double)sp.t1 - (double)sp.t0) * len;
         tau[0] += media[i].sigma_t.x * l;
         tau[1] += media[i].sigma_t.y * l;
         tau[2] += media[i].sigma_t.z * l;
@@ -164,8 +170,8 @@ medium_event medium_sample(const medium *media, size_t count, const texture *tex
     // independent of the others': the earliest of their first events is the first event of their sum, and it
     // falls in medium i with probability sigma_t,i / sum, as it must.
     for (size_t i = 0; i < count; i++) {
-        float t0, t1;
-        if (!segment_of(&media[i], o, d, 0.0f, tmax, &t0, &t1)) continue;
+        span sp = span_of(&media[i], o, d, 0.0f, tmax);
+        if (!sp.inside) continue;
         crossed = true;
         vec3 st = media[i].sigma_t;
         media_grey = media_grey && st.x == st.y && st.y == st.z;
@@ -177,8 +183,8 @@ medium_event medium_sample(const medium *media, size_t count, const texture *tex
         double rate = v3_comp(media[i].sigma_t, mp->hero);
         if (!(rate > 0.0)) continue;
         // -ln(1 - u): 1 - u is exact in float (u has 24 bits) and positive, and float's logarithm is the cheaper
-        double t = (double)t0 - (double)logf(1.0f - u) / rate;
-        if (t < (double)t1 && t < (double)first) {
+        double t = (double)sp.t0 - (double)logf(1.0f - u) / rate;
+        if (t < (double)sp.t1 && t < (double)first) {
             first = (float)t;
             ev.scattered = true;
             ev.index = (uint32_t)i;
