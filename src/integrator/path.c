@@ -403,7 +403,7 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
     if (!ps->unit && !lean) path_unit_direction(ps, cur, h);
     surface sf;
     bool flat = lean && surface_at_flat(s, cur, h, &sf);
-    if (!flat) sf = surface_at(s, cur, h);
+    if (!flat) surface_at_into(s, cur, h, &sf);
     const material *m = &s->materials[sf.material];
     if (flat && m->kind == MAT_LAMBERTIAN && m->albedo_texture < 0) return path_lean_flat(s, ps, cur, &sf, m, r, aov);
     bool lean_diffuse = lean && m->kind == MAT_LAMBERTIAN;
