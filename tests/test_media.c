@@ -54,7 +54,10 @@ static bool rel_near(double a, double b, double tol) { return fabs(a - b) <= tol
 // their azimuth is uniform (no mean sideways component).
 static void test_phase_hg(void) {
     // The isotropic shortcut returns what the formula gives (through it with a g too small to change its terms).
-    for (int i = 0; i <= 20; i++) CHECK(phase_hg(0.0f, -1.0f + 0.1f * (float)i) == phase_hg(1e-30f, -1.0f + 0.1f * (float)i));
+    for (int i = 0; i <= 20; i++) {
+        float c = -1.0f + 0.1f * (float)i;
+        CHECK(phase_hg(0.0f, c) == phase_hg(1e-30f, c));
+    }
     const float gs[] = {0.0f, 0.5f, -0.3f, 0.85f};
     vec3 d = v3_unit(v3(0.3f, -0.5f, 0.81f));
     for (size_t k = 0; k < sizeof gs / sizeof gs[0]; k++) {
@@ -155,7 +158,8 @@ static void test_transmittance(void) {
         if (i % 3 == 0) d = v3_scale(d, rng_range(&g, 0.1f, 10.0f));
         float lo = i % 5 == 0 ? rng_range(&g, 0, 2) : 0.0f, hi = i % 2 ? rng_range(&g, 0, 8) : INFINITY;
         float a0 = -1, a1 = -1, b0 = -1, b1 = -1;
-        bool a = medium_segment(&ball, o, d, lo, hi, &a0, &a1), b = medium_segment(&placed, o, d, lo, hi, &b0, &b1);
+        bool a = medium_segment(&ball, o, d, lo, hi, &a0, &a1);
+        bool b = medium_segment(&placed, o, d, lo, hi, &b0, &b1);
         if (a != b || (a && (a0 != b0 || a1 != b1))) differ++;
     }
     CHECK(differ == 0);
