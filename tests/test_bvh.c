@@ -144,6 +144,7 @@ static void check_scene(uint64_t seed, size_t n) {
 
     rng g = rng_for_sample(seed, n, 1);
     int bad = 0, hits = 0, stream_bad = 0;
+    uint32_t occluder[3] = {ACCEL_NO_OCCLUDER, ACCEL_NO_OCCLUDER, ACCEL_NO_OCCLUDER}; // carried from ray to ray
     stream_batch sb[3] = {{0}};
     for (int i = 0; i < RAYS_PER_SCENE; i++) {
         ray r = random_ray(&g, sc[0]);
@@ -160,6 +161,7 @@ static void check_scene(uint64_t seed, size_t n) {
         bool ok = same_hit(f[0], &h[0], f[1], &h[1]) && same_hit(f[0], &h[0], f[2], &h[2]) &&
                   same_hit(f[0], &h[0], fs, &hs) && world_sphere(f[0], &h[0]);
         for (int k = 0; k < 3; k++) ok = ok && accel_occluded(ac[k], &r) == f[0];
+        for (int k = 0; k < 3; k++) ok = ok && accel_occluded_hinted(ac[k], &r, &occluder[k]) == f[0];
         ok = ok && bvh_occluded_scalar(&wide, &r) == f[0];
         if (!ok) {
             if (bad++ < 5)
@@ -410,7 +412,8 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
              bvh_occluded_scalar(&world_w, &r) == f[0] && bvh2_occluded(&world_b, &r) == f[0];
         // With the last ray's occluder tested first: the same answer, and a leaf kept exactly when it is blocked.
         ok = ok && bvh_occluded(&world_w, &r, &occluder) == f[0] && (occluder != BVH_EMPTY) == f[0];
-        ok = ok && (!f[0] || bvh_occluded(&world_w, &r, &occluder)); // the kept leaf answers again
+        uint32_t kept = occluder; // the kept leaf answers again, and is kept again
+        ok = ok && (!f[0] || (bvh_occluded(&world_w, &r, &occluder) && occluder == kept));
         if (f[0] && h[0].kind < 3) kinds_seen[h[0].kind]++;
         if (f[0] && h[0].instance != HIT_NO_INSTANCE) instanced++;
         if (!ok && bad++ < 5)

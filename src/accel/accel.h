@@ -97,8 +97,9 @@ bool accel_coherent(const accel *a);
 bool accel_occluded(const accel *a, const ray *r);
 /// What blocked a path's last shadow ray (accel_occluded_hinted), for its next one: ACCEL_NO_OCCLUDER to start.
 #define ACCEL_NO_OCCLUDER 0xffffffffu
-/// accel_occluded for a path's next shadow ray, testing first what blocked its last one (*occluder, updated): the
-/// same answer, found in one leaf test where the same object blocks again (a path scattering inside a glass ball).
+/// accel_occluded for a path's next shadow ray, testing first what blocked its last one (*occluder, updated by the
+/// wide BVH; the others leave it): the same answer, found in one leaf test where the same object blocks again (a
+/// path scattering inside a glass ball).
 bool accel_occluded_hinted(const accel *a, const ray *r, uint32_t *occluder);
 
 #endif

@@ -27,7 +27,7 @@ typedef struct surface {
     float time;    ///< the ray's time: rays leaving the surface keep it
 } surface;
 
-/// Shading data of a hit on anything but a world-space sphere; surface_at calls it only for moving spheres,
+/// Shading data of a hit on anything but a world-space sphere; surface_at_into calls it only for moving spheres,
 /// instanced spheres and the triangles of instances that move or turn directions (it takes the others inline).
 surface surface_at_general(const glint_scene *s, const ray *r, const hit *h);
 

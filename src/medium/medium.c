@@ -63,9 +63,6 @@ static bool line_box(const double o[3], const double d[3], const double lo[3], c
     return true;
 }
 
-// medium_segment for a sphere in world space (book 2's media), in scalars and inlined where the media are
-// looped over: line_sphere's arithmetic operation for operation (the same roots, the same clipping, hence the
-// same bytes) without the arrays that path copies through memory (book 2's final scene 1.034x).
 // The part of a ray inside a medium's boundary: (t0, t1) where `inside`. By value: the loops over media keep it in
 // registers, where through pointers it went by the stack (the out-of-line path takes their address).
 typedef struct span {
@@ -73,6 +70,9 @@ typedef struct span {
     bool inside;
 } span;
 
+// medium_segment for a sphere in world space (book 2's media), in scalars and inlined where the media are
+// looped over: line_sphere's arithmetic operation for operation (the same roots, the same clipping, hence the
+// same bytes) without the arrays that path copies through memory (book 2's final scene 1.034x).
 static inline span world_sphere_span(const medium *m, vec3 o, vec3 d, float tmin, float tmax) {
     double ox = (double)o.x - (double)m->center.x, oy = (double)o.y - (double)m->center.y,
            oz = (double)o.z - (double)m->center.z, dx = d.x, dy = d.y, dz = d.z;

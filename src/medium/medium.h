@@ -90,7 +90,7 @@ static inline float phase_hg(float g, float cos_theta) {
     const float inv_4pi = 0.0795774715459477f;
     // Isotropic (book 2's media): the formula below gives exactly 1 / (4 pi), after a square root and a division
     // on the light sample's chain.
-    if (g == 0.0f && !isnan(cos_theta)) return inv_4pi;
+    if (g == 0.0f && isfinite(cos_theta)) return inv_4pi;
     float denom = 1.0f + g * g - 2.0f * g * cos_theta;
     if (!(denom > 0.0f)) denom = 1e-12f; // g -> 1 and cos -> 1: the peak, kept finite
     return inv_4pi * (1.0f - g * g) / (denom * sqrtf(denom));
