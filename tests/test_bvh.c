@@ -18,6 +18,7 @@
 enum { RAYS_PER_SCENE = 4000 };
 
 static int mismatches; // reported once per scene rather than once per ray
+static int triangles_first_seen[2]; // mixed world trees that make the triangle constants up front (1) or not (0)
 
 static float urand(rng *g, float lo, float hi) { return rng_range(g, lo, hi); }
 
@@ -359,6 +360,7 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
     geometry_arrays all = scene_geometry(s, mesh_list);
     bvh_input in = {.geometry = &all, .blas = blas_w};
     CHECK(bvh_build(&world_w, &in, NULL, true));
+    triangles_first_seen[world_w.triangles_first]++;
     in.blas = blas_b;
     CHECK(bvh_build(&world_b, &in, NULL, false));
 
@@ -450,6 +452,8 @@ int main(void) {
     check_mixed(4, 0, 0, 1, 1);
     check_mixed(5, 0, 7, 0, 0);
     check_mixed(6, 5, 0, 0, 9); // sphere instances only
+    check_mixed(7, 3, 80, 0, 0); // a few spheres among quads: the triangle constants made up front
+    CHECK(triangles_first_seen[0] > 0 && triangles_first_seen[1] > 0);
     check_coincident();
     check_empty();
     check_known();

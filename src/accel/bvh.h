@@ -143,6 +143,8 @@ typedef struct bvh {
     size_t prim_count;   ///< primitives before pre-splitting
     bool spheres_only;   ///< nothing but spheres: the traversal without the code for other kinds runs
     bool triangles_only; ///< nothing but triangles and quads (triangle packets): likewise
+    bool triangles_first; ///< a mixed tree of triangles and quads with few spheres: every ray's triangle-test
+                          ///< constants are made up front, not at its first triangle packet (bvh_build.c)
     // binary BVH (ACCEL_BVH2); nodes[0] is the root. A wide build frees both once its packets are written.
     bvh2_node *nodes2;
     size_t node2_count;

@@ -413,8 +413,9 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
     }
     tri_cache tc = {.ready = false};
     stri.tr = NULL; // a mixed tree's triangle constants: made at its first triangle packet (triangle_packet_lanes)
-    // A triangle-only BVH tests triangles in nearly every leaf: their constants are made once, up front.
-    if (simd && leaves == LEAVES_TRIANGLES) {
+    // A triangle-only BVH tests triangles in nearly every leaf: their constants are made once, up front; so does a
+    // mixed one with few spheres (bvh.triangles_first).
+    if (simd && (leaves == LEAVES_TRIANGLES || (leaves == LEAVES_ANY && b->triangles_first))) {
         tri_for(&tc, r);
         simd_tri_setup(&tc.tr, r->tmin, r->tmax, &stri);
     }
