@@ -412,7 +412,7 @@ static inline __attribute__((always_inline)) bool wide_run(const bvh *b, const r
         tr = trav_setup(r);
     }
     tri_cache tc = {.ready = false};
-    stri.tr = NULL; // a mixed tree's triangle constants: made at its first triangle packet (triangle_packet_lanes)
+    stri.tr = NULL; // a mixed tree's triangle constants: made below or at its first triangle packet
     // A triangle-only BVH tests triangles in nearly every leaf: their constants are made once, up front; so does a
     // mixed one with few spheres (bvh.triangles_first).
     if (simd && (leaves == LEAVES_TRIANGLES || (leaves == LEAVES_ANY && b->triangles_first))) {
