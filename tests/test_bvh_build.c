@@ -283,6 +283,61 @@ static void check_tri_split(void) {
     CHECK(cut > 0);
 }
 
+// A mesh of n triangles, each with corners of its own, of which the first `slivers` lie across their boxes (each asks
+// for a split) and the rest are right isosceles ones in the xy plane (none asks), spread along x.
+static bool make_mixed_slivers(size_t n, size_t slivers, mesh *m) {
+    memset(m, 0, sizeof *m);
+    m->position_count = 3 * n;
+    m->triangle_count = n;
+    m->positions = malloc(m->position_count * sizeof *m->positions);
+    m->triangles = malloc(m->triangle_count * sizeof *m->triangles);
+    if (!m->positions || !m->triangles) {
+        mesh_free(m);
+        return false;
+    }
+    for (size_t t = 0; t < n; t++) {
+        vec3 o = v3((float)t * 0.5f, 0.0f, 0.0f), *p = &m->positions[3 * t];
+        p[0] = o;
+        if (t < slivers) {
+            p[1] = v3_add(o, v3(2.0f, 3.0f, -2.5f));
+            p[2] = v3_add(o, v3(0.01f, 0.0f, 0.02f));
+        } else {
+            p[1] = v3_add(o, v3(0.4f, 0.0f, 0.0f));
+            p[2] = v3_add(o, v3(0.0f, 0.4f, 0.0f));
+        }
+        m->triangles[t] = (mesh_triangle){{(int32_t)(3 * t), (int32_t)(3 * t + 1), (int32_t)(3 * t + 2)}, -1};
+    }
+    mesh_compute_bounds(m);
+    return true;
+}
+
+// Only a mesh whose typical triangle asks for a split is pre-split (tri_split_mesh_wants): a minority of slivers
+// leaves the tree as it is without pre-splitting, a majority cuts them; an empty mesh wants nothing.
+static void check_split_choice(void) {
+    mesh empty;
+    memset(&empty, 0, sizeof empty);
+    CHECK(!tri_split_mesh_wants(&empty));
+    const struct {
+        size_t n, slivers;
+        bool wants;
+    } cases[] = {{10, 0, false}, {10, 4, false}, {10, 5, true}, {10, 10, true}, {20000, 7000, false},
+                 {20000, 13000, true}, {1, 1, true}};
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        mesh m;
+        CHECK(make_mixed_slivers(cases[i].n, cases[i].slivers, &m));
+        if (!m.positions) continue;
+        CHECK(tri_split_mesh_wants(&m) == cases[i].wants);
+        bvh split, whole;
+        CHECK(bvh_build(&split, &(bvh_input){.mesh = &m}, NULL, true));
+        CHECK(bvh_build(&whole, &(bvh_input){.mesh = &m}, &(accel_build_options){.no_presplit = true}, true));
+        if (cases[i].wants && cases[i].slivers >= 1000) CHECK(split.stats.leaves > whole.stats.leaves);
+        if (!cases[i].wants) CHECK(split.stats.leaves == whole.stats.leaves && split.stats.nodes == whole.stats.nodes);
+        bvh_release(&split);
+        bvh_release(&whole);
+        mesh_free(&m);
+    }
+}
+
 // A sphere of slivers (bands from pole to pole, many thin segments): pre-split, so the BVH holds more leaves than
 // without, the same tree for any number of threads, and the same hits as brute force.
 static void check_slivers(void) {
@@ -484,6 +539,7 @@ int main(void) {
     check_floor_leaf();
     check_small();
     check_tri_split();
+    check_split_choice();
     check_slivers();
     check_soup();
     check_sphere_scene();

@@ -67,6 +67,7 @@ typedef struct gather_job {
     build_prim *prims;
     uint32_t owner; ///< prim_ref.instance of every triangle
     size_t per_item;
+    bool split; ///< the mesh is one to pre-split (tri_split_mesh_wants): each triangle's levels are found
     box3 *item_box; ///< item_box[i]: the box of item i's triangles (NULL: not wanted)
 } gather_job;
 
@@ -79,7 +80,7 @@ static void gather_triangles_run(void *ctx, size_t item) {
         vec3 p[3];
         mesh_triangle_positions(job->m, k, &p[0], &p[1], &p[2]);
         job->prims[k].box = box_padded_axes(bounds3_add(bounds3_add(bounds3_add(bounds3_empty(), p[0]), p[1]), p[2]));
-        job->prims[k].split_levels = (uint32_t)tri_split_levels(p[0], p[1], p[2]);
+        job->prims[k].split_levels = job->split ? (uint32_t)tri_split_levels(p[0], p[1], p[2]) : 0;
         job->prims[k].ref = (prim_ref){.kind = PRIM_TRIANGLE, .index = (uint32_t)k, .instance = job->owner & PRIM_NO_INSTANCE};
         box_grow(&all, &job->prims[k].box);
     }
@@ -90,7 +91,7 @@ static void gather_triangles_run(void *ctx, size_t item) {
 // *all by their boxes (as one pass in index order would: each item's box, grown in item order).
 static void gather_triangles(thread_pool *pool, const mesh *m, uint32_t owner, build_prim *prims, box3 *all) {
     size_t items = (m->triangle_count + GATHER_PER_ITEM - 1) / GATHER_PER_ITEM;
-    gather_job job = {m, prims, owner, GATHER_PER_ITEM, malloc(items * sizeof(box3))};
+    gather_job job = {m, prims, owner, GATHER_PER_ITEM, tri_split_mesh_wants(m), malloc(items * sizeof(box3))};
     if (pool) thread_pool_run(pool, items, gather_triangles_run, &job);
     else
         for (size_t i = 0; i < items; i++) gather_triangles_run(&job, i);

@@ -34,6 +34,16 @@ int tri_split_levels(vec3 p0, vec3 p1, vec3 p2) {
     return levels;
 }
 
+bool tri_split_mesh_wants(const mesh *m) {
+    size_t n = m->triangle_count, step = n > TRI_SPLIT_SAMPLES ? n / TRI_SPLIT_SAMPLES : 1, seen = 0, asking = 0;
+    for (size_t k = 0; k < n && seen < TRI_SPLIT_SAMPLES; k += step, seen++) {
+        vec3 p0, p1, p2;
+        mesh_triangle_positions(m, k, &p0, &p1, &p2);
+        asking += tri_split_levels(p0, p1, p2) > 0;
+    }
+    return seen > 0 && 2 * asking >= seen;
+}
+
 enum { MAX_POLY = 3 + 6 }; // a triangle clipped by six planes gains at most one corner per plane
 
 // Clips polygon in[0, n) to the side of plane x[axis] = at where x[axis] <= at (keep_below) or >= at, into out;

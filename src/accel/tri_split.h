@@ -6,7 +6,10 @@
 #ifndef GLINT_TRI_SPLIT_H
 #define GLINT_TRI_SPLIT_H
 
+#include "geometry/mesh.h"
 #include "geometry/transform.h"
+
+#include <stdbool.h>
 
 /// The most halvings of one triangle: at most 1 << TRI_SPLIT_MAX_LEVELS pieces.
 enum { TRI_SPLIT_MAX_LEVELS = 3 };
@@ -15,6 +18,14 @@ enum { TRI_SPLIT_MAX_LEVELS = 3 };
 /// area exceeds its own area: 0 for the triangles of an evenly tessellated surface (an equilateral triangle's box
 /// has at most 4.6 times its area, whatever its orientation), 0 for degenerate ones.
 int tri_split_levels(vec3 p0, vec3 p1, vec3 p2);
+
+/// Whether mesh m is one whose typical triangle is long and slanted: at least half of up to TRI_SPLIT_SAMPLES of its
+/// triangles, evenly spaced, ask for a split (tri_split_levels). Only such meshes are pre-split: on meshes where a
+/// minority of triangles are thin (a scan's slivers, a CAD model's fans) the pieces cost more leaves than their
+/// smaller boxes save (docs/architecture.md, "Pre-splitting long, slanted triangles").
+bool tri_split_mesh_wants(const mesh *m);
+/// Triangles tri_split_mesh_wants looks at, at most.
+enum { TRI_SPLIT_SAMPLES = 4096 };
 
 /// Cuts triangle (p0, p1, p2) `levels` times (each piece halved across the longest axis of its box) and writes
 /// the exact bounds of each non-empty piece, rounded outwards to float, into out (room for 1 << levels);
