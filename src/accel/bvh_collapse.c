@@ -3,6 +3,7 @@
 #include "accel/bvh_collapse.h"
 #include "accel/bvh_packets.h"
 #include "accel/bvh_sah.h"
+#include "core/big_alloc.h"
 
 #include <stdlib.h>
 
@@ -143,7 +144,7 @@ static uint32_t leaf_placed(const collapser *cl, uint32_t ref) {
 bool bvh_collapse_wide(bvh *b, thread_pool *pool, size_t leaves, size_t tree, size_t front) {
     // The wide nodes (at most one per binary inner node) and the list of leaves, one per binary leaf and the front.
     size_t inner = b->node2_count - leaves;
-    b->wnodes = inner ? aligned_alloc(_Alignof(bvh_wnode), inner * sizeof *b->wnodes) : NULL;
+    b->wnodes = inner ? big_alloc(_Alignof(bvh_wnode), inner * sizeof *b->wnodes) : NULL;
     collapser cl = {.b = b, .spans = malloc((leaves + 1) * sizeof *cl.spans)};
     cover *covers = tree ? malloc(b->node2_count * sizeof *covers) : NULL;
     if ((inner && !b->wnodes) || !cl.spans || (tree && !covers)) {
@@ -165,7 +166,7 @@ bool bvh_collapse_wide(bvh *b, thread_pool *pool, size_t leaves, size_t tree, si
     free(b->nodes2);
     b->nodes2 = NULL;
     b->node2_count = 0;
-    b->slots = cl.slots < BVH_LEAF ? aligned_alloc(_Alignof(bvh_slot), cl.slots * sizeof *b->slots) : NULL;
+    b->slots = cl.slots < BVH_LEAF ? big_alloc(_Alignof(bvh_slot), cl.slots * sizeof *b->slots) : NULL;
     if (!b->slots) {
         free(cl.spans);
         return false;
