@@ -77,7 +77,7 @@ static const bad_scene cases[] = {
      "objects, lights"},
     {__LINE__, TEXT("{\"render\": {\"samples\": 4}}"),
      "bad.json:1:13: unknown key \"samples\" in render; expected one of: width, height, spp, max_depth, seed, "
-     "sampler, noise_threshold, integrator, background, output, accel, presplit"},
+     "sampler, noise_threshold, integrator, background, output, accel, presplit, spatial_splits"},
     {__LINE__, TEXT("{\"render\": {\"sampler\": \"halton\"}}"),
      "bad.json:1:24: \"sampler\" must be \"sobol\" or \"independent\", got \"halton\""},
     {__LINE__, TEXT("{\"render\": {\"noise_threshold\": -0.5}}"),
@@ -231,6 +231,8 @@ static const bad_scene cases[] = {
     {__LINE__, TEXT("{\"materials\": {\"r\": {\"type\": \"phong\", \"reflective\": -0.2}}}"),
      "bad.json:1:53: \"reflective\" must be a number in [0, 1], got -0.2"},
     {__LINE__, TEXT("{\"render\": {\"presplit\": 1}}"), "bad.json:1:25: \"presplit\" must be true or false, got 1"},
+    {__LINE__, TEXT("{\"render\": {\"spatial_splits\": \"no\"}}"),
+     "bad.json:1:31: \"spatial_splits\" must be true or false, got \"no\""},
     {__LINE__, TEXT("{\"materials\": {\"l\": {\"type\": \"diffuse_light\", \"two_sided\": \"yes\"}}}"),
      "bad.json:1:60: \"two_sided\" must be true or false, got \"yes\""},
     {__LINE__, TEXT("{\"materials\": {\"l\": {\"type\": \"diffuse_light\", \"emission\": 1e999}}}"),

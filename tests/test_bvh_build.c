@@ -338,6 +338,54 @@ static void check_split_choice(void) {
     }
 }
 
+// Spatial splits (bvh_spatial.h) on a model like a CAD part: small triangles, and among them long, thin ones lying
+// across the model (too few for the mesh to be pre-split, tri_split_mesh_wants). The tree cuts some (more leaves
+// than without spatial splits), is the same for any number of threads, and finds the hits brute force finds.
+static void check_spatial(void) {
+    enum { SMALL = 3000, LONG = 1500 };
+    mesh m;
+    memset(&m, 0, sizeof m);
+    m.position_count = 3 * (SMALL + LONG);
+    m.triangle_count = SMALL + LONG;
+    m.positions = malloc(m.position_count * sizeof *m.positions);
+    m.triangles = malloc(m.triangle_count * sizeof *m.triangles);
+    CHECK(m.positions && m.triangles);
+    if (!m.positions || !m.triangles) {
+        mesh_free(&m);
+        return;
+    }
+    rng g = rng_for_sample(31, 0, 0);
+    for (size_t t = 0; t < SMALL + LONG; t++) {
+        vec3 *p = &m.positions[3 * t];
+        if (t < SMALL) { // a small triangle anywhere in the model
+            p[0] = v3(urand(&g, -8, 8), urand(&g, -1, 3), urand(&g, -8, 8));
+            p[1] = v3_add(p[0], v3(urand(&g, 0.1f, 0.3f), urand(&g, -0.1f, 0.1f), 0.0f));
+            p[2] = v3_add(p[0], v3(0.0f, urand(&g, -0.1f, 0.1f), urand(&g, 0.1f, 0.3f)));
+        } else { // a long, thin one from one side of the model to the other, slanted
+            p[0] = v3(urand(&g, -8, -6), urand(&g, -1, 3), urand(&g, -8, 8));
+            p[1] = v3_add(p[0], v3(14.0f, urand(&g, -1, 1), urand(&g, -3, 3)));
+            p[2] = v3_add(p[0], v3(0.05f, 0.05f, 0.05f));
+        }
+        m.triangles[t] = (mesh_triangle){{(int32_t)(3 * t), (int32_t)(3 * t + 1), (int32_t)(3 * t + 2)}, -1};
+    }
+    mesh_compute_bounds(&m);
+    CHECK(!tri_split_mesh_wants(&m));
+    bvh cut, whole;
+    CHECK(bvh_build(&cut, &(bvh_input){.mesh = &m}, NULL, true));
+    CHECK(bvh_build(&whole, &(bvh_input){.mesh = &m}, &(accel_build_options){.no_spatial = true}, true));
+    CHECK(cut.stats.leaves > whole.stats.leaves);
+    bvh_release(&cut);
+    bvh_release(&whole);
+    check_same_trees("long triangles among small ones", (bvh_input){.mesh = &m}, 0);
+    check_same_trees("long triangles among small ones", (bvh_input){.mesh = &m}, 64);
+    const mesh *meshes[1] = {&m};
+    instance inst = {.kind = INSTANCE_MESH, .xf = transform_identity(), .material = -1};
+    geometry_arrays in = {.meshes = meshes, .mesh_count = 1, .instances = &inst, .instance_count = 1};
+    check_queries("long triangles among small ones", &in, 1, 3000, 8);
+    check_queries("long triangles among small ones", &in, 2, 3000, 9);
+    mesh_free(&m);
+}
+
 // A sphere of slivers (bands from pole to pole, many thin segments): pre-split, so the BVH holds more leaves than
 // without, the same tree for any number of threads, and the same hits as brute force.
 static void check_slivers(void) {
@@ -540,6 +588,7 @@ int main(void) {
     check_small();
     check_tri_split();
     check_split_choice();
+    check_spatial();
     check_slivers();
     check_soup();
     check_sphere_scene();

@@ -42,6 +42,7 @@ static void test_defaults(void) {
     CHECK(rs->transform == TRANSFORM_SRGB); // 8-bit output is sRGB unless the file says otherwise
     CHECK(rs->accel == ACCEL_BVH);
     CHECK(!rs->no_presplit); // pre-splitting is on unless the file turns it off
+    CHECK(!rs->no_spatial);  // so are spatial splits
     CHECK(s->camera.kind == CAMERA_LOOKAT);
     CHECK_VEC(s->camera.lookfrom, 0, 0, 0);
     CHECK_VEC(s->camera.lookat, 0, 0, -1);
@@ -99,9 +100,10 @@ static void test_render_settings(void) {
     glint_scene_free(s);
 
     s = parse("{\"render\": {\"integrator\": {\"type\": \"whitted\", \"mode\": \"paper\"}, \"background\": [1, 0.5, 0],"
-              " \"output\": \"gamma2\", \"accel\": \"bvh2\", \"presplit\": false}}");
+              " \"output\": \"gamma2\", \"accel\": \"bvh2\", \"presplit\": false, \"spatial_splits\": false}}");
     if (s) {
         CHECK(s->settings.no_presplit);
+        CHECK(s->settings.no_spatial);
         CHECK(s->settings.integrator == INTEGRATOR_WHITTED && s->settings.whitted_mode == WHITTED_PAPER);
         CHECK(s->settings.max_depth == 3);
         CHECK_VEC(s->settings.background_color, 1, 0.5, 0);

@@ -24,6 +24,7 @@ typedef struct accel_build_options {
     const atomic_int *stop;  ///< nonzero once a stop is requested: the build gives up (NULL: never)
     int threads;             ///< threads that build the BVHs (the same BVHs for any number); 0: all online CPUs
     bool no_presplit;        ///< the wide BVHs keep long, slanted triangles whole (tri_split.h; "presplit": false)
+    bool no_spatial;         ///< the wide BVHs split only between whole primitives (bvh_spatial.h; "spatial_splits": false)
     size_t parallel_min;     ///< (tests) fewest primitives of a range split by all threads together; 0: the default
     size_t stream_min_bytes; ///< (tests) smallest world BVH (in bytes) for accel_streams; 0: ACCEL_STREAM_MIN_BYTES
     size_t interleave_min_bytes; ///< (tests) the same for accel_interleaves; 0: ACCEL_INTERLEAVE_MIN_BYTES

@@ -260,7 +260,7 @@ static size_t top_range(par_build *pb, size_t begin, size_t end, uint64_t depth)
         for (size_t k = 0; k < st.count; k++) bins_merge(&b, &pb->chunk_bins[k]);
         s = bvh_best_split(bd, &b, &bounds);
     }
-    if (stopped || keep_leaf(bd, begin, n, depth, s.cost)) {
+    if (stopped || keep_leaf(bd, bd->prims, begin, n, depth, s.cost)) {
         node_set_leaf(bd, &pb->top[id].node, begin, n);
         return id;
     }

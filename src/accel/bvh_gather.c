@@ -44,7 +44,7 @@ static box3 box_padded_by(bounds3 bb, bool per_axis) {
     return b;
 }
 
-static box3 box_padded(bounds3 bb) { return box_padded_by(bb, false); }
+box3 bvh_box_padded(bounds3 bb) { return box_padded_by(bb, false); }
 static box3 box_padded_axes(bounds3 bb) { return box_padded_by(bb, true); }
 
 // Object-space bounds of what an instance places.
@@ -136,10 +136,10 @@ size_t bvh_gather_prims(const bvh_input *in, build_prim *prims, thread_pool *poo
         bounds3 ob = instance_object_bounds(in, inst);
         if (bounds3_is_empty(ob)) continue; // an instance of an empty mesh: nothing to hit
         if (inst->motion) { // bounded over the whole shutter, and tested at each ray's time
-            prims[n].box = box_padded(motion_bounds(&g->motions[inst->motion - 1], ob, g->time0, g->time1));
+            prims[n].box = bvh_box_padded(motion_bounds(&g->motions[inst->motion - 1], ob, g->time0, g->time1));
             prims[n].ref = (prim_ref){.kind = PRIM_MOVING_INSTANCE, .index = (uint32_t)i, .instance = none};
         } else {
-            prims[n].box = box_padded(mat4_apply_bounds(&inst->xf.m, ob));
+            prims[n].box = bvh_box_padded(mat4_apply_bounds(&inst->xf.m, ob));
             prims[n].ref = (prim_ref){.kind = PRIM_INSTANCE, .index = (uint32_t)i, .instance = none};
         }
         box_grow(all, &prims[n].box);
@@ -175,8 +175,7 @@ typedef struct split_job {
     size_t *first; ///< first[item]: where the item's extra pieces start, after n
 } split_job;
 
-// The corners of triangle primitive p (of the BVH's mesh or of a flattened instance).
-static void prim_triangle(const bvh_input *in, prim_ref r, vec3 p[3]) {
+void bvh_prim_triangle(const bvh_input *in, prim_ref r, vec3 p[3]) {
     uint32_t owner = prim_ref_instance(r);
     const mesh *m = owner == HIT_NO_INSTANCE ? in->mesh : in->flat[owner];
     mesh_triangle_positions(m, r.index, &p[0], &p[1], &p[2]);
@@ -205,14 +204,14 @@ static void split_place_run(void *ctx, size_t item) {
         if (job->prims[k].ref.kind != PRIM_TRIANGLE || job->prims[k].split_levels == 0) continue;
         int levels = (int)job->prims[k].split_levels;
         vec3 p[3];
-        prim_triangle(job->in, job->prims[k].ref, p);
+        bvh_prim_triangle(job->in, job->prims[k].ref, p);
         bounds3 piece[1 << TRI_SPLIT_MAX_LEVELS];
         int count = tri_split_bounds(p[0], p[1], p[2], levels, piece);
         if (count == 0) continue; // cannot happen for a triangle that asks for levels; keep its whole box
-        job->prims[k].box = box_padded(piece[0]);
+        job->prims[k].box = bvh_box_padded(piece[0]);
         // Every piece counted has its place; a piece found empty (never for a real triangle) repeats the first.
         for (int j = 1; j < 1 << levels; j++)
-            job->prims[at++] = (build_prim){box_padded(piece[j < count ? j : 0]), job->prims[k].ref, 0};
+            job->prims[at++] = (build_prim){bvh_box_padded(piece[j < count ? j : 0]), job->prims[k].ref, 0};
     }
 }
 

@@ -4,8 +4,6 @@
 #include "accel/bvh_sah.h"
 #include "core/trace.h"
 
-static uint32_t new_node(builder *bd) { return (uint32_t)bd->node_count++; }
-
 // Grows *bounds and *cbounds by the boxes and the centroids of prims[begin, end), in index order. box_grow
 // keeps the later of two equal bounds (+0 and -0 compare equal), so growing the results of consecutive chunks
 // in their order gives the bits of one pass over the whole range: what the parallel build relies on.
@@ -206,7 +204,7 @@ static size_t partition(build_prim *prims, size_t begin, size_t end, const bins 
 // Recursively builds the subtree over prims[begin, end) and returns its node index (depth-first order). Its
 // primitives' box and centroid box are `known` ([0] and [1]) when the parent's partition grew them, else NULL.
 uint32_t bvh_build_range(builder *bd, size_t begin, size_t end, uint64_t depth, const box3 *known) {
-    uint32_t id = new_node(bd);
+    uint32_t id = bvh_new_node(bd);
     if (depth + 1 > bd->depth) bd->depth = depth + 1;
     box3 bounds = box_empty(), cbounds = box_empty();
     if (known) {
@@ -228,7 +226,7 @@ uint32_t bvh_build_range(builder *bd, size_t begin, size_t end, uint64_t depth, 
         bvh_bins_add(&b, bd->prims, begin, end);
         s = bvh_best_split(bd, &b, &bounds);
     }
-    if (stopped || keep_leaf(bd, begin, n, depth, s.cost)) {
+    if (stopped || keep_leaf(bd, bd->prims, begin, n, depth, s.cost)) {
         node_set_leaf(bd, node, begin, n);
         return id;
     }

@@ -114,7 +114,27 @@ typedef struct builder {
     uint64_t depth, leaves;
     const atomic_int *stop; ///< nonzero once a stop is requested (NULL: never): the build gives up
     bool stopped;
+    bool failed; ///< out of memory on the way (spatial splits' room): the build gives up
+    /// Spatial splits (bvh_spatial.c), or NULL: the tree is built by bvh_build_spatial, whose leaves hold references
+    /// of their own, in `spill` (leaf offsets marked BVH_SPILL).
+    const struct bvh_spatial *spatial;
+    prim_ref *spill; ///< the references of a spatial build's leaves
+    size_t spill_count, spill_cap;
 } builder;
+
+/// Marks a binary leaf's offset as an index into builder.spill (a spatial build's references), not into prims.
+#define BVH_SPILL 0x80000000u
+
+/// A spatial build's references are at most this many times its primitives (its room; bvh_spatial.c).
+enum { BVH_SPATIAL_GROWTH = 2 };
+
+/// The most nodes a build over n primitives can make: two per leaf, and a leaf per reference.
+static inline size_t bvh_node_room(const builder *bd, size_t n) {
+    return 2 * n * (bd->spatial ? (size_t)BVH_SPATIAL_GROWTH : 1) - 1;
+}
+
+/// A new node of bd's tree (its array has room: bvh_build sizes it for every reference the build may make).
+static inline uint32_t bvh_new_node(builder *bd) { return (uint32_t)bd->node_count++; }
 
 /// Bin of a centroid coordinate; the same arithmetic when binning and when partitioning.
 static inline int bin_of(float c, float lo, float scale, int bins) {
@@ -154,13 +174,14 @@ static inline bool one_kind(const build_prim *prims, size_t begin, size_t n) {
 
 /// Whether prims[begin, begin + n) at `depth` stay a leaf: one primitive, the depth limit, or a leaf of one kind
 /// that the SAH prefers to the best split (unless it holds too many primitives for a leaf).
-static inline bool keep_leaf(const builder *bd, size_t begin, size_t n, uint64_t depth, float split_cost) {
+static inline bool keep_leaf(const builder *bd, const build_prim *prims, size_t begin, size_t n, uint64_t depth,
+                             float split_cost) {
     // Kinds go to packets of their own: a floor's quad in a leaf with the triangles beside it would make that
     // leaf's box as wide as the floor and as high as the triangles, and every ray leaving the floor would start
     // in it and test them all.
     if (n <= 1 || depth + 1 >= BVH_MAX_DEPTH) return true;
     return n <= (size_t)bd->max_leaf && leaf_blocks(bd, n) * SAH_INTERSECT_COST <= split_cost &&
-           one_kind(bd->prims, begin, n);
+           one_kind(prims, begin, n);
 }
 
 /// Whether a stop was requested: then every range left becomes a leaf, and bvh_build discards the tree.

@@ -130,3 +130,9 @@ int tri_split_bounds(vec3 p0, vec3 p1, vec3 p2, int levels, bounds3 *out) {
     const double lo[3] = {-INFINITY, -INFINITY, -INFINITY}, hi[3] = {INFINITY, INFINITY, INFINITY};
     return split_piece(tri, lo, hi, levels, out);
 }
+
+bool tri_clip_bounds(vec3 p0, vec3 p1, vec3 p2, const float lo[3], const float hi[3], bounds3 *out) {
+    const double tri[3][3] = {{p0.x, p0.y, p0.z}, {p1.x, p1.y, p1.z}, {p2.x, p2.y, p2.z}};
+    const double l[3] = {lo[0], lo[1], lo[2]}, h[3] = {hi[0], hi[1], hi[2]};
+    return split_piece(tri, l, h, 0, out) == 1;
+}

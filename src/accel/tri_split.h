@@ -32,4 +32,8 @@ enum { TRI_SPLIT_SAMPLES = 4096 };
 /// returns how many. Together the boxes hold every point of the triangle.
 int tri_split_bounds(vec3 p0, vec3 p1, vec3 p2, int levels, bounds3 *out);
 
+/// The bounds of the part of triangle (p0, p1, p2) inside the box [lo, hi] (clipped in double, rounded outwards to
+/// float): a spatial split's piece (bvh_spatial.c). False when the triangle misses the box.
+bool tri_clip_bounds(vec3 p0, vec3 p1, vec3 p2, const float lo[3], const float hi[3], bounds3 *out);
+
 #endif

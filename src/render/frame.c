@@ -21,9 +21,11 @@ static void trace_accel_build(trace_lane *lane, const glint_scene *s, int64_t be
 }
 
 accel *frame_accel_build(const glint_scene *s, const accel_build_options *opt, glint_error *err) {
-    // The scene's "presplit" joins the caller's options; the rest (threads, stop, tests' knobs) are the caller's.
+    // The scene's "presplit" and "spatial_splits" join the caller's options; the rest (threads, stop, tests' knobs)
+    // are the caller's.
     accel_build_options o = opt ? *opt : (accel_build_options){0};
     o.no_presplit = o.no_presplit || s->settings.no_presplit;
+    o.no_spatial = o.no_spatial || s->settings.no_spatial;
     const mesh **meshes = s->mesh_count ? malloc(s->mesh_count * sizeof *meshes) : NULL;
     if (s->mesh_count && !meshes) {
         snprintf(err->message, sizeof err->message, "out of memory building the acceleration structure");

@@ -36,7 +36,8 @@ typedef struct render_options {
     const char *resume;            ///< a checkpoint file the render continues, or NULL
     const atomic_int *cancel;      ///< nonzero: stop before the next sample (the caller's token); NULL: never
     accel_build_options accel;     ///< (tests) how the BVH is built: its knobs (stream_min_bytes, ...); its threads and
-                                   ///< stop are the render's (threads, cancel), its no_presplit or-ed with the scene's
+                                   ///< stop are the render's (threads, cancel), its no_presplit and no_spatial or-ed
+                                   ///< with the scene's
 } render_options;
 
 /// Builds the render frame of s, renders every sample of the region's pixels into a new image (*out) of the

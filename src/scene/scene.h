@@ -51,6 +51,7 @@ typedef struct render_settings {
     output_transform transform;
     accel_kind accel;
     bool no_presplit; ///< "presplit": false: long, slanted triangles keep whole boxes (accel_build_options)
+    bool no_spatial;  ///< "spatial_splits": false: the BVH splits between whole primitives only (accel_build_options)
     sampler_kind sampler; ///< the path tracer's random numbers
     float noise_threshold; ///< adaptive sampling: a pixel below this estimated relative error stops (0: off)
 } render_settings;

@@ -225,7 +225,8 @@ bool sf_read_camera(sf_loader *ld, jr_val v) {
 
 static const char *const render_keys[] = {"width",      "height",   "spp",        "max_depth",
                                           "seed",       "sampler",  "noise_threshold", "integrator",
-                                          "background", "output",   "accel",      "presplit",  NULL};
+                                          "background", "output",   "accel",      "presplit",
+                                          "spatial_splits", NULL};
 /// Adaptive sampling's threshold (render_settings.noise_threshold; 0: off).
 static const jr_numspec NUM_NOISE_THRESHOLD = {0.0, SCENE_MAX_NOISE_THRESHOLD, JR_FLOAT, "a number in [0, 1000]"};
 static const char *const whitted_keys[] = {"type", "mode", NULL};
@@ -374,6 +375,9 @@ bool sf_read_render(sf_loader *ld, jr_val v) {
     bool presplit = !rs->no_presplit;
     if (!jr_read_bool(&ld->r, &o, "presplit", &presplit)) return false;
     rs->no_presplit = !presplit;
+    bool spatial = !rs->no_spatial;
+    if (!jr_read_bool(&ld->r, &o, "spatial_splits", &spatial)) return false;
+    rs->no_spatial = !spatial;
     rs->width = (int)width;
     rs->height = (int)height;
     rs->spp = (int)spp;
