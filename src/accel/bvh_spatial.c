@@ -26,7 +26,7 @@ enum { SPATIAL_MIN_RANGE = 1024 };
 static const float SPATIAL_MARGIN = 0.95f;
 /// A subtree stops trying spatial splits after this many nodes in a row on the way down found none worth making: a
 /// scan's tree gains none anywhere, and trying every node of it would triple its build.
-enum { SPATIAL_MISSES = 3 };
+enum { SPATIAL_MISSES = 4 };
 
 /// A spatial build: the triangles' corners, the references and their room.
 typedef struct spatial_run {
