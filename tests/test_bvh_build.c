@@ -342,7 +342,7 @@ static void check_split_choice(void) {
 // across the model (too few for the mesh to be pre-split, tri_split_mesh_wants). The tree cuts some (more leaves
 // than without spatial splits), is the same for any number of threads, and finds the hits brute force finds.
 static void check_spatial(void) {
-    enum { SMALL = 3000, LONG = 1500 };
+    enum { SMALL = 12000, LONG = 6000 };
     mesh m;
     memset(&m, 0, sizeof m);
     m.position_count = 3 * (SMALL + LONG);

@@ -35,6 +35,7 @@ typedef struct spatial_run {
     build_prim *refs; ///< room for BVH_SPATIAL_GROWTH times the tree's primitives
     struct deferred *later; ///< right subtrees of whole-primitive splits only, built after the rest
     size_t later_count, later_cap;
+    thread_pool *pool; ///< the build's threads (NULL: one)
 } spatial_run;
 
 /// A right subtree that tries no spatial split (of at least DEFER_MIN references), built after the spatial
@@ -177,6 +178,49 @@ static void bin_slabs(const spatial_run *r, size_t begin, size_t end, const slab
     }
 }
 
+/// Chunks a large node's slab binning is cut into, for the pool's threads: the bins are the same for any cut (boxes
+/// by min and max, counts by sums), so the tree is the same for any number of threads.
+enum { SLAB_CHUNKS = 16 };
+/// Nodes of at least this many references bin their slabs on the pool.
+enum { SLAB_PARALLEL_MIN = 16384 };
+
+/// One node's slab binning cut into chunks (a pool job): each chunk's bins, merged after.
+typedef struct slab_job {
+    const spatial_run *r;
+    size_t begin, end;
+    const slab_axis *ax;
+    slab_bins (*bins)[3]; ///< SLAB_CHUNKS of them
+} slab_job;
+
+static void slab_chunk(void *ctx, size_t k) {
+    const slab_job *job = ctx;
+    size_t n = job->end - job->begin;
+    bin_slabs(job->r, job->begin + n * k / SLAB_CHUNKS, job->begin + n * (k + 1) / SLAB_CHUNKS, job->ax,
+              job->bins[k]);
+}
+
+// bin_slabs over r->refs[begin, end), on the pool's threads for a large node (the same bins either way).
+static void bin_slabs_node(const spatial_run *r, size_t begin, size_t end, const slab_axis ax[3], slab_bins sb[3]) {
+    slab_bins (*chunk)[3] = r->pool && end - begin >= SLAB_PARALLEL_MIN ? malloc(SLAB_CHUNKS * sizeof *chunk) : NULL;
+    if (!chunk) { // one thread, or no memory for the chunks' bins
+        bin_slabs(r, begin, end, ax, sb);
+        return;
+    }
+    slab_job job = {r, begin, end, ax, chunk};
+    thread_pool_run(r->pool, SLAB_CHUNKS, slab_chunk, &job);
+    for (int a = 0; a < 3; a++)
+        for (int k = 0; k < SPATIAL_BINS; k++) {
+            sb[a].box[k] = box_empty();
+            sb[a].enter[k] = sb[a].exit[k] = 0;
+            for (int c = 0; c < SLAB_CHUNKS; c++) {
+                box_grow(&sb[a].box[k], &chunk[c][a].box[k]);
+                sb[a].enter[k] += chunk[c][a].enter[k];
+                sb[a].exit[k] += chunk[c][a].exit[k];
+            }
+        }
+    free(chunk);
+}
+
 // The best spatial split of r->refs[begin, end) in box `bounds` over the three axes (axis -1: none).
 static spatial_split best_spatial(const spatial_run *r, size_t begin, size_t end, const box3 *bounds) {
     const builder *bd = r->bd;
@@ -191,7 +235,7 @@ static spatial_split best_spatial(const spatial_run *r, size_t begin, size_t end
         ax[a].width = extent / (float)SPATIAL_BINS;
     }
     slab_bins sb[3];
-    bin_slabs(r, begin, end, ax, sb);
+    bin_slabs_node(r, begin, end, ax, sb);
     for (int a = 0; a < 3; a++) {
         if (!ax[a].live) continue;
         box3 right_box[SPATIAL_BINS], acc = box_empty();
@@ -381,7 +425,8 @@ static void deferred_build(void *ctx, size_t k) {
 
 // Builds the deferred subtrees (on the pool when there is one) and appends them to bd's nodes in the order they were
 // deferred, each parent pointed at its subtree's root.
-static void build_deferred(spatial_run *r, thread_pool *pool) {
+static void build_deferred(spatial_run *r) {
+    thread_pool *pool = r->pool;
     builder *bd = r->bd;
     for (size_t k = 0; k < r->later_count; k++) {
         deferred *d = &r->later[k];
@@ -413,7 +458,7 @@ static void build_deferred(spatial_run *r, thread_pool *pool) {
 
 void bvh_build_spatial(builder *bd, size_t n, thread_pool *pool) {
     size_t room = (size_t)BVH_SPATIAL_GROWTH * n;
-    spatial_run r = {bd, bd->spatial->in, malloc(room * sizeof(build_prim)), NULL, 0, 0};
+    spatial_run r = {bd, bd->spatial->in, malloc(room * sizeof(build_prim)), NULL, 0, 0, pool};
     if (!r.refs) {
         bd->failed = true;
         return;
@@ -421,7 +466,7 @@ void bvh_build_spatial(builder *bd, size_t n, thread_pool *pool) {
     memcpy(r.refs, bd->prims, n * sizeof *r.refs);
     size_t used;
     spatial_range(&r, 0, n, room, 0, 0, &used);
-    build_deferred(&r, pool);
+    build_deferred(&r);
     // The leaves' references, the leaves pointing at them.
     if (used >= BVH_SPILL || !array_reserve((void **)&bd->spill, &bd->spill_cap, used, sizeof *bd->spill)) {
         bd->failed = true;
