@@ -23,15 +23,23 @@ enum { THREAD_COUNT_N = sizeof THREAD_COUNTS / sizeof THREAD_COUNTS[0] };
 
 static float urand(rng *g, float lo, float hi) { return rng_range(g, lo, hi); }
 
+// An empty mesh with room for `positions` corners and `triangles` triangles; false (and nothing held) when out of
+// memory.
+static bool mesh_with_room(mesh *m, size_t positions, size_t triangles) {
+    memset(m, 0, sizeof *m);
+    m->position_count = positions;
+    m->triangle_count = triangles;
+    m->positions = malloc(positions * sizeof *m->positions);
+    m->triangles = malloc(triangles * sizeof *m->triangles);
+    if (m->positions && m->triangles) return true;
+    mesh_free(m);
+    return false;
+}
+
 // A soup of n random triangles in [-10, 10]^3: mostly small, some long slivers, exact duplicates (equal
 // centroids), degenerate ones, and clusters that share one centroid (ranges that no axis can split).
 static bool make_soup(rng *g, size_t n, mesh *m) {
-    memset(m, 0, sizeof *m);
-    m->position_count = 3 * n;
-    m->triangle_count = n;
-    m->positions = malloc(3 * n * sizeof *m->positions);
-    m->triangles = malloc(n * sizeof *m->triangles);
-    if (!m->positions || !m->triangles) return false;
+    if (!mesh_with_room(m, 3 * n, n)) return false;
     for (size_t i = 0; i < n; i++) {
         vec3 *p = &m->positions[3 * i];
         float kind = rng_float(g);
@@ -286,15 +294,7 @@ static void check_tri_split(void) {
 // A mesh of n triangles, each with corners of its own, of which the first `slivers` lie across their boxes (each asks
 // for a split) and the rest are right isosceles ones in the xy plane (none asks), spread along x.
 static bool make_mixed_slivers(size_t n, size_t slivers, mesh *m) {
-    memset(m, 0, sizeof *m);
-    m->position_count = 3 * n;
-    m->triangle_count = n;
-    m->positions = malloc(m->position_count * sizeof *m->positions);
-    m->triangles = malloc(m->triangle_count * sizeof *m->triangles);
-    if (!m->positions || !m->triangles) {
-        mesh_free(m);
-        return false;
-    }
+    if (!mesh_with_room(m, 3 * n, n)) return false;
     for (size_t t = 0; t < n; t++) {
         vec3 o = v3((float)t * 0.5f, 0.0f, 0.0f), *p = &m->positions[3 * t];
         p[0] = o;
@@ -344,16 +344,9 @@ static void check_split_choice(void) {
 static void check_spatial(void) {
     enum { SMALL = 12000, LONG = 6000 };
     mesh m;
-    memset(&m, 0, sizeof m);
-    m.position_count = 3 * (SMALL + LONG);
-    m.triangle_count = SMALL + LONG;
-    m.positions = malloc(m.position_count * sizeof *m.positions);
-    m.triangles = malloc(m.triangle_count * sizeof *m.triangles);
-    CHECK(m.positions && m.triangles);
-    if (!m.positions || !m.triangles) {
-        mesh_free(&m);
-        return;
-    }
+    bool room = mesh_with_room(&m, 3 * (SMALL + LONG), SMALL + LONG);
+    CHECK(room);
+    if (!room) return;
     rng g = rng_for_sample(31, 0, 0);
     for (size_t t = 0; t < SMALL + LONG; t++) {
         vec3 *p = &m.positions[3 * t];
@@ -391,16 +384,9 @@ static void check_spatial(void) {
 static void check_slivers(void) {
     enum { BANDS = 4, SEGMENTS = 3000 };
     mesh m;
-    memset(&m, 0, sizeof m);
-    m.position_count = (BANDS + 1) * SEGMENTS;
-    m.triangle_count = 2 * BANDS * SEGMENTS;
-    m.positions = malloc(m.position_count * sizeof *m.positions);
-    m.triangles = malloc(m.triangle_count * sizeof *m.triangles);
-    CHECK(m.positions && m.triangles);
-    if (!m.positions || !m.triangles) {
-        mesh_free(&m);
-        return;
-    }
+    bool room = mesh_with_room(&m, (BANDS + 1) * SEGMENTS, 2 * BANDS * SEGMENTS);
+    CHECK(room);
+    if (!room) return;
     for (int i = 0; i <= BANDS; i++)
         for (int j = 0; j < SEGMENTS; j++) {
             double th = 3.14159265358979 * i / BANDS, ph = 2 * 3.14159265358979 * j / SEGMENTS;
