@@ -37,43 +37,29 @@ static size_t input_count(const bvh_input *in) {
 }
 
 // The binary tree over bd->prims[0, tree) into b->nodes2, on the pool when it is big; false when out of memory or
-// stopped.
-static bool build_binary(bvh *b, builder *bd, size_t tree, thread_pool *pool, size_t parallel_min) {
+// stopped. *used: the references its leaves hold, bd->prims[0, *used) (more than tree where spatial splits cut
+// triangles: bd->prims then has grown, the `front` primitives after the tree's moved to follow them).
+static bool build_binary(bvh *b, builder *bd, size_t tree, size_t front, thread_pool *pool, size_t parallel_min,
+                         size_t *used) {
     // Room for every node the build may make; with spatial splits far more than it will, which costs address space
     // only until the pages are written, and is given back below.
     b->nodes2 = tree ? malloc(bvh_node_room(bd, tree) * sizeof *b->nodes2) : NULL;
     if (tree && !b->nodes2) return false;
     bd->nodes = b->nodes2;
+    *used = tree;
     bool built = true;
     int64_t began = bvh_step_began();
     if (tree) {
-        if (bd->spatial) bvh_build_spatial(bd, tree, pool);
+        if (bd->spatial) built = bvh_build_spatial(bd, tree, front, pool, used);
         else if (pool && tree >= 2 * parallel_min) built = bvh_build_parallel(bd, tree, pool, parallel_min);
         else bvh_build_range(bd, 0, tree, 0, NULL);
     }
     if (!built || bd->stopped || bd->failed) return false;
-    if (bd->spill_count) {
+    if (bd->spatial) {
         bvh2_node *fit = realloc(b->nodes2, bd->node_count * sizeof *fit);
         if (fit) b->nodes2 = bd->nodes = fit;
     }
     bvh_step_traced("BVH binary tree", began);
-    return true;
-}
-
-// The references of the tree's leaves: prims' references in place, then those of the spatial ranges (bd->spill),
-// the leaves that hold those pointed past the first n. False when out of memory (b->refs then holds prims').
-static bool join_spill(bvh *b, builder *bd, build_prim *prims, size_t n) {
-    b->refs = bvh_refs_in_place(prims, n);
-    b->ref_count = n;
-    if (!bd->spill_count) return true;
-    prim_ref *all = realloc(b->refs, (n + bd->spill_count) * sizeof *all);
-    if (!all) return false;
-    memcpy(all + n, bd->spill, bd->spill_count * sizeof *all);
-    b->refs = all;
-    b->ref_count = n + bd->spill_count;
-    for (size_t i = 0; i < bd->node_count; i++)
-        if (b->nodes2[i].count && (b->nodes2[i].offset & BVH_SPILL))
-            b->nodes2[i].offset = (uint32_t)(n + (b->nodes2[i].offset & ~BVH_SPILL));
     return true;
 }
 
@@ -116,20 +102,20 @@ static bool build_steps(bvh *b, const accel_build_options *opt, bool wide, build
     // Spatial splits in a wide tree with triangles (bvh_spatial.h).
     bvh_spatial sp = {in};
     if (wide && !opt->no_spatial && triangles > 0) bd.spatial = &sp;
-    bool built = build_binary(b, &bd, tree, pool, parallel_min);
+    size_t used;
+    bool built = build_binary(b, &bd, tree, front, pool, parallel_min, &used);
+    prims = bd.prims; // a spatial build grows it
     if (!built) {
-        free(bd.spill);
         free(prims);
         return false;
     }
     b->node2_count = bd.node_count;
-    bool joined = join_spill(b, &bd, prims, n);
-    free(bd.spill);
-    if (!joined) return false;
+    b->ref_count = used + front;
+    b->refs = bvh_refs_in_place(prims, used + front);
     b->stats.nodes = bd.node_count - bd.leaves;
     b->stats.leaves = bd.leaves;
     b->stats.depth = bd.depth;
-    return !wide || bvh_collapse_wide(b, pool, bd.leaves, tree, front);
+    return !wide || bvh_collapse_wide(b, pool, bd.leaves, used, front);
 }
 
 bool bvh_build(bvh *b, const bvh_input *in, const accel_build_options *opt, bool wide) {

@@ -114,16 +114,9 @@ typedef struct builder {
     uint64_t depth, leaves;
     const atomic_int *stop; ///< nonzero once a stop is requested (NULL: never): the build gives up
     bool stopped;
-    bool failed; ///< out of memory on the way (spatial splits' room): the build gives up
-    /// Spatial splits (bvh_spatial.c), or NULL: the tree is built by bvh_build_spatial, whose leaves hold references
-    /// of their own, in `spill` (leaf offsets marked BVH_SPILL).
-    const struct bvh_spatial *spatial;
-    prim_ref *spill; ///< the references of a spatial build's leaves
-    size_t spill_count, spill_cap;
+    bool failed; ///< out of memory on the way: the build gives up
+    const struct bvh_spatial *spatial; ///< spatial splits (bvh_build_spatial builds the tree), or NULL
 } builder;
-
-/// Marks a binary leaf's offset as an index into builder.spill (a spatial build's references), not into prims.
-#define BVH_SPILL 0x80000000u
 
 /// A spatial build's references are at most this many times its primitives (its room; bvh_spatial.c).
 enum { BVH_SPATIAL_GROWTH = 2 };

@@ -32,7 +32,7 @@ enum { SPATIAL_MISSES = 4 };
 typedef struct spatial_run {
     builder *bd;
     const bvh_input *in;
-    build_prim *refs; ///< room for BVH_SPATIAL_GROWTH times the tree's primitives
+    build_prim *refs; ///< bd->prims, with room for BVH_SPATIAL_GROWTH times the tree's primitives
     struct deferred *later; ///< right subtrees of whole-primitive splits only, built after the rest
     size_t later_count, later_cap;
     thread_pool *pool; ///< the build's threads (NULL: one)
@@ -456,26 +456,24 @@ static void build_deferred(spatial_run *r) {
     free(r->later);
 }
 
-void bvh_build_spatial(builder *bd, size_t n, thread_pool *pool) {
+bool bvh_build_spatial(builder *bd, size_t n, size_t front, thread_pool *pool, size_t *used) {
     size_t room = (size_t)BVH_SPATIAL_GROWTH * n;
-    spatial_run r = {bd, bd->spatial->in, malloc(room * sizeof(build_prim)), NULL, 0, 0, pool};
-    if (!r.refs) {
+    build_prim kept[BVH_PACKET]; // the front (at most a packet of huge spheres) waits here while the room is used
+    if (front > BVH_PACKET || room / BVH_SPATIAL_GROWTH != n) {
         bd->failed = true;
-        return;
+        return false;
     }
-    memcpy(r.refs, bd->prims, n * sizeof *r.refs);
-    size_t used;
-    spatial_range(&r, 0, n, room, 0, 0, &used);
+    memcpy(kept, bd->prims + n, front * sizeof *kept);
+    build_prim *grown = realloc(bd->prims, (room + front) * sizeof *grown);
+    if (!grown) {
+        bd->failed = true;
+        return false;
+    }
+    bd->prims = grown;
+    spatial_run r = {bd, bd->spatial->in, grown, NULL, 0, 0, pool};
+    spatial_range(&r, 0, n, room, 0, 0, used);
     build_deferred(&r);
-    // The leaves' references, the leaves pointing at them.
-    if (used >= BVH_SPILL || !array_reserve((void **)&bd->spill, &bd->spill_cap, used, sizeof *bd->spill)) {
-        bd->failed = true;
-        free(r.refs);
-        return;
-    }
-    for (size_t i = 0; i < used; i++) bd->spill[i] = r.refs[i].ref;
-    bd->spill_count = used;
-    for (size_t i = 0; i < bd->node_count; i++)
-        if (bd->nodes[i].count) bd->nodes[i].offset |= BVH_SPILL;
-    free(r.refs);
+    memcpy(grown + *used, kept, front * sizeof *kept);
+    if (*used + front >= BVH_LEAF / 2) bd->failed = true; // leaf slots and references must fit their fields
+    return !bd->failed;
 }

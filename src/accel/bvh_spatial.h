@@ -16,9 +16,10 @@ typedef struct bvh_spatial {
 } bvh_spatial;
 
 /// Builds the binary tree over bd->prims[0, n) with object and spatial splits (bd->spatial says over what): its root
-/// is node 0, its leaves' references are bd->spill (their offsets marked BVH_SPILL), at most BVH_SPATIAL_GROWTH
-/// times n of them. The subtrees below the spatial splits are built on the pool's threads (NULL: serially): the
-/// same tree either way. Out of memory: bd->failed.
-void bvh_build_spatial(builder *bd, size_t n, thread_pool *pool);
+/// is node 0. bd->prims grows to make room for the triangles cut in two (BVH_SPATIAL_GROWTH times n, and the `front`
+/// primitives that follow the tree's, kept); on return its leaves hold bd->prims[0, *used) and the front follows.
+/// The subtrees below the spatial splits are built on the pool's threads (NULL: serially): the same tree either way.
+/// False when out of memory (bd->failed; bd->prims is still the array to free).
+bool bvh_build_spatial(builder *bd, size_t n, size_t front, thread_pool *pool, size_t *used);
 
 #endif
