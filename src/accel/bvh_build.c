@@ -1,6 +1,6 @@
 // bvh_build.c — the BVH build's entry point (bvh_build) and the order of its steps: the input (bvh_gather.c), the
-// binary tree by the serial binned SAH (bvh_sah.c) or on every thread (bvh_build_parallel.c), then the wide
-// collapse and its leaf packets (bvh_collapse.c).
+// binary tree by the serial binned SAH (bvh_sah.c), on every thread (bvh_build_parallel.c) or, for a wide tree with
+// triangles, with spatial splits (bvh_spatial.c), then the wide collapse and its leaf packets (bvh_collapse.c).
 #include "accel/bvh_build_parallel.h"
 #include "accel/bvh_collapse.h"
 #include "accel/bvh_gather.h"
