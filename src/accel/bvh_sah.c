@@ -142,12 +142,11 @@ split bvh_best_split(const builder *bd, const bins *b, const box3 *bounds) {
     return best;
 }
 
-// Partitions prims[begin, end) by the split, left side first, and returns where the right side starts. The
-// order it leaves is the leaf order of the tree; parallel_partition reproduces it. side[0] and side[1] get the
-// boxes and centroid boxes of the two sides, grown as each primitive is placed: the children need not read
-// their primitives again for them (bvh_range_bounds).
+// The order bvh_partition leaves is the leaf order of the tree; parallel_partition reproduces it. The boxes of the two
+// sides are grown as each primitive is placed: the children need not read their primitives again for them
+// (bvh_range_bounds).
 #if defined(__SSE__)
-static size_t partition(build_prim *prims, size_t begin, size_t end, const bins *b, split s, box3 side[2],
+size_t bvh_partition(build_prim *prims, size_t begin, size_t end, const bins *b, split s, box3 side[2],
                         box3 cside[2]) {
     // The chosen bin, recomputed with exactly the arithmetic of the binning.
     int a = s.axis, nb = b->nb;
@@ -177,7 +176,7 @@ static size_t partition(build_prim *prims, size_t begin, size_t end, const bins 
     return i;
 }
 #else
-static size_t partition(build_prim *prims, size_t begin, size_t end, const bins *b, split s, box3 side[2],
+size_t bvh_partition(build_prim *prims, size_t begin, size_t end, const bins *b, split s, box3 side[2],
                         box3 cside[2]) {
     // The chosen bin, recomputed with exactly the arithmetic of the binning.
     int a = s.axis, nb = b->nb;
@@ -240,7 +239,7 @@ uint32_t bvh_build_range(builder *bd, size_t begin, size_t end, uint64_t depth, 
         bd->nodes[id].count = 0;
         return id;
     }
-    size_t mid = partition(bd->prims, begin, end, &b, s, side, cside);
+    size_t mid = bvh_partition(bd->prims, begin, end, &b, s, side, cside);
     bvh_build_range(bd, begin, mid, depth + 1, (const box3[2]){side[0], cside[0]});
     uint32_t right = bvh_build_range(bd, mid, end, depth + 1, (const box3[2]){side[1], cside[1]});
     bd->nodes[id].offset = right;

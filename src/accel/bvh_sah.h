@@ -205,6 +205,10 @@ void bvh_range_bounds(const build_prim *prims, size_t begin, size_t end, box3 *b
 void bvh_bins_init(bins *b, size_t n, const box3 *cbounds);
 /// Bins prims[begin, end) on all three axes in one pass.
 void bvh_bins_add(bins *b, const build_prim *prims, size_t begin, size_t end);
+/// Partitions prims[begin, end) by split s (of the bins b; s.axis >= 0), left side first, and returns where the right
+/// side starts; side[k] and cside[k] get the boxes and centroid boxes of the two sides.
+size_t bvh_partition(build_prim *prims, size_t begin, size_t end, const bins *b, split s, box3 side[2],
+                     box3 cside[2]);
 /// The best binned SAH split over the three axes of a range with box `bounds`.
 split bvh_best_split(const builder *bd, const bins *b, const box3 *bounds);
 /// Builds the subtree over prims[begin, end) at `depth` into bd (depth-first) and returns its node index; `known`:

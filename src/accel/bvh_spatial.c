@@ -295,13 +295,14 @@ static int spatial_side(const spatial_split *ss, const build_prim *p) {
 
 // Partitions r->refs[begin, end) by spatial split ss: the left side to [begin, *left_end), the right to
 // [*right_begin, room_end), a cut triangle's parts to both. The room past `end` holds a copy of the range. False
-// when a side would be empty (every cut triangle put whole on the other side): the range is then as it was.
+// when a side would be empty (every cut triangle put whole on the other side): nothing was cut, and
+// r->refs[begin, end) holds the range's references again (in another order).
 static bool spatial_partition(const spatial_run *r, const spatial_split *ss, size_t begin, size_t end,
                               size_t room_end, size_t *left_end, size_t *right_begin) {
     size_t l = begin, rb = room_end;
     int a = ss->axis;
     for (size_t i = begin; i < end; i++) {
-        build_prim p = r->refs[i]; // read before anything is written over it: l <= i, and rb > end
+        build_prim p = r->refs[i]; // read before anything is written over it: l <= i, and rb >= end
         int side = spatial_side(ss, &p);
         if (side == 2) {
             box3 lhalf = p.box, rhalf = p.box, lbox, rbox;
@@ -334,20 +335,8 @@ static bool spatial_partition(const spatial_run *r, const spatial_split *ss, siz
 static void object_partition(const spatial_run *r, const bins *b, split s, size_t begin, size_t end, size_t room_end,
                              size_t *left_end, size_t *right_begin) {
     size_t mid = begin + (end - begin) / 2;
-    if (s.axis >= 0) {
-        size_t i = begin, j = end;
-        float lo = b->lo[s.axis], scale = b->scale[s.axis];
-        while (i < j) {
-            if (bin_of(centroid(&r->refs[i], s.axis), lo, scale, b->nb) <= s.bin) {
-                i++;
-            } else {
-                build_prim tmp = r->refs[i];
-                r->refs[i] = r->refs[--j];
-                r->refs[j] = tmp;
-            }
-        }
-        mid = i;
-    }
+    box3 side[2], cside[2]; // not kept: a child's box is computed from its references, as after a spatial split
+    if (s.axis >= 0) mid = bvh_partition(r->refs, begin, end, b, s, side, cside);
     size_t nr = end - mid;
     memmove(&r->refs[room_end - nr], &r->refs[mid], nr * sizeof *r->refs);
     *left_end = mid;
