@@ -1,8 +1,9 @@
 // test_tiles.c — the work items of a render (render/tiles.h): the full grid's tiles clipped to a region, the
-// passes 1, 1, 2, 4, ..., and tile passes rendered one by one into caller-given sums, in any order of tiles
+// passes 1, 1, 2, 4, ... (or from 16), and tile passes rendered one by one into caller-given sums, in any order of tiles
 // (as glint-mpi's ranks render them), giving the render loop's image bit for bit.
 #include "glint.h"
 #include "check.h"
+#include "film/film.h"
 #include "render/frame.h"
 #include "render/render.h"
 #include "render/tiles.h"
@@ -27,20 +28,30 @@ static glint_scene *load(const char *name) {
 static void test_passes(void) {
     tiles t;
     int whole[4] = {0, 0, 40, 24};
-    tiles_init(&t, whole, 1);
+    tiles_init(&t, whole, 1, 1);
     CHECK(t.pass_count == 1 && t.pass_start[0] == 0 && t.pass_start[1] == 1);
-    tiles_init(&t, whole, 5);
+    tiles_init(&t, whole, 5, 1);
     CHECK(t.pass_count == 4);
     CHECK(t.pass_start[1] == 1 && t.pass_start[2] == 2 && t.pass_start[3] == 4 && t.pass_start[4] == 5);
     CHECK(tiles_pass_samples(&t, 2) == 2 && tiles_pass_samples(&t, 3) == 1);
-    tiles_init(&t, whole, 1000000);
+    tiles_init(&t, whole, 1000000, 1);
     CHECK(t.pass_count == 21 && t.pass_start[20] == 524288 && t.pass_start[21] == 1000000);
+    // A render no one watches: passes from TILES_FIRST_PASS samples, the adaptive sampler's boundaries kept.
+    tiles_init(&t, whole, 5, TILES_FIRST_PASS);
+    CHECK(t.pass_count == 1 && t.pass_start[1] == 5);
+    tiles_init(&t, whole, 16, TILES_FIRST_PASS);
+    CHECK(t.pass_count == 1 && t.pass_start[1] == 16);
+    tiles_init(&t, whole, 40, TILES_FIRST_PASS);
+    CHECK(t.pass_count == 3 && t.pass_start[1] == 16 && t.pass_start[2] == 32 && t.pass_start[3] == 40);
+    tiles_init(&t, whole, 1000000, TILES_FIRST_PASS);
+    CHECK(t.pass_count == 17 && t.pass_start[16] == 524288 && t.pass_start[17] == 1000000);
+    CHECK((int)TILES_FIRST_PASS <= (int)FILM_ADAPTIVE_MIN_SAMPLES && (TILES_FIRST_PASS & (TILES_FIRST_PASS - 1)) == 0);
 }
 
 static void test_grid(void) {
     tiles t;
     int region[4] = {5, 3, 37, 29}; // cells 0..2 across, 0..1 down, clipped
-    tiles_init(&t, region, 2);
+    tiles_init(&t, region, 2, 1);
     CHECK(t.tiles_x == 3 && t.tile_count == 6);
     int r[4];
     tiles_rect(&t, 0, r);
@@ -64,7 +75,7 @@ static void test_grid(void) {
 // sums kept per tile as a caller would, and compares every mean with the render loop's image.
 static void test_same_as_render_loop(const char *name, const int region[4]) {
     glint_scene *s = load(name);
-    s->settings.spp = 6; // passes of 1, 1, 2, 2
+    s->settings.spp = 6; // one pass in the render loop (TILES_FIRST_PASS), four below
     render_options ro = {.threads = 2};
     if (region) memcpy(ro.region, region, sizeof ro.region);
     glint_image *img = NULL;
@@ -74,7 +85,7 @@ static void test_same_as_render_loop(const char *name, const int region[4]) {
     int r[4];
     CHECK(tiles_resolve_region(&s->settings, region, r, &err) == GLINT_OK);
     tiles t;
-    tiles_init(&t, r, s->settings.spp);
+    tiles_init(&t, r, s->settings.spp, 1); // passes of 1, 1, 2, 2; the render loop's one of 6: the same means
     render_frame frame;
     atomic_int stop = 0;
     CHECK(frame_build(&frame, s, NULL, &(accel_build_options){.stop = &stop}, &err) == GLINT_OK);

@@ -292,7 +292,7 @@ int main(int argc, char **argv) {
 
     const render_settings *rs = &scene->settings;
     tiles grid;
-    tiles_init(&grid, region, rs->spp);
+    tiles_init(&grid, region, rs->spp, opt.time_limit > 0 ? 1 : TILES_FIRST_PASS); // as glint cuts it
     int *rank_threads = rank == 0 ? malloc((size_t)size * sizeof *rank_threads) : NULL;
     int all_threads = threads;
     MPI_Gather(&threads, 1, MPI_INT, rank_threads, 1, MPI_INT, 0, MPI_COMM_WORLD);

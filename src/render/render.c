@@ -417,14 +417,16 @@ static void progress_stop(progress_state *p, pthread_t thread) {
     pthread_mutex_destroy(&p->lock);
 }
 
-// Sets up the job's passes, tiles and film over the (checked) region; false when out of memory.
-static bool job_init(render_job *job, const glint_scene *s, const integrator *it, const int region[4], unsigned aovs) {
+// Sets up the job's passes (from `first` samples: tiles_init), tiles and film over the (checked) region; false when
+// out of memory.
+static bool job_init(render_job *job, const glint_scene *s, const integrator *it, const int region[4], unsigned aovs,
+                     int first) {
     const render_settings *rs = &s->settings;
     memset(job, 0, sizeof *job);
     job->scene = s;
     job->integrator = it;
     memcpy(job->region, region, sizeof job->region);
-    tiles_init(&job->grid, region, rs->spp);
+    tiles_init(&job->grid, region, rs->spp, first);
     job->total_samples =
         (uint64_t)(region[2] - region[0]) * (uint64_t)(region[3] - region[1]) * (uint64_t)rs->spp;
     atomic_init(&job->next_item, 0);
@@ -681,7 +683,9 @@ static glint_status render_run(const glint_scene *s, const render_options *opt, 
     }
     // The job, and the checkpoint it resumes, before the frame: a wrong checkpoint must not wait for a BVH.
     render_job job;
-    if (!job_init(&job, s, NULL, region, aovs)) {
+    // Passes from one sample where someone watches the image fill or a time limit may stop it early.
+    bool watched = opt && (opt->live_image || opt->time_limit > 0.0);
+    if (!job_init(&job, s, NULL, region, aovs, watched ? 1 : TILES_FIRST_PASS)) {
         snprintf(err->message, sizeof err->message, "out of memory for a %dx%d image", region[2] - region[0],
                  region[3] - region[1]);
         return GLINT_ERR_RENDER;

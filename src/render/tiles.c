@@ -27,12 +27,12 @@ glint_status tiles_resolve_region(const render_settings *rs, const int *r, int r
     return GLINT_OK;
 }
 
-// Pass boundaries 0, 1, 2, 4, 8, ..., spp: a stopped render has at least doubled its samples since the last
-// complete pass, and a full render pays for log2(spp) visits of each pixel, a negligible cost.
-static int plan_passes(int spp, int start[TILES_MAX_PASSES + 1]) {
+// Pass boundaries 0, first, 2 first, 4 first, ..., spp: a stopped render has at least doubled its samples since
+// the last complete pass, and a full render visits each pixel log2(spp / first) + 1 times.
+static int plan_passes(int spp, int first, int start[TILES_MAX_PASSES + 1]) {
     int n = 0;
     start[0] = 0;
-    long next = 1;
+    long next = first > 1 ? first : 1;
     while (start[n] < spp) {
         start[n + 1] = next < spp ? (int)next : spp;
         n++;
@@ -41,14 +41,14 @@ static int plan_passes(int spp, int start[TILES_MAX_PASSES + 1]) {
     return n;
 }
 
-void tiles_init(tiles *t, const int region[4], int spp) {
+void tiles_init(tiles *t, const int region[4], int spp, int first) {
     memset(t, 0, sizeof *t);
     memcpy(t->region, region, sizeof t->region);
     t->tile_x0 = region[0] / TILES_SIZE;
     t->tile_y0 = region[1] / TILES_SIZE;
     t->tiles_x = (region[2] - 1) / TILES_SIZE - t->tile_x0 + 1;
     t->tile_count = t->tiles_x * ((region[3] - 1) / TILES_SIZE - t->tile_y0 + 1);
-    t->pass_count = plan_passes(spp, t->pass_start);
+    t->pass_count = plan_passes(spp, first, t->pass_start);
     t->spp = spp;
 }
 
