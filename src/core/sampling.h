@@ -7,6 +7,9 @@
 
 #include <stdint.h>
 #include <string.h>
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
 
 /// Uniform direction on the unit sphere, by rejection from the cube (the book's method).
 static inline vec3 sample_unit_vector(rng *r) {
@@ -43,6 +46,19 @@ static inline __attribute__((always_inline)) void sincos_turn(float u, float *c,
         z, 1.0f);
     // Quarter turn k maps (cos, sin) to (cs, sn), (-sn, cs), (-cs, -sn), (sn, -cs) for k = 0, 1, 2, 3 (and 4 =
     // 0). On the bits, with masks: k is random, so compiled branches would be mispredicted half the time.
+#if defined(__SSE2__)
+    // In the vector registers: k, its masks and the signs never leave them (the scalar form below moves every
+    // value to the integer registers and back): the bunny 1.010, the engine 1.008 (15 pairs each), same bits.
+    __m128 v = _mm_setr_ps(cs, sn, 0.0f, 0.0f), swapped = _mm_shuffle_ps(v, v, _MM_SHUFFLE(3, 2, 0, 1));
+    __m128i k = _mm_cvttps_epi32(_mm_set1_ps(q)), one = _mm_set1_epi32(1), two = _mm_set1_epi32(2);
+    __m128 swap = _mm_castsi128_ps(_mm_cmpeq_epi32(_mm_and_si128(k, one), one));
+    __m128 r = _mm_or_ps(_mm_and_ps(swap, swapped), _mm_andnot_ps(swap, v));
+    // The sign of the cosine from k + 1, the sine's from k: bit 1 moved to the sign bit.
+    __m128i sign = _mm_slli_epi32(_mm_and_si128(_mm_add_epi32(k, _mm_setr_epi32(1, 0, 0, 0)), two), 30);
+    r = _mm_xor_ps(r, _mm_castsi128_ps(sign));
+    *c = _mm_cvtss_f32(r);
+    *s = _mm_cvtss_f32(_mm_shuffle_ps(r, r, _MM_SHUFFLE(1, 1, 1, 1)));
+#else
     uint32_t k = (uint32_t)(int)q, swap = 0u - (k & 1u), bc, bs;
     memcpy(&bc, &cs, sizeof bc);
     memcpy(&bs, &sn, sizeof bs);
@@ -50,6 +66,7 @@ static inline __attribute__((always_inline)) void sincos_turn(float u, float *c,
     uint32_t rs = ((bc & swap) | (bs & ~swap)) ^ ((k & 2u) << 30);
     memcpy(c, &rc, sizeof rc);
     memcpy(s, &rs, sizeof rs);
+#endif
 }
 
 /// Uniform point in the unit disk from exactly two random numbers, without rejection: radius sqrt(u1), angle
