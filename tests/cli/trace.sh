@@ -6,7 +6,7 @@ source "$2/tests/cli/common.bash"
 CHECK_TRACE=(python3 "$SRC/tests/cli/trace_check.py")
 
 PATHS=$DATA/tiny-path.json
-SIZE=(--width 64 --height 40 --spp 8) # 4 x 3 tiles of 16x16; passes of 1, 1, 2 and 4 samples
+SIZE=(--width 64 --height 40 --spp 40) # 4 x 3 tiles of 16x16; passes of 16, 16 and 8 samples
 
 run --quiet "${SIZE[@]}" --threads 2 -o "$TMP/plain.png" "$PATHS"
 check "a render without --trace exits 0" test "$rc" -eq 0
@@ -15,7 +15,7 @@ for threads in 1 2; do
     check "--trace on $threads thread(s): exit 0 (got $rc)" test "$rc" -eq 0
     check "--trace on $threads thread(s): nothing printed with --quiet" test ! -s "$TMP/err"
     check "--trace on $threads thread(s): the trace holds every tile pass and the stages" \
-        "${CHECK_TRACE[@]}" "$TMP/t$threads.json" 12 4 $threads
+        "${CHECK_TRACE[@]}" "$TMP/t$threads.json" 12 3 $threads
     check "--trace on $threads thread(s): the same image bytes as without it" \
         cmp -s "$TMP/plain.png" "$TMP/traced$threads.png"
 done
@@ -32,9 +32,9 @@ sys.exit(not (len(e) == 1 and e[0]["args"]["file"].endswith("warn.obj")))' "$TMP
 run --quiet "${SIZE[@]}" --threads 2 --checkpoint "$TMP/c.ckp" --trace "$TMP/ckp.json" -o "$TMP/ckp.png" "$PATHS"
 check "--trace with --checkpoint: exit 0" test "$rc" -eq 0
 check "--trace with --checkpoint: the same image bytes" cmp -s "$TMP/plain.png" "$TMP/ckp.png"
-check "--trace with --checkpoint: 4 checkpoint writes" \
+check "--trace with --checkpoint: 3 checkpoint writes" \
     python3 -c 'import json, sys
-sys.exit(sum(e["name"] == "checkpoint write" for e in json.load(open(sys.argv[1]))["traceEvents"]) != 4)' "$TMP/ckp.json"
+sys.exit(sum(e["name"] == "checkpoint write" for e in json.load(open(sys.argv[1]))["traceEvents"]) != 3)' "$TMP/ckp.json"
 
 # A stopped render writes its image and then its trace, where the stopped tile and the unfinished pass say so.
 "$GLINT" --quiet --threads 2 --width 16 --height 16 --spp 1000000 --trace "$TMP/stopped.json" \
@@ -74,7 +74,7 @@ cd "$TMP" || exit 1
 check "no temporary file is left" no_temp_files "$TMP"
 # tools/trace_plot.py draws it: a box per tile pass, a row label per thread.
 check "tools/trace_plot.py draws the trace as an SVG" python3 "$SRC/tools/trace_plot.py" "$TMP/t2.json" "$TMP/t2.svg"
-check "the drawing has a box per tile pass and the rows' names" test "$(grep -c '^<rect.*<title>tile ' "$TMP/t2.svg")" -eq 48 -a \
+check "the drawing has a box per tile pass and the rows' names" test "$(grep -c '^<rect.*<title>tile ' "$TMP/t2.svg")" -eq 36 -a \
     "$(grep -c '>worker 1</text>' "$TMP/t2.svg")" -eq 1
 check "--help lists --trace" bash -c "'$GLINT' --help | grep -q -- '--trace FILE'"
 

@@ -2,8 +2,8 @@
 # size, to exactly glint's image: the PFM (each pixel's linear mean as a float) and a PNG; a region too.
 source "$3/tests/mpi/common.bash"
 
-# 3x2 tiles with a clipped edge; passes of 1, 1, 2 and 1 samples, so that running sums travel between ranks.
-SIZE=(--width 40 --height 24 --spp 5)
+# 3x2 tiles with a clipped edge; passes of 16 and 2 samples, so that running sums travel between ranks.
+SIZE=(--width 40 --height 24 --spp 18)
 SCENES=("$SRC"/scenes/*.json)
 # Under the sanitizers Open MPI takes seconds to start and end: three scenes (Whitted, path tracer with
 # meshes, environment map) stand for the others there.
@@ -38,7 +38,7 @@ check "--time-limit 1: says how many samples per pixel ($spp)" test -n "$spp"
 check "--time-limit 1: glint's image at $spp samples per pixel" cmp -s "$TMP/limited.pfm" "$TMP/limited-glint.pfm"
 
 # A region of a PNG (its glint:region chunk included), with the statistics lines.
-ARGS=(--width 64 --height 40 --spp 3 --region 5,3,37,29 "$SRC/scenes/cornell-box.json")
+ARGS=(--width 64 --height 40 --spp 40 --region 5,3,37,29 "$SRC/scenes/cornell-box.json") # passes of 16, 16, 8
 "$GLINT" -q "${ARGS[@]}" -o "$TMP/region.png"
 "${MPIRUN[@]}" -np 3 "$GLINT_MPI" --threads 1 "${ARGS[@]}" -o "$TMP/region-3.png" 2>"$TMP/err"
 check "region on 3 ranks: exit 0" test $? -eq 0
