@@ -1,6 +1,6 @@
 // test_tiles.c — the work items of a render (render/tiles.h): the full grid's tiles clipped to a region, the
-// passes 1, 1, 2, 4, ... (or from 16), and tile passes rendered one by one into caller-given sums, in any order of tiles
-// (as glint-mpi's ranks render them), giving the render loop's image bit for bit.
+// passes 1, 1, 2, 4, ... (or from 16) and tile passes rendered one by one into caller-given sums, in any order of
+// tiles (as glint-mpi's ranks render them), giving the render loop's image bit for bit.
 #include "glint.h"
 #include "check.h"
 #include "film/film.h"

@@ -41,7 +41,8 @@ static int terminal_columns(FILE *f) {
 // Follows the rate of work (fraction per second) from report to report, smoothed over about RATE_SECONDS:
 // measured on the render itself (from the first report on, so the scene preparation and BVH build before it
 // do not count), over all of it at first, then weighted towards the recent past as the cost of a sample
-// changes (passes of 16, 16, 32, ... or 1, 1, 2, ... samples: early ones pay more per sample for visiting every tile).
+// changes (passes of 16, 16, 32, ... or 1, 1, 2, ... samples: early ones pay more per sample for visiting every
+// tile).
 static void update_rate(cli_progress *p, double now, double fraction) {
     enum { RATE_SECONDS = 5 };
     if (p->last_time > 0.0 && now > p->last_time && fraction >= p->last_fraction) {

@@ -1,6 +1,6 @@
 // tiles.h — the work items of a render: the region's cells of the full image's 16x16 tile grid and the sample
-// passes (F, F, 2F, 4F, ... samples; F is 1 or TILES_FIRST_PASS), and one tile pass rendered into caller-given sums. The render loop
-// (render.c) and glint-mpi (src/mpi/) cut the image the same way, so both give the same bytes.
+// passes (F, F, 2F, 4F, ... samples; F is 1 or TILES_FIRST_PASS), and one tile pass rendered into caller-given
+// sums. The render loop (render.c) and glint-mpi (src/mpi/) cut the image the same way, so both give the same bytes.
 #ifndef GLINT_TILES_H
 #define GLINT_TILES_H
 
