@@ -147,7 +147,11 @@ static inline __attribute__((always_inline)) bool scheduler_tile_batched(const i
     return true;
 }
 
-/// Whether the stream loop traces its camera rays as packets (accel_intersect_coherent).
-bool scheduler_stream_packets(const integrator *it);
+/// A tile pass of at least this many samples a pixel traces its camera rays as packets whatever the tree: a batch
+/// of CAMERA_BATCH rays then spans at most two pixels.
+enum { SCHEDULER_PACKET_SAMPLES = CAMERA_BATCH / 2 };
+/// Whether the stream loop traces its camera rays as packets (accel_intersect_coherent) in a tile pass of
+/// `samples` samples a pixel.
+bool scheduler_stream_packets(const integrator *it, int samples);
 
 #endif

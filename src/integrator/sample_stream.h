@@ -106,7 +106,7 @@ static inline __attribute__((always_inline)) bool scheduler_tile_stream(const in
     film_tile t = *ft;
     // Each batch of camera rays traced as a packet when it is made (scheduler_stream_packets); a path that starts
     // from it comes with its first hit, and the stream traces the other paths' rays.
-    bool packets = scheduler_stream_packets(it), together = accel_interleaves(it->accel);
+    bool packets = scheduler_stream_packets(it, spp), together = accel_interleaves(it->accel);
     hit first[CAMERA_BATCH];
     bool first_found[CAMERA_BATCH];
     for (;;) {
