@@ -78,8 +78,8 @@ static inline void scheduler_stream_trace(const accel *a, bool together, int n, 
 
 /// A tile pass with many paths in flight (accel_streams): SCHEDULER_STREAM of them, the rays of each round traced
 /// before any is shaded (scheduler_stream_trace; shadow rays, one at a time, stay in the integrator's step), so that
-/// the corners of the hits a few paths ahead come from memory while one is shaded (SHADE_AHEAD), and a path that
-/// ends giving its place to the next sample. The samples (and their AOVs when `aovs`) are added to the film in
+/// the corners of the hits a few paths ahead come from memory while one is shaded (SHADE_AHEAD), the paths that go
+/// on closing up in their order, and the next samples filling the lanes behind them. The samples (and their AOVs when `aovs`) are added to the film in
 /// their order, from a window of finished ones: the same sums as scheduler_tile_batched, so the same bytes. The
 /// integrator's per-path state is `paths`, worked on by the scheduler_paths_* functions it defines.
 static inline __attribute__((always_inline)) bool scheduler_tile_stream(const integrator *it, const tile_pass *tp,
@@ -132,25 +132,29 @@ static inline __attribute__((always_inline)) bool scheduler_tile_stream(const in
         }
         if (lanes == 0) break;
         scheduler_stream_trace(it->accel, together, lanes, rays, has_hit, hits, found);
-        for (int l = 0; l < lanes;) {
+        int kept = 0; // the paths that go on close up in their order: lanes [0, kept) after lane l
+        for (int l = 0; l < lanes; l++) {
             ts->rays++;
             // The corners of a hit a few paths ahead start coming from memory while this one is shaded.
             if (l + SHADE_AHEAD < lanes && found[l + SHADE_AHEAD]) surface_prefetch(it->scene, &hits[l + SHADE_AHEAD]);
             if (scheduler_paths_step(paths, l, &rays[l], found[l], &hits[l], &gen[l], ts, aovs ? &aov[l] : NULL)) {
-                l++;
+                // Kept in item order, a pixel's paths stay side by side: their next rays leave nearby points and
+                // find the same nodes in the cache (the last path moved into each ended one's place scattered them
+                // over the rounds: the engine and the dragon 1.11, the bunny 1.02, engine-2m 1.007 at 16 spp).
+                if (kept != l) {
+                    scheduler_paths_move(paths, kept, l);
+                    rays[kept] = rays[l];
+                    gen[kept] = gen[l], item[kept] = item[l];
+                    if (aovs) aov[kept] = aov[l];
+                }
+                kept++;
                 continue;
             }
             finished[item[l] % WINDOW] = scheduler_paths_radiance(paths, l);
             if (aovs) finished_aov[item[l] % WINDOW] = aov[l];
             is_finished[item[l] % WINDOW] = true;
-            // The last path in flight takes this place, with its hit still to be shaded.
-            lanes--;
-            scheduler_paths_move(paths, l, lanes);
-            rays[l] = rays[lanes];
-            gen[l] = gen[lanes], item[l] = item[lanes];
-            hits[l] = hits[lanes], found[l] = found[lanes];
-            if (aovs) aov[l] = aov[lanes];
         }
+        lanes = kept;
         for (; added < items && is_finished[added % WINDOW]; added++) {
             if (tile_pass_stopping(tp)) {
                 film_tile_stop(&t);
