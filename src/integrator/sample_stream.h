@@ -79,9 +79,10 @@ static inline void scheduler_stream_trace(const accel *a, bool together, int n, 
 /// A tile pass with many paths in flight (accel_streams): SCHEDULER_STREAM of them, the rays of each round traced
 /// before any is shaded (scheduler_stream_trace; shadow rays, one at a time, stay in the integrator's step), so that
 /// the corners of the hits a few paths ahead come from memory while one is shaded (SHADE_AHEAD), the paths that go
-/// on closing up in their order, and the next samples filling the lanes behind them. The samples (and their AOVs when `aovs`) are added to the film in
-/// their order, from a window of finished ones: the same sums as scheduler_tile_batched, so the same bytes. The
-/// integrator's per-path state is `paths`, worked on by the scheduler_paths_* functions it defines.
+/// on closing up in their order, and the next samples filling the lanes behind them. The samples (and their AOVs
+/// when `aovs`) are added to the film in their order, from a window of finished ones: the same sums as
+/// scheduler_tile_batched, so the same bytes. The integrator's per-path state is `paths`, worked on by the
+/// scheduler_paths_* functions it defines.
 static inline __attribute__((always_inline)) bool scheduler_tile_stream(const integrator *it, const tile_pass *tp,
                                                                        film_tile *ft, thread_stats *ts,
                                                                        scheduler_stream *sp, bool aovs,
