@@ -213,6 +213,52 @@ static void test_traced_render(void) {
     glint_scene_free(scene);
 }
 
+static void ignore_image(const glint_image *image, int spp_done, double fraction_done, void *user) {
+    (void)image, (void)spp_done, (void)fraction_done, (void)user;
+}
+
+// The passes of a render someone watches (a live image) or a time limit may stop start at one sample: 1, 1, 2, 4, 8,
+// 16 and 8 samples at 40 spp, seven "pass" events where an unwatched render has three; the image the same bytes.
+static void test_watched_passes(void) {
+    glint_scene *scene = NULL;
+    glint_error err;
+    CHECK(glint_scene_load(GLINT_SOURCE_DIR "/tests/data/tiny-path.json", &scene, &err) == GLINT_OK);
+    if (!scene) return;
+    glint_overrides o;
+    glint_overrides_init(&o);
+    o.width = 40;
+    o.spp = 40;
+    CHECK(glint_scene_override(scene, &o, &err) == GLINT_OK);
+    glint_render_options plain_opt = {.threads = 2};
+    glint_image *plain = NULL;
+    CHECK(glint_render(scene, &plain_opt, NULL, NULL, &plain, NULL, &err) == GLINT_OK);
+    for (int watched = 0; watched < 2; watched++) {
+        glint_trace *t = glint_trace_new();
+        CHECK(t && glint_trace_attach(t, "main", &err) == GLINT_OK);
+        glint_render_options opt = {.threads = 2};
+        if (watched) opt.live_image = ignore_image;
+        else opt.time_limit = 1e6; // never reached: the passes are still cut from one sample
+        glint_image *img = NULL;
+        CHECK(glint_render(scene, &opt, NULL, NULL, &img, NULL, &err) == GLINT_OK);
+        const char *file = tmp_path("watched.json");
+        CHECK(glint_trace_write(t, file, &err) == GLINT_OK);
+        char *text = read_all(file);
+        CHECK(text && count_of(text, "\"name\":\"pass\"") == 7);
+        CHECK(text && count_of(text, "\"name\":\"tile\"") == 3 * 7);
+        free(text);
+        int w, h, pw, ph;
+        const float *rgb, *prgb;
+        glint_image_info(img, &w, &h, &rgb);
+        glint_image_info(plain, &pw, &ph, &prgb);
+        CHECK(w == pw && h == ph && memcmp(rgb, prgb, (size_t)w * (size_t)h * 3 * sizeof *rgb) == 0);
+        CHECK(glint_trace_attach(NULL, NULL, &err) == GLINT_OK);
+        glint_image_free(img);
+        glint_trace_free(t);
+    }
+    glint_image_free(plain);
+    glint_scene_free(scene);
+}
+
 int main(void) {
     if (!tmpdir_make("glint-trace")) return 1;
     test_json_strings();
@@ -220,6 +266,7 @@ int main(void) {
     test_threads();
     test_free_detaches();
     test_traced_render();
+    test_watched_passes();
     tmpdir_remove();
     return check_summary();
 }
