@@ -12,6 +12,7 @@ CKP=$TMP/render.ckp
 delay=0.$((2 + RANDOM % 6))
 "$GLINT" -q "$SCENE" "${SIZE[@]}" --threads 2 --checkpoint "$CKP" -o "$TMP/part.pfm" &
 pid=$!
+wait_caught $pid INT
 sleep "$delay"
 kill -INT $pid
 wait_for $pid
@@ -25,6 +26,7 @@ check "SIGINT: the partial image is written too" test -s "$TMP/part.pfm"
 # The resume, on one thread, stopped again by SIGTERM; then resumed on two threads to the end.
 "$GLINT" -q "$SCENE" "${SIZE[@]}" --threads 1 --resume "$CKP" -o "$TMP/part2.pfm" &
 pid=$!
+wait_caught $pid TERM
 sleep 0.2
 kill -TERM $pid
 wait_for $pid

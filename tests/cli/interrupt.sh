@@ -3,7 +3,8 @@
 # a stop while the scene is read (from a FIFO or a pipe that never ends) ends the program within a second.
 source "$2/tests/cli/common.bash"
 
-# A render far too long to finish (16x16 pixels, a million samples each), stopped after half a second.
+# A render far too long to finish (16x16 pixels, a million samples each), stopped half a second after its
+# handlers are installed.
 LONG=(--width 16 --height 16 --spp 1000000 "$DATA/tiny.json")
 
 for sig in INT TERM HUP; do
@@ -11,6 +12,7 @@ for sig in INT TERM HUP; do
     out=$TMP/stopped-$sig.ppm
     "$GLINT" -o "$out" "${LONG[@]}" 2>"$TMP/err-$sig" &
     pid=$!
+    wait_caught $pid $sig
     sleep 0.5
     kill -$sig $pid
     wait_for $pid
@@ -28,6 +30,7 @@ done
 # A PNG too, and --quiet stays quiet.
 "$GLINT" --quiet -o "$TMP/stopped.png" "${LONG[@]}" 2>"$TMP/err-png" &
 pid=$!
+wait_caught $pid INT
 sleep 0.5
 kill -INT $pid
 wait_for $pid
@@ -41,6 +44,7 @@ check "SIGINT with --quiet: nothing printed" test ! -s "$TMP/err-png"
 # temporary file, and an image, if there is one, is complete.
 "$GLINT" --quiet -o "$TMP/twice.ppm" "${LONG[@]}" 2>/dev/null &
 pid=$!
+wait_caught $pid INT
 sleep 0.5
 kill -INT $pid
 kill -INT $pid
@@ -54,8 +58,8 @@ fi
 # A stop while the scene is being read: the read may never end (a FIFO no one writes, a pipe from a slow
 # command), so the program must end within a second, say so (unless --quiet) and write nothing.
 # stop_loading SIG SOURCE ARGS...: glint ARGS reads its scene from SOURCE (a FIFO, or "pipe": a pipe from a
-# command that prints nothing for 5 s, its own output kept off the test's) and gets SIG 0.3 s later. $rc: its
-# status, or 255 if it still runs a second after; its stderr in $TMP/err-load.
+# command that prints nothing for 5 s, its own output kept off the test's) and gets SIG 0.3 s after it catches
+# it. $rc: its status, or 255 if it still runs a second after; its stderr in $TMP/err-load.
 stop_loading() {
     local sig=$1 source=$2
     shift 2
@@ -65,6 +69,7 @@ stop_loading() {
         "$GLINT" "$@" "$source" 2>"$TMP/err-load" &
     fi
     local pid=$!
+    wait_caught $pid "$sig"
     sleep 0.3
     kill -"$sig" $pid
     wait_for $pid 10

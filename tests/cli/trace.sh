@@ -40,6 +40,7 @@ sys.exit(sum(e["name"] == "checkpoint write" for e in json.load(open(sys.argv[1]
 "$GLINT" --quiet --threads 2 --width 16 --height 16 --spp 1000000 --trace "$TMP/stopped.json" \
     -o "$TMP/stopped.png" "$DATA/tiny.json" 2>"$TMP/err" &
 pid=$!
+wait_caught $pid INT
 sleep 0.5
 kill -INT $pid
 wait_for $pid
