@@ -2,7 +2,9 @@
 # bench/ab.sh — is one glint binary faster than another? Runs them alternately (A, B, A, B, ...) on one
 # render, so both see the same machine state, and prints the median of the per-pair ratios of their render
 # loop's Mrays/s (B over A: above 1 means B is faster). An A/A run gives about 1.000; single pairs scatter
-# by several percent on a shared machine, so use tens of pairs to resolve a 1-2% difference.
+# by several percent on a shared machine, so use tens of pairs to resolve a 1-2% difference. Beside the ratio, the
+# interval that holds the true median ratio with at least 90 % probability (stats.bash's median_interval): a
+# difference is resolved when it leaves out 1.
 #
 # usage: bash bench/ab.sh A_BINARY B_BINARY [PAIRS] [-- GLINT ARGS]
 #   default render: scenes/rtiow-final.json at 200x112, 10 spp, one thread; one-thread renders are pinned
@@ -30,7 +32,8 @@ trap 'rm -rf "$OUT"' EXIT
 mrays() {
     "${PIN[@]}" "$1" "${ARGS[@]}" -o "$OUT/image.ppm" 2>&1 >/dev/null | sed -n 's/.* \([0-9.]*\) Mrays\/s.*/\1/p' | tail -1
 }
-median() { sort -g | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+# shellcheck source=stats.bash
+source "$ROOT/bench/stats.bash" # median, median_interval
 
 for ((i = 0; i < PAIRS; i++)); do
     a=$(mrays "$A") b=$(mrays "$B")
@@ -38,5 +41,6 @@ for ((i = 0; i < PAIRS; i++)); do
     echo "$a $b" >>"$OUT/pairs"
 done
 awk '{ print $2 / $1 }' "$OUT/pairs" | median >"$OUT/ratio"
-printf 'A %s Mrays/s, B %s Mrays/s (medians of %d alternating pairs); median B/A ratio %.3f\n' \
-    "$(cut -d' ' -f1 "$OUT/pairs" | median)" "$(cut -d' ' -f2 "$OUT/pairs" | median)" "$PAIRS" "$(cat "$OUT/ratio")"
+printf 'A %s Mrays/s, B %s Mrays/s (medians of %d alternating pairs); median B/A ratio %.3f, its interval %s\n' \
+    "$(cut -d' ' -f1 "$OUT/pairs" | median)" "$(cut -d' ' -f2 "$OUT/pairs" | median)" "$PAIRS" "$(cat "$OUT/ratio")" \
+    "$(awk '{ print $2 / $1 }' "$OUT/pairs" | median_interval)"

@@ -26,7 +26,8 @@ MPIRUN=(mpirun -np 2)
 OUT=$(mktemp -d "${TMPDIR:-/tmp}/glint-mpi-bench.XXXXXX")
 trap 'rm -rf "$OUT"' EXIT
 
-median() { sort -g | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+# shellcheck source=stats.bash
+source "$ROOT/bench/stats.bash" # median, median_interval
 
 # timed NAME COMMAND...: runs it; appends "its wall, the elapsed time" to $OUT/NAME, keeps its stderr.
 timed() {

@@ -40,7 +40,8 @@ mrays() {
     fi
     sed -n 's/.* \([0-9.]*\) Mrays\/s.*/\1/p' "$OUT/err" | tail -1
 }
-median() { sort -g | awk '{ v[NR] = $1 } END { if (NR % 2) print v[(NR + 1) / 2]; else print (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+# shellcheck source=stats.bash
+source "$ROOT/bench/stats.bash" # median, median_interval
 
 for ((i = 0; i < PAIRS; i++)); do
     without=$(mrays) with=$(mrays --preview)

@@ -103,7 +103,8 @@ MESHYARD_BUILD=${TMPDIR:-/tmp}/glint-embree-mesh # where the yardstick's run.sh 
 
 # --- helpers -----------------------------------------------------------------------------------------
 # median of the numbers on stdin
-median() { sort -g | awk '{ v[NR] = $1 } END { if (NR == 0) print "nan"; else if (NR % 2) print v[(NR + 1) / 2]; else printf "%.4g\n", (v[NR / 2] + v[NR / 2 + 1]) / 2 }'; }
+# shellcheck source=stats.bash
+source "$ROOT/bench/stats.bash" # median, median_interval
 
 now() { echo "${EPOCHREALTIME:-$(date +%s.%N)}"; }
 
@@ -512,8 +513,8 @@ meshyard_bench() {
         emit ""
         return 0
     fi
-    emit "| scene | triangles | threads | Embree Mrays/s | glint Mrays/s | glint / Embree | the pairs' range | Embree build s | glint build s | Embree load+build+render s | glint process s | whole process, Embree / glint | Embree run.sh s |"
-    emit "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+    emit "| scene | triangles | threads | Embree Mrays/s | glint Mrays/s | glint / Embree | the median's interval | the pairs' range | Embree build s | glint build s | Embree load+build+render s | glint process s | whole process, Embree / glint | Embree run.sh s |"
+    emit "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     declare -A mg=() me=()
     local notes=()
     for name in ${MESHYARD_MESHES//,/ }; do
@@ -554,11 +555,13 @@ meshyard_bench() {
             done
             # glint: process render mrays build_ms peak_kb; Embree: process load build render mrays peak_kb r g b
             paste -d ' ' "$WORK/yg" "$WORK/ye" >"$WORK/ypairs"
-            local gm em ratio range pratio lbr
+            local gm em ratio interval range pratio lbr
             gm=$(col "$WORK/yg" 3) em=$(col "$WORK/ye" 5)
             mg[$name.$t]=$gm me[$name.$t]=$em
             ratio=$(awk '$10 > 0 { print $3 / $10 }' "$WORK/ypairs" | median)
-            # The lowest and highest pair's ratio beside the median: on a shared machine they can lie 10 % apart.
+            # Where the median may lie, by the scatter of the pairs (stats.bash), and the lowest and highest pair's
+            # ratio: on a shared machine they can lie 30 % apart.
+            interval=$(awk '$10 > 0 { print $3 / $10 }' "$WORK/ypairs" | median_interval)
             range=$(awk '$10 > 0 { print $3 / $10 }' "$WORK/ypairs" | sort -g |
                 awk 'NR == 1 { lo = $1 } { hi = $1 } END { if (NR) printf "%.3f-%.3f", lo, hi; else print "nan" }')
             pratio=$(awk '$1 > 0 { print ($7 + $8 + $9) / $1 }' "$WORK/ypairs" | median)
@@ -566,7 +569,7 @@ meshyard_bench() {
             local gb eb gp er
             gb=$(awk '{ print $4 / 1000 }' "$WORK/yg" | median) eb=$(col "$WORK/ye" 3)
             gp=$(col "$WORK/yg" 1) er=$(col "$WORK/ye" 1)
-            emit "| $name | $tris | $(tlabel "$t") | $(fmt %.2f "$em") | $(fmt %.2f "$gm") | $(fmt %.3f "$ratio") | $range | $(fmt %.3f "$eb") | $(fmt %.3f "$gb") | $(fmt %.3f "$lbr") | $(fmt %.3f "$gp") | $(fmt %.3f "$pratio") | $(fmt %.3f "$er") |"
+            emit "| $name | $tris | $(tlabel "$t") | $(fmt %.2f "$em") | $(fmt %.2f "$gm") | $(fmt %.3f "$ratio") | $interval | $range | $(fmt %.3f "$eb") | $(fmt %.3f "$gb") | $(fmt %.3f "$lbr") | $(fmt %.3f "$gp") | $(fmt %.3f "$pratio") | $(fmt %.3f "$er") |"
             data meshyard.dat "$name $tris $t $(oversub "$t") $em $gm $ratio $eb $gb $lbr $gp $er $pratio"
             data versus.dat "$name/${t}t $gm $em $ratio"
             # Fairness: the two images must be the same scene. glint's image is the same for any thread count,
@@ -594,7 +597,7 @@ meshyard_bench() {
     done
     local n
     for n in "${notes[@]}"; do emit "- $n"; done
-    emit "- Mrays/s: rays per second of the render loop (build excluded), medians of $RUNS alternating runs; glint / Embree: the median of the per-pair ratios."
+    emit "- Mrays/s: rays per second of the render loop (build excluded), medians of $RUNS alternating runs; glint / Embree: the median of the per-pair ratios; the median's interval: between the k-th lowest and the k-th highest pair's ratio, which holds the true median with the probability in brackets (at least 90 %, whatever the scatter's distribution)."
     emit "- whole process: Embree's load_s + build_s + render_s (OBJ read and normals, BVH build, render loop) against glint's process wall time (scene and OBJ read, build, render, image written), per pair, median; Embree run.sh s is the wall time of its run.sh (a make check, a sed and the renderer)."
     emit ""
 }

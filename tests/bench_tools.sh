@@ -1,7 +1,8 @@
 # bench_tools.sh — the benchmark's own tools, which nothing else would test until the owner's next long run:
 # bench/subdivide.c and bench/decimate.c (built by CMake with the project's warnings), the mesh yardstick's
 # scene for glint, bench/equal_error.sh on a tiny scene, bench/run.sh's options (it stops before building
-# anything) and bench/plot.sh on made-up data (where gnuplot is installed). Nothing here is timed.
+# anything), bench/stats.bash's median and its interval, and bench/plot.sh on made-up data (where gnuplot is
+# installed). Nothing here is timed.
 # usage: bash tests/bench_tools.sh GLINT SOURCE_DIR SUBDIVIDE DECIMATE
 source "$2/tests/cli/common.bash"
 SUBDIVIDE=$3
@@ -135,6 +136,17 @@ check "plot.sh without a directory: exit 2" test "$st" -eq 2
 bash "$SRC/bench/plot.sh" "$TMP/none" >/dev/null 2>&1
 st=$?
 check "plot.sh on a missing directory: exit 2" test "$st" -eq 2
+
+# --- stats.bash: the median and its distribution-free interval (order statistics of a binomial count)
+source "$SRC/bench/stats.bash"
+check "median of 3 1 2: 2" test "$(printf '3\n1\n2\n' | median)" = 2
+check "median of 4 1 2 3: 2.5" test "$(printf '4\n1\n2\n3\n' | median)" = 2.5
+check "median of nothing: nan" test "$(median </dev/null)" = nan
+check "median_interval of 4 numbers: nan (not 90 %)" test "$(seq 4 | median_interval)" = nan
+check "median_interval of 5: the extremes, 93 %" test "$(seq 5 | median_interval)" = "1.000-5.000 (93 %)"
+check "median_interval of 9: 2nd to 8th, 96 %" test "$(seq 9 -1 1 | median_interval)" = "2.000-8.000 (96 %)"
+check "median_interval of 11: 3rd to 9th, 93 %" test "$(seq 11 | median_interval)" = "3.000-9.000 (93 %)"
+check "median_interval of 21: 7th to 15th, 92 %" test "$(seq 21 | median_interval)" = "7.000-15.000 (92 %)"
 if command -v gnuplot >/dev/null; then
     mkdir "$TMP/run"
     printf '# bench renderer threads oversubscribed mrays speedup\nbunny glint 1 0 4.7 1.00\nbunny glint 2 0 8.1 1.72\nbunny embree-mesh 1 0 7.6 1.00\nbunny embree-mesh 2 0 13.9 1.83\nbunny glint 4 1 8.0 1.70\n' >"$TMP/run/speedup.dat"
