@@ -423,6 +423,30 @@ static void check_mixed(uint64_t seed, size_t spheres, size_t quads, size_t mesh
                     (unsigned long long)seed, f[0], h[0].kind, h[0].instance, h[0].prim, (double)h[0].t, f[1], h[1].kind,
                     h[1].instance, h[1].prim, (double)h[1].t, f[3], h[3].kind, h[3].instance, h[3].prim, (double)h[3].t);
     }
+    // Streams through a tree of triangles alone (mesh 0's BVH, where bvh_stream.c keeps its rays compact), aimed at
+    // its triangles and their edges, with rays that end short of most hits and NaN rays among them.
+    if (meshes > 0) {
+        stream_batch sb_mesh = {0};
+        const mesh *m0 = &s->meshes[0].geometry;
+        int mesh_hits = 0;
+        for (int i = 0; i < RAYS_PER_SCENE; i++) {
+            vec3 p0, p1, p2;
+            mesh_triangle_positions(m0, rng_u32(&g) % m0->triangle_count, &p0, &p1, &p2);
+            float a = urand(&g, -0.1f, 1.1f), b = urand(&g, -0.1f, 1.1f - a);
+            vec3 target = v3_add(p0, v3_add(v3_scale(v3_sub(p1, p0), a), v3_scale(v3_sub(p2, p0), b)));
+            ray r = {v3(urand(&g, -3, 3), urand(&g, -3, 3), urand(&g, -3, 3)), v3(0, 0, 1), 0.0f, INFINITY, 0.0f};
+            r.d = v3_sub(target, r.o); // not of unit length
+            if (i % 17 == 0) r.tmax = 0.5f;
+            if (i % 101 == 0) r.d.y = NAN;
+            hit h;
+            memset(&h, 0, sizeof h);
+            bool f = bvh_intersect(&blas_w[0], &r, &h);
+            mesh_hits += f;
+            stream_bad += stream_add(&sb_mesh, NULL, &blas_w[0], &r, f, &h, i + 1 == RAYS_PER_SCENE);
+        }
+        CHECK(blas_w[0].triangles_only);
+        CHECK(mesh_hits > RAYS_PER_SCENE / 4);
+    }
     CHECK(bad == 0);
     CHECK(stream_bad == 0);
     mismatches += bad + stream_bad;

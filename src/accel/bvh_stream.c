@@ -30,13 +30,83 @@ static inline bool stream_ray_start(const bvh *b, const ray *r, stream_ray *q, b
     return true;
 }
 
+/// One ray of a stream through a tree of triangles, compact: the scalars its registers are broadcast from at each
+/// step (about 100 bytes where stream_ray takes 500), so that a stream's rays stay in the L1 cache beside the
+/// nodes and packets they wait for. The broadcasts give the registers stream_ray_start would make, bit for bit.
+typedef struct stream_tri_ray {
+    float inv[3], noi[3]; ///< the box tests' constants (simd_setup's, one lane of each)
+    tri_cache tc;         ///< the triangle test's (simd_tri_setup broadcasts them)
+    hit best;
+    walk w;
+    bool found;
+} stream_tri_ray;
+
+// Readies ray r as stream_ray_start does, keeping one lane of each constant; false for a NaN ray.
+static inline bool stream_tri_ray_start(const bvh *b, const ray *r, stream_tri_ray *q) {
+    simd_ray sr;
+    if (!simd_setup(r, &sr, true)) return false;
+    for (int a = 0; a < 3; a++) {
+        q->inv[a] = _mm256_cvtss_f32(sr.inv[a]);
+        q->noi[a] = _mm256_cvtss_f32(sr.noi[a]);
+    }
+    q->tc.ready = false;
+    tri_for(&q->tc, r);
+    q->best = bvh_no_hit(r);
+    q->w = (walk){b->root, 0};
+    q->found = false;
+    return true;
+}
+
+// One step of ray r (its compact state q) with the registers broadcast from q.
+static inline __attribute__((always_inline)) int stream_tri_step(const bvh *b, const ray *r, stream_tri_ray *q,
+                                                                 stack_entry *stack) {
+    simd_ray sr;
+    simd_tri st;
+    for (int a = 0; a < 3; a++) {
+        sr.inv[a] = _mm256_set1_ps(q->inv[a]);
+        sr.noi[a] = _mm256_set1_ps(q->noi[a]);
+    }
+    sr.tmin = PK(broadcast_ss)(&r->tmin);
+    simd_tri_setup(&q->tc.tr, r->tmin, r->tmax, &st);
+    return wide_step(b, r, NULL, &sr, &st, &q->tc, stack, &q->w, &q->best, HIT_NO_INSTANCE, &q->found, false, true,
+                     LEAVES_TRIANGLES);
+}
+
 /// Deepest tree whose rays a stream traces all at once (deeper trees' go in smaller groups), and the stack entries a
 /// ray of it may need.
 enum { STREAM_DEPTH = 24, STREAM_STACK = STREAM_DEPTH * (BVH_WIDTH - 1) + 1 };
 
+// wide_stream for a group of n rays through a tree of triangles (compact rays: stream_tri_ray).
+static void wide_stream_group_triangles(const bvh *b, int n, const ray *rays, hit *hits, bool *found, size_t stride) {
+    stream_tri_ray s[BVH_STREAM];
+    stack_entry stacks[BVH_STREAM * STREAM_STACK];
+    int active[BVH_STREAM], live = 0;
+    for (int i = 0; i < n; i++) {
+        found[i] = false;
+        if (b->root == BVH_EMPTY || !stream_tri_ray_start(b, &rays[i], &s[i])) continue;
+        active[live++] = i;
+    }
+    while (live > 0) {
+        for (int k = 0; k < live;) {
+            int i = active[k];
+            if (stream_tri_step(b, &rays[i], &s[i], &stacks[(size_t)i * stride]) == STEP_MORE) {
+                k++;
+                continue;
+            }
+            found[i] = s[i].found;
+            hits[i] = s[i].best;
+            active[k] = active[--live]; // done: its place goes to the last ray in flight
+        }
+    }
+}
+
 // wide_stream for a group of n rays whose stacks of `stride` entries fit in the group's room.
 static inline __attribute__((always_inline)) void wide_stream_group(const bvh *b, int n, const ray *rays, hit *hits,
                                                                     bool *found, int leaves, size_t stride) {
+    if (leaves == LEAVES_TRIANGLES) {
+        wide_stream_group_triangles(b, n, rays, hits, found, stride);
+        return;
+    }
     stream_ray s[BVH_STREAM];
     stack_entry stacks[BVH_STREAM * STREAM_STACK];
     int active[BVH_STREAM], live = 0;
