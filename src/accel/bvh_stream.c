@@ -4,11 +4,14 @@
 #include "accel/bvh_wide.h"
 
 #if BVH_SIMD
-/// One ray of a stream in flight: its registers' worth of setup, its best hit so far and where its walk stands.
+/// One ray of a stream in flight, compact: the scalars its registers are broadcast from at each step (about 100
+/// bytes where the registers' images take 500), so that the stream's rays stay in the L1 cache beside the nodes
+/// and packets they wait for; its best hit so far and where its walk stands. The broadcasts give the registers
+/// simd_setup and simd_tri_setup make, bit for bit.
 typedef struct stream_ray {
-    simd_ray sr;
-    simd_tri stri;
-    tri_cache tc;
+    float inv[3], noi[3]; ///< the box tests' constants (simd_setup's, one lane of each)
+    float a, inv_a;       ///< the sphere test's, in a tree with spheres (likewise)
+    tri_cache tc;         ///< the triangle test's once made: up front in a tree of triangles, else at the first packet
     hit best;
     walk w;
     bool found;
@@ -17,49 +20,25 @@ typedef struct stream_ray {
 // Readies ray r to walk b from its root with the SIMD kernels (`triangles`: b holds only triangle packets, whose
 // constants are made up front); false for a NaN ray, which hits nothing.
 static inline bool stream_ray_start(const bvh *b, const ray *r, stream_ray *q, bool triangles) {
-    if (!simd_setup(r, &q->sr, triangles)) return false;
-    q->tc.ready = false;
-    q->stri.tr = NULL; // a mixed tree's triangle constants: made at the ray's first triangle packet
-    if (triangles) {
-        tri_for(&q->tc, r);
-        simd_tri_setup(&q->tc.tr, r->tmin, r->tmax, &q->stri);
-    }
-    q->best = bvh_no_hit(r);
-    q->w = (walk){b->root, 0};
-    q->found = false;
-    return true;
-}
-
-/// One ray of a stream through a tree of triangles, compact: the scalars its registers are broadcast from at each
-/// step (about 100 bytes where stream_ray takes 500), so that a stream's rays stay in the L1 cache beside the
-/// nodes and packets they wait for. The broadcasts give the registers stream_ray_start would make, bit for bit.
-typedef struct stream_tri_ray {
-    float inv[3], noi[3]; ///< the box tests' constants (simd_setup's, one lane of each)
-    tri_cache tc;         ///< the triangle test's (simd_tri_setup broadcasts them)
-    hit best;
-    walk w;
-    bool found;
-} stream_tri_ray;
-
-// Readies ray r as stream_ray_start does, keeping one lane of each constant; false for a NaN ray.
-static inline bool stream_tri_ray_start(const bvh *b, const ray *r, stream_tri_ray *q) {
     simd_ray sr;
-    if (!simd_setup(r, &sr, true)) return false;
+    if (!simd_setup(r, &sr, triangles)) return false;
     for (int a = 0; a < 3; a++) {
         q->inv[a] = _mm256_cvtss_f32(sr.inv[a]);
         q->noi[a] = _mm256_cvtss_f32(sr.noi[a]);
     }
+    q->a = triangles ? 0.0f : PK(cvtss_f32)(sr.a);
+    q->inv_a = triangles ? 0.0f : PK(cvtss_f32)(sr.inv_a);
     q->tc.ready = false;
-    tri_for(&q->tc, r);
+    if (triangles) tri_for(&q->tc, r);
     q->best = bvh_no_hit(r);
     q->w = (walk){b->root, 0};
     q->found = false;
     return true;
 }
 
-// One step of ray r (its compact state q) with the registers broadcast from q.
-static inline __attribute__((always_inline)) int stream_tri_step(const bvh *b, const ray *r, stream_tri_ray *q,
-                                                                 stack_entry *stack) {
+// One traversal step of ray r, its registers broadcast from its compact state q (stream_ray).
+static inline __attribute__((always_inline)) int stream_ray_step(const bvh *b, const ray *r, stream_ray *q,
+                                                                 stack_entry *stack, int leaves) {
     simd_ray sr;
     simd_tri st;
     for (int a = 0; a < 3; a++) {
@@ -67,46 +46,31 @@ static inline __attribute__((always_inline)) int stream_tri_step(const bvh *b, c
         sr.noi[a] = _mm256_set1_ps(q->noi[a]);
     }
     sr.tmin = PK(broadcast_ss)(&r->tmin);
-    simd_tri_setup(&q->tc.tr, r->tmin, r->tmax, &st);
+    if (leaves != LEAVES_TRIANGLES) { // the sphere test's, as simd_setup makes them
+        sr.ox = PK(broadcast_ss)(&r->o.x);
+        sr.oy = PK(broadcast_ss)(&r->o.y);
+        sr.oz = PK(broadcast_ss)(&r->o.z);
+        sr.dx = PK(broadcast_ss)(&r->d.x);
+        sr.dy = PK(broadcast_ss)(&r->d.y);
+        sr.dz = PK(broadcast_ss)(&r->d.z);
+        sr.tmax = PK(broadcast_ss)(&r->tmax);
+        sr.a = PK(set1_ps)(q->a);
+        sr.inv_a = PK(set1_ps)(q->inv_a);
+        sr.tmin_nonneg = PK(cmp_ps)(sr.tmin, PK(setzero_ps)(), _CMP_GE_OQ);
+    }
+    st.tr = NULL; // a mixed tree's triangle constants: made at the ray's first triangle packet, kept in q->tc
+    if (leaves == LEAVES_TRIANGLES || q->tc.ready) simd_tri_setup(&q->tc.tr, r->tmin, r->tmax, &st);
     return wide_step(b, r, NULL, &sr, &st, &q->tc, stack, &q->w, &q->best, HIT_NO_INSTANCE, &q->found, false, true,
-                     LEAVES_TRIANGLES);
+                     leaves);
 }
 
 /// Deepest tree whose rays a stream traces all at once (deeper trees' go in smaller groups), and the stack entries a
 /// ray of it may need.
 enum { STREAM_DEPTH = 24, STREAM_STACK = STREAM_DEPTH * (BVH_WIDTH - 1) + 1 };
 
-// wide_stream for a group of n rays through a tree of triangles (compact rays: stream_tri_ray).
-static void wide_stream_group_triangles(const bvh *b, int n, const ray *rays, hit *hits, bool *found, size_t stride) {
-    stream_tri_ray s[BVH_STREAM];
-    stack_entry stacks[BVH_STREAM * STREAM_STACK];
-    int active[BVH_STREAM], live = 0;
-    for (int i = 0; i < n; i++) {
-        found[i] = false;
-        if (b->root == BVH_EMPTY || !stream_tri_ray_start(b, &rays[i], &s[i])) continue;
-        active[live++] = i;
-    }
-    while (live > 0) {
-        for (int k = 0; k < live;) {
-            int i = active[k];
-            if (stream_tri_step(b, &rays[i], &s[i], &stacks[(size_t)i * stride]) == STEP_MORE) {
-                k++;
-                continue;
-            }
-            found[i] = s[i].found;
-            hits[i] = s[i].best;
-            active[k] = active[--live]; // done: its place goes to the last ray in flight
-        }
-    }
-}
-
 // wide_stream for a group of n rays whose stacks of `stride` entries fit in the group's room.
 static inline __attribute__((always_inline)) void wide_stream_group(const bvh *b, int n, const ray *rays, hit *hits,
                                                                     bool *found, int leaves, size_t stride) {
-    if (leaves == LEAVES_TRIANGLES) {
-        wide_stream_group_triangles(b, n, rays, hits, found, stride);
-        return;
-    }
     stream_ray s[BVH_STREAM];
     stack_entry stacks[BVH_STREAM * STREAM_STACK];
     int active[BVH_STREAM], live = 0;
@@ -119,14 +83,12 @@ static inline __attribute__((always_inline)) void wide_stream_group(const bvh *b
     while (live > 0) {
         for (int k = 0; k < live;) {
             int i = active[k];
-            stream_ray *q = &s[i];
-            if (wide_step(b, &rays[i], NULL, &q->sr, &q->stri, &q->tc, &stacks[(size_t)i * stride], &q->w, &q->best,
-                          HIT_NO_INSTANCE, &q->found, false, true, leaves) == STEP_MORE) {
+            if (stream_ray_step(b, &rays[i], &s[i], &stacks[(size_t)i * stride], leaves) == STEP_MORE) {
                 k++;
                 continue;
             }
-            found[i] = q->found;
-            hits[i] = q->best;
+            found[i] = s[i].found;
+            hits[i] = s[i].best;
             active[k] = active[--live]; // done: its place goes to the last ray in flight
         }
     }
