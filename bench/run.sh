@@ -503,7 +503,7 @@ if want mesh; then mesh_bench; fi
 # same scene for glint. For bunny1m glint reads the very OBJ file the yardstick reads (which its run.sh
 # writes): the same bytes to parse. The meshes of other character (bench/meshes/: a dense scan, a CAD mesh of
 # long thin triangles, that mesh subdivided into tiny coplanar ones) stand in the bunny's place in the same
-# scene, one OBJ file for both. Runs alternate A B A B; one-thread runs of both are pinned to one CPU.
+# scene, one OBJ file for both. Pairs alternate A B, B A, A B, ...; one-thread runs of both are pinned to one CPU.
 meshyard_bench() {
     local spp=$MESH_SPP scene name t
     emit "## The mesh yardstick: glint against Embree 3's triangles, 400x300, $spp spp, depth 50"
@@ -547,11 +547,21 @@ meshyard_bench() {
             : >"$WORK/yg"; : >"$WORK/ye"
             for i in $(seq "$RUNS"); do
                 echo "meshyard: $name, $t thread(s), pair $i of $RUNS" >&2
-                glint_measure "$WORK/yg" "$WORK/glint.pfm" "$scene" --spp "$spp" --threads "$t"
-                case $name in
-                bunny | bunny1m) meshyard_run "$WORK/ye" "$name" "$spp" "$t" "$WORK/embree.pfm" ;;
-                *) meshyard_direct "$WORK/ye" "$obj" "$spp" "$WORK/embree.pfm" "$t" ;;
-                esac
+                # A B, then B A, ...: each renderer follows the other as often as itself, so what one run leaves
+                # behind (free huge pages, the caches) weighs on both alike.
+                local order='glint embree'
+                [ $((i % 2)) -eq 0 ] && order='embree glint'
+                local who
+                for who in $order; do
+                    if [ $who = glint ]; then
+                        glint_measure "$WORK/yg" "$WORK/glint.pfm" "$scene" --spp "$spp" --threads "$t"
+                    else
+                        case $name in
+                        bunny | bunny1m) meshyard_run "$WORK/ye" "$name" "$spp" "$t" "$WORK/embree.pfm" ;;
+                        *) meshyard_direct "$WORK/ye" "$obj" "$spp" "$WORK/embree.pfm" "$t" ;;
+                        esac
+                    fi
+                done
             done
             # glint: process render mrays build_ms peak_kb; Embree: process load build render mrays peak_kb r g b
             paste -d ' ' "$WORK/yg" "$WORK/ye" >"$WORK/ypairs"
