@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench/ab.sh — is one glint binary faster than another? Runs them alternately (A, B, A, B, ...) on one
+# bench/ab.sh — is one glint binary faster than another? Runs them alternately (A, B, B, A, A, B, ...) on one
 # render, so both see the same machine state, and prints the median of the per-pair ratios of their render
 # loop's Mrays/s (B over A: above 1 means B is faster). An A/A run gives about 1.000; single pairs scatter
 # by several percent on a shared machine, so use tens of pairs to resolve a 1-2% difference. Beside the ratio, the
@@ -36,7 +36,8 @@ mrays() {
 source "$ROOT/bench/stats.bash" # median, median_interval
 
 for ((i = 0; i < PAIRS; i++)); do
-    a=$(mrays "$A") b=$(mrays "$B")
+    # A B, then B A: each binary follows the other as often as itself (a run leaves the caches behind it).
+    if ((i % 2 == 0)); then a=$(mrays "$A") b=$(mrays "$B"); else b=$(mrays "$B") a=$(mrays "$A"); fi
     [ -n "$a" ] && [ -n "$b" ] || { echo "ab.sh: a run printed no statistics line" >&2; exit 1; }
     echo "$a $b" >>"$OUT/pairs"
 done
