@@ -157,16 +157,34 @@ static char *read_all(const char *path) {
 
 // A render on 1 and 3 threads with a trace attached: every tile pass is one "tile" event on some worker's row;
 // the pixels are those of a render without a trace.
-static void test_traced_render(void) {
+// tests/data/tiny-path.json at 40 pixels wide (3 x 1 tiles) and 40 spp (passes of 16, 16, 8 samples where no one
+// watches and there is no time limit: TILES_FIRST_PASS); NULL (a failed check) when it cannot be read.
+static glint_scene *tiny_path_40(void) {
     glint_scene *scene = NULL;
     glint_error err;
     CHECK(glint_scene_load(GLINT_SOURCE_DIR "/tests/data/tiny-path.json", &scene, &err) == GLINT_OK);
-    if (!scene) return;
+    if (!scene) return NULL;
     glint_overrides o;
     glint_overrides_init(&o);
-    o.width = 40; // 3 x 1 tiles
-    o.spp = 40;   // passes of 16, 16, 8 samples (TILES_FIRST_PASS: no one watches, no time limit)
+    o.width = 40;
+    o.spp = 40;
     CHECK(glint_scene_override(scene, &o, &err) == GLINT_OK);
+    return scene;
+}
+
+// Whether two images have the same size and the same pixels, bit for bit.
+static bool same_pixels(const glint_image *a, const glint_image *b) {
+    int w, h, bw, bh;
+    const float *rgb, *brgb;
+    glint_image_info(a, &w, &h, &rgb);
+    glint_image_info(b, &bw, &bh, &brgb);
+    return w == bw && h == bh && memcmp(rgb, brgb, (size_t)w * (size_t)h * 3 * sizeof *rgb) == 0;
+}
+
+static void test_traced_render(void) {
+    glint_error err;
+    glint_scene *scene = tiny_path_40();
+    if (!scene) return;
     glint_image *plain = NULL;
     glint_render_options opt = {.threads = 2};
     CHECK(glint_render(scene, &opt, NULL, NULL, &plain, NULL, &err) == GLINT_OK);
@@ -177,11 +195,7 @@ static void test_traced_render(void) {
         glint_image *img = NULL;
         opt.threads = threads;
         CHECK(glint_render(scene, &opt, NULL, NULL, &img, NULL, &err) == GLINT_OK);
-        int w, h, pw, ph;
-        const float *rgb, *prgb;
-        glint_image_info(img, &w, &h, &rgb);
-        glint_image_info(plain, &pw, &ph, &prgb);
-        CHECK(w == pw && h == ph && memcmp(rgb, prgb, (size_t)w * (size_t)h * 3 * sizeof *rgb) == 0);
+        CHECK(same_pixels(img, plain));
         const char *file = tmp_path("t.json");
         CHECK(glint_trace_write(t, file, &err) == GLINT_OK);
         char *text = read_all(file);
@@ -220,15 +234,9 @@ static void ignore_image(const glint_image *image, int spp_done, double fraction
 // The passes of a render someone watches (a live image) or a time limit may stop start at one sample: 1, 1, 2, 4, 8,
 // 16 and 8 samples at 40 spp, seven "pass" events where an unwatched render has three; the image the same bytes.
 static void test_watched_passes(void) {
-    glint_scene *scene = NULL;
     glint_error err;
-    CHECK(glint_scene_load(GLINT_SOURCE_DIR "/tests/data/tiny-path.json", &scene, &err) == GLINT_OK);
+    glint_scene *scene = tiny_path_40();
     if (!scene) return;
-    glint_overrides o;
-    glint_overrides_init(&o);
-    o.width = 40;
-    o.spp = 40;
-    CHECK(glint_scene_override(scene, &o, &err) == GLINT_OK);
     glint_render_options plain_opt = {.threads = 2};
     glint_image *plain = NULL;
     CHECK(glint_render(scene, &plain_opt, NULL, NULL, &plain, NULL, &err) == GLINT_OK);
@@ -246,11 +254,7 @@ static void test_watched_passes(void) {
         CHECK(text && count_of(text, "\"name\":\"pass\"") == 7);
         CHECK(text && count_of(text, "\"name\":\"tile\"") == 3 * 7);
         free(text);
-        int w, h, pw, ph;
-        const float *rgb, *prgb;
-        glint_image_info(img, &w, &h, &rgb);
-        glint_image_info(plain, &pw, &ph, &prgb);
-        CHECK(w == pw && h == ph && memcmp(rgb, prgb, (size_t)w * (size_t)h * 3 * sizeof *rgb) == 0);
+        CHECK(same_pixels(img, plain));
         CHECK(glint_trace_attach(NULL, NULL, &err) == GLINT_OK);
         glint_image_free(img);
         glint_trace_free(t);
