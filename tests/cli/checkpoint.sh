@@ -37,7 +37,7 @@ run -q "$SCENE" "${SIZE[@]}" --threads 2 --resume "$CKP" -o "$TMP/resumed.pfm"
 check "resumed: exit 0 (got $rc)" test $rc -eq 0
 run "$SCENE" "${SIZE[@]}" --threads 1 --resume "$CKP" -o "$TMP/resumed.png"
 check "resumed again to a PNG: exit 0 (got $rc)" test $rc -eq 0
-check "a complete checkpoint resumes with no sample to render" grep -q ' 0\.00 Msamples/s\| 0 samples' "$TMP/err"
+check "a complete checkpoint resumes with no sample to render" grep -q ' 0\.000 Msamples/s\| 0 samples' "$TMP/err"
 
 run -q "$SCENE" "${SIZE[@]}" --threads 2 -o "$TMP/whole.pfm"
 run -q "$SCENE" "${SIZE[@]}" --threads 2 -o "$TMP/whole.png"

@@ -89,6 +89,9 @@ check "statistics: no progress bar without a terminal" test "$(tr -cd '\r' <"$TM
 check "statistics line format" grep -Eq \
     '^glint: [0-9]+\.[0-9]{3} s wall, [0-9.]+ Msamples/s, [0-9.]+ Mrays/s \(2 threads\), (BVH [0-9]+ nodes [0-9]+ leaves depth [0-9]+|no BVH \(brute force\)), build [0-9.]+ m?s' \
     "$TMP/err"
+# Rates to four significant figures (0.7314, 11.24, 734.2, 1234): the benchmarks' ratios come from them.
+four='([0-9]\.[0-9]{3}|[1-9][0-9]\.[0-9]{2}|[1-9][0-9]{2}\.[0-9]|[1-9][0-9]{3,})'
+check "statistics: rates to four significant figures" grep -Eq " $four Msamples/s, $four Mrays/s " "$TMP/err"
 check "statistics: names the image and how long writing it took" grep -Eq "; image $TMP/stats.ppm, written in [0-9]+\.[0-9]{3} s\$" "$TMP/err"
 run --threads 2 -o - "$TINY"
 check "statistics: names standard output" grep -Eq '; image on standard output, written in [0-9]+\.[0-9]{3} s$' "$TMP/err"
