@@ -80,7 +80,8 @@ typedef struct bvh2_node {
 
 /// Wide BVH node: the boxes of up to BVH_WIDTH children, structure of arrays, and their references.
 /// box[a][i] is the lower bound on axis a of child i, box[3 + a][i] the upper; an empty slot's bounds are
-/// NaN, which the box tests carry through to their entry distance, so that no ray enters it.
+/// NaN, which the box tests carry through to their entry distance, so that no ray enters it (a positive NaN: the SIMD
+/// test compares distances' bits as integers, where it lies above every number).
 typedef struct bvh_wnode {
     _Alignas(64) float box[6][BVH_WIDTH];
     uint32_t child[BVH_WIDTH]; ///< wide node index, or BVH_LEAF | first slot of the leaf's packets

@@ -80,10 +80,14 @@ static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, fl
     // Operand order as in wnode_test_scalar: an empty slot's NaN reaches tn.
     __m256 tn = _mm256_max_ps(_mm256_max_ps(tmin, nx), _mm256_max_ps(ny, nz));
     // Widened after the cap by the best hit where ties count (closest hits), before it otherwise (bvh_kernel.h).
-    __m256 tf = _mm256_min_ps(_mm256_min_ps(fx, fy), fz), far = _mm256_set1_ps(SLAB_FAR_SCALE);
-    tf = ties ? _mm256_mul_ps(_mm256_min_ps(tf, _mm256_set1_ps(tlimit)), far)
-              : _mm256_min_ps(_mm256_mul_ps(tf, far), _mm256_set1_ps(tlimit));
+    __m256 tf = _mm256_min_ps(_mm256_min_ps(fx, fy), fz);
     _mm256_storeu_ps(tnear, tn);
+    if (ties) { // slab_exit's widening by SLAB_FAR_ULPS; tn <= exit, compared as integers: tn < exit + 1
+        __m256i exit = _mm256_castps_si256(_mm256_min_ps(tf, _mm256_set1_ps(tlimit)));
+        exit = _mm256_add_epi32(exit, _mm256_set1_epi32(SLAB_FAR_ULPS + 1));
+        return (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(exit, _mm256_castps_si256(tn))));
+    }
+    tf = _mm256_min_ps(_mm256_mul_ps(tf, _mm256_set1_ps(SLAB_FAR_SCALE)), _mm256_set1_ps(tlimit));
     return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
 }
 

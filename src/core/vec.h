@@ -9,8 +9,9 @@ typedef struct vec3 {
     float x, y, z;
 } vec3;
 
-/// A ray: origin, direction (unit length in the path tracer), the open interval (tmin, tmax), and the time in
-/// the shutter at which it travels (what moving objects are tested at; 0 unless the camera has a shutter).
+/// A ray: origin, direction (unit length in the path tracer), the open interval (tmin, tmax) with tmin >= 0 (the BVH's
+/// box tests rely on it: bvh_kernel.h), and the time in the shutter at which it travels (what moving objects are
+/// tested at; 0 unless the camera has a shutter).
 typedef struct ray {
     vec3 o, d;
     float tmin, tmax;
