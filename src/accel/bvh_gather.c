@@ -24,7 +24,7 @@ static box3 sphere_box(const sphere *s) {
 // Pads a box so that it stays conservative after the float rounding of the slab test: by 2^-19 of its largest
 // coordinate on every axis, or (`per_axis`) of each axis's own. The slab test of an axis rounds by about 2^-24 of its
 // plane's and the origin's coordinates, and an origin far beyond the plane (|o| > 2 |plane|) makes an error under
-// 2^-22 of t, which the exit distance's widening covers (SLAB_FAR_SCALE); so per axis suffices for boxes whose
+// 2^-22 of t, which the exit distance's widening covers (SLAB_FAR_ULPS); so per axis suffices for boxes whose
 // corners are exact (a triangle's, a quad's), and a floor's box is then no thicker than its height needs: a ray
 // spawned off the floor starts outside it rather than testing it again. Boxes computed with rounding, of
 // transformed or clipped geometry, take the largest coordinate.

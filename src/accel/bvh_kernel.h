@@ -8,18 +8,19 @@
 #include <math.h>
 #include <string.h>
 
-// Relative widening of every box's exit distance, so that float rounding of the slab test (about 2^-23 of t) never
-// culls a box the ray touches; absolute errors are covered by the boxes' padding (sphere_box, box_padded). A
-// closest-hit query widens it after the cap by the best hit so far (and keeps popped subtrees by the like rule): a
-// box that holds a hit at the best hit's very distance may win the tie (bvh_better). An any-hit query caps after
-// widening: a hit at its tmax does not count, and a shadow ray would otherwise test the light it ends at.
-static const float SLAB_FAR_SCALE = 1.0f + 0x1p-20f;
-// A closest-hit query's box tests widen the capped exit by so many units in the last place instead, as many or
-// more (between 2^-20 and 2^-19 of it): an integer addition to its bits, where the multiplication stood on the
-// SIMD box test's longest path (the engine 1.012). Integer order is float order on the distances compared there,
-// non-negative (every ray has tmin >= 0, so a box is entered at or after 0) or an empty slot's positive NaN; a
-// negative exit (a box behind the ray) stays below every entry.
+// Widening of every box's exit distance, so that float rounding of the slab test (under 2^-22 of t, bvh_gather.c)
+// never culls a box the ray touches; absolute errors are covered by the boxes' padding (sphere_box, box_padded). So
+// many units in the last place, added to the exit's bits: between 2^-20 and 2^-19 of it, and an integer addition,
+// where a multiplication by 1 + 2^-20 had stood on the SIMD box test's longest path (the engine 1.012, the Cornell
+// box 1.021). Integer order is float order on the distances compared there, non-negative (every ray has tmin >= 0,
+// so a box is entered at or after 0) or an empty slot's positive NaN; a negative exit (a box behind the ray) stays
+// below every entry. A closest-hit query widens the exit after the cap by the best hit so far (and keeps popped
+// subtrees by the like rule, SLAB_FAR_SCALE): a box that holds a hit at the best hit's very distance may win the
+// tie (bvh_better). An any-hit query caps after widening: a hit at its tmax does not count, and a shadow ray would
+// otherwise test the light it ends at.
 enum { SLAB_FAR_ULPS = 16 };
+/// The popped subtrees' widening (slab_keeps): relative, since the best hit's distance may be infinite.
+static const float SLAB_FAR_SCALE = 1.0f + 0x1p-20f;
 // Direction components smaller than this are replaced by it (with their sign): finite inverses.
 static const float DIR_EPSILON = 1e-20f;
 
@@ -74,18 +75,17 @@ static inline float slab_t(float b, float inv, float noi) {
 static inline float max_sse(float a, float b) { return a > b ? a : b; }
 static inline float min_sse(float a, float b) { return a < b ? a : b; }
 
-// A box's exit distance tf as the box tests compare it, widened after the cap tlimit where ties count (`ties`: a
-// closest-hit query; by SLAB_FAR_ULPS, its bits plus that, as the SIMD test adds them), before it by SLAB_FAR_SCALE
-// otherwise. A capped exit is finite: the cap may be infinite (no hit yet), but a box's exit is under 2^100 (finite
-// boxes, inverse directions at most 1e20).
+// A box's exit distance tf as the box tests compare it, widened by SLAB_FAR_ULPS (its bits plus that, as the SIMD test
+// adds them) after the cap tlimit where ties count (`ties`: a closest-hit query), before it otherwise. What is
+// widened is finite: the cap may be infinite (no hit yet), but a box's exit is under 2^100 (finite boxes, inverse
+// directions at most 1e20).
 static inline float slab_exit(float tf, float tlimit, bool ties) {
-    if (!ties) return min_sse(tf * SLAB_FAR_SCALE, tlimit);
-    float capped = min_sse(tf, tlimit);
+    if (ties) tf = min_sse(tf, tlimit);
     uint32_t bits;
-    memcpy(&bits, &capped, sizeof bits);
+    memcpy(&bits, &tf, sizeof bits);
     bits += SLAB_FAR_ULPS;
-    memcpy(&capped, &bits, sizeof capped);
-    return capped;
+    memcpy(&tf, &bits, sizeof tf);
+    return ties ? tf : min_sse(tf, tlimit);
 }
 
 // Whether a pending subtree entered at t can still hold the hit a query wants, by the same rule.

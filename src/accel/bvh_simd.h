@@ -80,15 +80,16 @@ static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, fl
     // Operand order as in wnode_test_scalar: an empty slot's NaN reaches tn.
     __m256 tn = _mm256_max_ps(_mm256_max_ps(tmin, nx), _mm256_max_ps(ny, nz));
     // Widened after the cap by the best hit where ties count (closest hits), before it otherwise (bvh_kernel.h).
-    __m256 tf = _mm256_min_ps(_mm256_min_ps(fx, fy), fz);
+    // slab_exit: the exit widened by SLAB_FAR_ULPS, after the cap where ties count, before it otherwise; then
+    // tn <= exit compared as integers, tn < exit + 1.
+    __m256 tf = _mm256_min_ps(_mm256_min_ps(fx, fy), fz), cap = _mm256_set1_ps(tlimit);
+    const __m256i ulps = _mm256_set1_epi32(SLAB_FAR_ULPS), one = _mm256_set1_epi32(1);
     _mm256_storeu_ps(tnear, tn);
-    if (ties) { // slab_exit's widening by SLAB_FAR_ULPS; tn <= exit, compared as integers: tn < exit + 1
-        __m256i exit = _mm256_castps_si256(_mm256_min_ps(tf, _mm256_set1_ps(tlimit)));
-        exit = _mm256_add_epi32(exit, _mm256_set1_epi32(SLAB_FAR_ULPS + 1));
-        return (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(exit, _mm256_castps_si256(tn))));
-    }
-    tf = _mm256_min_ps(_mm256_mul_ps(tf, _mm256_set1_ps(SLAB_FAR_SCALE)), _mm256_set1_ps(tlimit));
-    return (unsigned)_mm256_movemask_ps(_mm256_cmp_ps(tn, tf, _CMP_LE_OQ));
+    __m256i exit = ties ? _mm256_add_epi32(_mm256_castps_si256(_mm256_min_ps(tf, cap)), _mm256_add_epi32(ulps, one))
+                        : _mm256_add_epi32(_mm256_castps_si256(_mm256_min_ps(
+                                               _mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(tf), ulps)), cap)),
+                                           one);
+    return (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(exit, _mm256_castps_si256(tn))));
 }
 
 // A packet of spheres at once, each lane computing exactly what sphere_intersect computes (same
