@@ -79,9 +79,8 @@ static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, fl
 #endif
     // Operand order as in wnode_test_scalar: an empty slot's NaN reaches tn.
     __m256 tn = _mm256_max_ps(_mm256_max_ps(tmin, nx), _mm256_max_ps(ny, nz));
-    // Widened after the cap by the best hit where ties count (closest hits), before it otherwise (bvh_kernel.h).
-    // slab_exit: the exit widened by SLAB_FAR_ULPS, after the cap where ties count, before it otherwise; then
-    // tn <= exit compared as integers, tn < exit + 1.
+    // slab_exit: the exit widened by SLAB_FAR_ULPS after the cap by the best hit where ties count (closest hits),
+    // before it otherwise (bvh_kernel.h); then tn <= exit compared as integers, tn < exit + 1.
     __m256 tf = _mm256_min_ps(_mm256_min_ps(fx, fy), fz), cap = _mm256_set1_ps(tlimit);
     const __m256i ulps = _mm256_set1_epi32(SLAB_FAR_ULPS), one = _mm256_set1_epi32(1);
     _mm256_storeu_ps(tnear, tn);
