@@ -16,7 +16,7 @@ typedef struct packet_bounds {
 
 /// A packet's rays are set up and tested in groups of eight, the lanes of an AVX register.
 enum { PACKET_GROUP = 8 };
-_Static_assert(sizeof(pk) == sizeof(__m256), "a group is one SIMD packet wide (edges_mixed)");
+_Static_assert(sizeof(pk) == sizeof(__m256), "a group is one SIMD packet wide (edges_zero, edges_mixed)");
 _Static_assert(BVH_COHERENT % PACKET_GROUP == 0 && BVH_COHERENT <= 16, "whole groups, ray masks in an unsigned");
 
 /// The triangle-test constants of a packet's rays, lane i for ray i: what tri_ray_make and simd_tri_setup make
@@ -209,10 +209,7 @@ static void leaf_rays(const bvh *b, uint32_t ref, const packet_rays *pr, unsigne
                 __m256 u = _mm256_sub_ps(_mm256_mul_ps(x[2], y[1]), _mm256_mul_ps(y[2], x[1]));
                 __m256 v = _mm256_sub_ps(_mm256_mul_ps(x[0], y[2]), _mm256_mul_ps(y[0], x[2]));
                 __m256 w = _mm256_sub_ps(_mm256_mul_ps(x[1], y[0]), _mm256_mul_ps(y[1], x[0]));
-                __m256 zeros = _mm256_or_ps(
-                    _mm256_or_ps(_mm256_cmp_ps(u, zero, _CMP_EQ_OQ), _mm256_cmp_ps(v, zero, _CMP_EQ_OQ)),
-                    _mm256_cmp_ps(w, zero, _CMP_EQ_OQ));
-                unsigned exact = (unsigned)_mm256_movemask_ps(zeros) & group;
+                unsigned exact = (unsigned)_mm256_movemask_ps(edges_zero(u, v, w)) & group;
                 unsigned inside = ~edges_mixed(u, v, w) & group & ~exact;
                 if (!(inside | exact)) continue; // the common case: the triangle misses every ray of the group
                 _Alignas(32) float t[PACKET_GROUP], b1[PACKET_GROUP], b2[PACKET_GROUP];

@@ -61,6 +61,12 @@ static inline bool simd_setup(const ray *r, simd_ray *s, bool boxes_only) {
     return true;
 }
 
+/// v's lanes with n added to their bits: n units in their last place up, for the non-negative distances of the box
+/// tests (SLAB_FAR_ULPS).
+static inline __m256 ulps_up(__m256 v, int n) {
+    return _mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(v), _mm256_set1_epi32(n)));
+}
+
 static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, float tlimit, bool ties, float *tnear) {
     // Both planes of every slab, the nearer by min and the farther by max: the same values as choosing the
     // rows by the direction's signs (trav_setup's near and far), without per-ray row offsets to keep live.
@@ -82,13 +88,10 @@ static inline unsigned wnode_test_simd(const bvh_wnode *n, const simd_ray *s, fl
     // slab_exit: the exit widened by SLAB_FAR_ULPS after the cap by the best hit where ties count (closest hits),
     // before it otherwise (bvh_kernel.h); then tn <= exit compared as integers, tn < exit + 1.
     __m256 tf = _mm256_min_ps(_mm256_min_ps(fx, fy), fz), cap = _mm256_set1_ps(tlimit);
-    const __m256i ulps = _mm256_set1_epi32(SLAB_FAR_ULPS), one = _mm256_set1_epi32(1);
     _mm256_storeu_ps(tnear, tn);
-    __m256i exit = ties ? _mm256_add_epi32(_mm256_castps_si256(_mm256_min_ps(tf, cap)), _mm256_add_epi32(ulps, one))
-                        : _mm256_add_epi32(_mm256_castps_si256(_mm256_min_ps(
-                                               _mm256_castsi256_ps(_mm256_add_epi32(_mm256_castps_si256(tf), ulps)), cap)),
-                                           one);
-    return (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(exit, _mm256_castps_si256(tn))));
+    __m256 exit = ties ? ulps_up(_mm256_min_ps(tf, cap), SLAB_FAR_ULPS) : _mm256_min_ps(ulps_up(tf, SLAB_FAR_ULPS), cap);
+    __m256i entered = _mm256_cmpgt_epi32(_mm256_castps_si256(ulps_up(exit, 1)), _mm256_castps_si256(tn));
+    return (unsigned)_mm256_movemask_ps(_mm256_castsi256_ps(entered));
 }
 
 // A packet of spheres at once, each lane computing exactly what sphere_intersect computes (same
@@ -198,6 +201,13 @@ static inline void simd_tri_setup(const tri_ray *tr, float tmin, float tmax, sim
     st->tr = tr;
 }
 
+/// The lanes with an edge function of zero, all bits set: tri_intersect decides them in double (triangles_exact).
+static inline pk edges_zero(pk u, pk v, pk w) {
+    const pk zero = PK(setzero_ps)();
+    return PK(or_ps)(PK(or_ps)(PK(cmp_ps)(u, zero, _CMP_EQ_OQ), PK(cmp_ps)(v, zero, _CMP_EQ_OQ)),
+                     PK(cmp_ps)(w, zero, _CMP_EQ_OQ));
+}
+
 /// The lanes whose edge functions u, v, w have both signs: the ray passes beside the triangle. Read off the sign bits
 /// (two fewer instructions per edge than comparisons): the signs differ where the OR of the three has its sign bit
 /// and the AND does not. Meaningful on lanes with no edge function zero or NaN (those with a zero take the exact
@@ -223,9 +233,7 @@ static inline unsigned triangles_simd(const bvh_triangle_packet *p, const simd_t
     pk v = PK(sub_ps)(PK(mul_ps)(x[0], y[2]), PK(mul_ps)(y[0], x[2]));
     pk w = PK(sub_ps)(PK(mul_ps)(x[1], y[0]), PK(mul_ps)(y[1], x[0]));
     const pk zero = PK(setzero_ps)();
-    pk zeros = PK(or_ps)(PK(or_ps)(PK(cmp_ps)(u, zero, _CMP_EQ_OQ), PK(cmp_ps)(v, zero, _CMP_EQ_OQ)),
-                                PK(cmp_ps)(w, zero, _CMP_EQ_OQ));
-    unsigned exact = (unsigned)PK(movemask_ps)(zeros);
+    unsigned exact = (unsigned)PK(movemask_ps)(edges_zero(u, v, w));
     // Edges of both signs: outside (most lanes of most packets, so most calls end here, before the division).
     unsigned inside = ~edges_mixed(u, v, w) & ((1u << BVH_PACKET) - 1) & ~exact;
     unsigned mask = 0;
