@@ -1,6 +1,7 @@
-// test_mis.c — multiple importance sampling at the glossy vertices of the microfacet materials: a small Cornell
-// box whose view is filled by a rough gold sphere renders the same mean with light sampling alone, BSDF sampling
-// alone and MIS (within their standard errors), and MIS is the least noisy per sample of the first two.
+// test_mis.c — multiple importance sampling at glossy vertices (the microfacet materials and the book's fuzzed
+// metal): a small Cornell box whose view is filled by a rough gold sphere, or a fuzzed metal one, renders the same
+// mean with light sampling alone, BSDF sampling alone and MIS (within their standard errors), and MIS is at least
+// as good per sample as the worse of the two.
 #include "check.h"
 #include "glint.h"
 #include "render/render.h"
@@ -19,8 +20,8 @@ static void add_quad(glint_scene *s, vec3 q, vec3 u, vec3 v, uint32_t mat) {
     CHECK(scene_add_quad(s, qd));
 }
 
-// "The Rest of Your Life"'s box at 12 x 12, looking at a rough gold sphere (roughness `rough`) on the floor.
-static glint_scene *gold_cornell(int spp, uint64_t seed, float rough) {
+// "The Rest of Your Life"'s box at 12 x 12, looking at a sphere of material `ball` on the floor.
+static glint_scene *ball_cornell(int spp, uint64_t seed, material ball) {
     glint_scene *s = scene_new("test");
     render_settings *rs = &s->settings;
     rs->width = rs->height = 12;
@@ -45,9 +46,6 @@ static glint_scene *gold_cornell(int spp, uint64_t seed, float rough) {
     white.albedo = v3s(0.73f);
     green.albedo = v3(0.12f, 0.45f, 0.15f);
     lamp.emission = v3s(15.0f);
-    material gold = material_default(MAT_CONDUCTOR);
-    CHECK(material_conductor_preset("Au", &gold.eta, &gold.k));
-    gold.roughness = rough;
     uint32_t r = add_material(s, red), w = add_material(s, white), g = add_material(s, green), l = add_material(s, lamp);
     add_quad(s, v3(555, 0, 0), v3(0, 0, 555), v3(0, 555, 0), g);
     add_quad(s, v3(0, 0, 555), v3(0, 0, -555), v3(0, 555, 0), r);
@@ -55,19 +53,19 @@ static glint_scene *gold_cornell(int spp, uint64_t seed, float rough) {
     add_quad(s, v3(0, 0, 555), v3(555, 0, 0), v3(0, 0, -555), w);
     add_quad(s, v3(555, 0, 555), v3(-555, 0, 0), v3(0, 555, 0), w);
     add_quad(s, v3(213, 554, 227), v3(130, 0, 0), v3(0, 0, 105), l);
-    sphere sp = {v3(278, 120, 278), 120, add_material(s, gold)};
+    sphere sp = {v3(278, 120, 278), 120, add_material(s, ball)};
     CHECK(scene_add_sphere(s, sp));
     return s;
 }
 
 // The mean over all pixels and channels of two renders with independent seeds, and its standard error from the
 // pixels' differences.
-static void mean_se(mis_mode mode, int spp, float rough, double *mean, double *se) {
+static void mean_se(mis_mode mode, int spp, material ball, double *mean, double *se) {
     const float *px[2];
     glint_image *img[2];
     int w = 0, h = 0;
     for (int k = 0; k < 2; k++) {
-        glint_scene *s = gold_cornell(spp, 40 + (uint64_t)k, rough);
+        glint_scene *s = ball_cornell(spp, 40 + (uint64_t)k, ball);
         render_options opt = {.threads = 0,
                               .integrator = {.no_light_sampling = mode == MODE_BSDF, .light_sampling_only = mode == MODE_LIGHT}};
         glint_error err;
@@ -88,14 +86,27 @@ static void mean_se(mis_mode mode, int spp, float rough, double *mean, double *s
 }
 
 int main(void) {
-    static const float roughs[] = {0.15f, 0.5f};
+    material balls[4];
+    char names_ball[4][64];
+    static const float roughs[] = {0.15f, 0.5f}, fuzzes[] = {0.3f, 1.0f};
     for (int j = 0; j < 2; j++) {
+        balls[j] = material_default(MAT_CONDUCTOR);
+        CHECK(material_conductor_preset("Au", &balls[j].eta, &balls[j].k));
+        balls[j].roughness = roughs[j];
+        snprintf(names_ball[j], sizeof names_ball[j], "rough gold sphere (roughness %.2f)", (double)roughs[j]);
+        // The book's metal: its sampling's own density (mat_metal_pdf) is what MIS weighs light samples against.
+        balls[2 + j] = material_default(MAT_METAL);
+        balls[2 + j].albedo = v3(0.8f, 0.6f, 0.2f);
+        balls[2 + j].fuzz = fuzzes[j];
+        snprintf(names_ball[2 + j], sizeof names_ball[2 + j], "the book's metal sphere (fuzz %.2f)", (double)fuzzes[j]);
+    }
+    for (int j = 0; j < 4; j++) {
         double m[3], se[3];
         static const int spp[3] = {64, 1024, 256};
         static const char *const names[3] = {"MIS", "BSDF sampling only", "light sampling only"};
-        printf("rough gold sphere (roughness %.2f) in a Cornell box, mean radiance:\n", (double)roughs[j]);
+        printf("%s in a Cornell box, mean radiance:\n", names_ball[j]);
         for (int k = 0; k < 3; k++) {
-            mean_se((mis_mode)k, spp[k], roughs[j], &m[k], &se[k]);
+            mean_se((mis_mode)k, spp[k], balls[j], &m[k], &se[k]);
             printf("  %-22s %4d spp: %.5f +- %.5f (per-sample noise %.4f)\n", names[k], spp[k], m[k], se[k],
                    se[k] * sqrt((double)spp[k]));
         }
@@ -103,6 +114,9 @@ int main(void) {
         CHECK(se[0] < 0.03 * m[0]);
         // MIS is at least as good per sample as the worse of the two strategies alone.
         CHECK(se[0] * sqrt(64.0) <= fmax(se[1] * sqrt(1024.0), se[2] * sqrt(256.0)) * 1.1);
+        // And light sampling pays: the lamp is small, BSDF sampling alone finds it seldom (were the sphere not
+        // lit by light sampling, MIS would be BSDF sampling, as noisy a sample).
+        CHECK(se[0] * sqrt(64.0) < 0.75 * se[1] * sqrt(1024.0));
     }
     return check_summary();
 }

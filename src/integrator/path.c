@@ -324,7 +324,8 @@ static void path_tangents(const glint_scene *s, const surface *sf, vec3 *t, vec3
     }
 }
 
-// A path at a surface of a microfacet material (conductor, rough_dielectric, pbr), kept out of the fast vertex:
+// A path at a surface of a microfacet material (conductor, rough_dielectric, pbr) or, in a scene with lights, the
+// book's fuzzed metal (material_uses_bsdf), kept out of the fast vertex:
 // pbr's emission (weighted against the light sampling of the last vertex, as an emitter's), the material's BSDF
 // at the point, a direction sampled from it and, where it has glossy or diffuse lobes, next-event estimation
 // with MIS against that sample. Whether the path goes on.
@@ -412,7 +413,8 @@ static inline __attribute__((always_inline)) bool path_vertex(const path_integra
         path_emitter(s, setup, ps, cur, h, &sf, m, aov);
         return false;
     }
-    if (material_is_microfacet(m)) return path_bsdf_vertex(pi, setup, ps, cur, h, &sf, m, r, ts, aov);
+    if (material_uses_bsdf(m, setup.has_lights || setup.pl || setup.es))
+        return path_bsdf_vertex(pi, setup, ps, cur, h, &sf, m, r, ts, aov);
     vec3 albedo = mat_albedo(m, s->textures, sf.u, sf.v, surface_texture_point(s, &sf, m->albedo_texture));
     if (ps->aov_pending) ps->aov_pending = path_aov_surface(aov, ps->throughput, albedo, sf.n, m);
     scatter_event ev;

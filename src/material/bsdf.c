@@ -156,7 +156,8 @@ void bsdf_init(bsdf *b, const material *m, const texture *textures, vec3 albedo,
     switch (m->kind) {
     case MAT_LAMBERTIAN: b->flags = BSDF_DIFFUSE | BSDF_REFLECTION; return;
     case MAT_PHONG: b->flags = BSDF_DIFFUSE | BSDF_DELTA | BSDF_REFLECTION; return;
-    case MAT_METAL: b->flags = BSDF_DELTA | BSDF_REFLECTION; return;
+    // The book's fuzzed metal has a density (mat_metal_pdf), so lights are sampled at it; a perfect mirror has none.
+    case MAT_METAL: b->flags = (m->fuzz > 0.0f ? BSDF_GLOSSY : BSDF_DELTA) | BSDF_REFLECTION; return;
     case MAT_DIELECTRIC: b->flags = BSDF_DELTA | BSDF_REFLECTION | BSDF_TRANSMISSION; return;
     case MAT_DIFFUSE_LIGHT:
     case MAT_KIND_COUNT: b->flags = 0; return;
@@ -471,7 +472,11 @@ vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi) {
         float diffuse = m->kind == MAT_PHONG ? 1.0f - m->reflective : 1.0f;
         return v3_scale(b->base, diffuse * inv_pi);
     }
-    case MAT_METAL:
+    case MAT_METAL: { // f cos = albedo times the sampling density: the book's weight, albedo, is f cos / pdf
+        float c = v3_dot(wi, b->n);
+        if (m->fuzz == 0.0f || !(v3_dot(wo, b->n) > 0.0f) || !(c > 0.0f)) return v3s(0.0f);
+        return v3_scale(b->base, bsdf_pdf(b, wo, wi) / c);
+    }
     case MAT_DIELECTRIC:
     case MAT_DIFFUSE_LIGHT:
     case MAT_KIND_COUNT: return v3s(0.0f);
@@ -493,7 +498,9 @@ float bsdf_pdf(const bsdf *b, vec3 wo, vec3 wi) {
         if (!(v3_dot(wo, b->n) > 0.0f) || !(c > 0.0f)) return 0.0f;
         return (m->kind == MAT_PHONG ? 1.0f - m->reflective : 1.0f) * c * inv_pi;
     }
-    case MAT_METAL:
+    case MAT_METAL: // the directions below the surface are absorbed: no density there
+        if (m->fuzz == 0.0f || !(v3_dot(wo, b->n) > 0.0f) || !(v3_dot(wi, b->n) > 0.0f)) return 0.0f;
+        return mat_metal_pdf(v3_reflect(v3_neg(wo), b->n), m->fuzz, wi);
     case MAT_DIELECTRIC:
     case MAT_DIFFUSE_LIGHT:
     case MAT_KIND_COUNT: return 0.0f;
@@ -512,10 +519,11 @@ bool bsdf_sample(const bsdf *b, vec3 wo, rng *r, bsdf_sample_record *s) {
         // The book's and the paper's materials, drawing their random numbers as the path tracer always has.
         scatter_event ev;
         if (!mat_scatter(m, b->base, v3_neg(wo), b->n, b->front, r, &ev)) return false;
+        unsigned lobe = ev.diffuse ? BSDF_DIFFUSE : m->kind == MAT_METAL && m->fuzz > 0.0f ? BSDF_GLOSSY : BSDF_DELTA;
         s->wi = ev.dir;
         s->weight = ev.weight;
-        s->pdf = ev.diffuse ? bsdf_pdf(b, wo, ev.dir) : 0.0f;
-        s->flags = (ev.transmitted ? BSDF_TRANSMISSION : BSDF_REFLECTION) | (ev.diffuse ? BSDF_DIFFUSE : BSDF_DELTA);
+        s->pdf = lobe == BSDF_DELTA ? 0.0f : bsdf_pdf(b, wo, ev.dir);
+        s->flags = (ev.transmitted ? BSDF_TRANSMISSION : BSDF_REFLECTION) | lobe;
         return true;
     }
     vec3 lo = to_local(b, wo);

@@ -9,7 +9,8 @@
 //
 // The book's Lambertian, metal and dielectric and the paper's Phong keep their own sampling, consuming random
 // numbers exactly as they always have (mat_scatter, material/scatter.h: the path tracer's fast paths call it
-// directly); the microfacet materials (conductor, rough_dielectric, pbr) are GGX lobes with visible-normal
+// directly); the fuzzed metal's density is that sampling's own (mat_metal_pdf), so that lights can be sampled at
+// it with MIS. The microfacet materials (conductor, rough_dielectric, pbr) are GGX lobes with visible-normal
 // sampling and energy compensation (bsdf.c, microfacet.h, bsdf_tables.h).
 #ifndef GLINT_BSDF_H
 #define GLINT_BSDF_H
@@ -27,8 +28,8 @@ typedef enum bsdf_flags {
     BSDF_REFLECTION = 1u,   ///< scatters back to the side it was lit from
     BSDF_TRANSMISSION = 2u, ///< scatters through the surface
     BSDF_DIFFUSE = 4u,      ///< a Lambertian lobe: next-event estimation pays
-    BSDF_GLOSSY = 8u,       ///< a microfacet lobe: next-event estimation pays, with MIS
-    BSDF_DELTA = 16u        ///< a mirror or refraction direction (or the book's fuzzed metal): sampled only
+    BSDF_GLOSSY = 8u,       ///< a microfacet lobe or the book's fuzzed metal: next-event estimation pays, with MIS
+    BSDF_DELTA = 16u        ///< a mirror or refraction direction: sampled only
 } bsdf_flags;
 
 /// Where a BSDF is set up: the shading frame and what textures need.
@@ -80,12 +81,18 @@ bool bsdf_sample(const bsdf *b, vec3 wo, rng *r, bsdf_sample_record *s);
 
 /// Whether the path tracer samples lights at this material's surfaces (it has a diffuse or glossy lobe that
 /// bsdf_eval answers for). The book's Lambertian and Phong's diffuse lobe are lit by the path tracer's own
-/// fast path; this is for the microfacet materials.
+/// fast path; this is for the microfacet materials and the book's fuzzed metal.
 static inline bool bsdf_has_nee(const bsdf *b) { return (b->flags & (BSDF_DIFFUSE | BSDF_GLOSSY)) != 0; }
 
-/// Whether m is one of the microfacet materials (conductor, rough_dielectric, pbr), which the path tracer
-/// scatters through bsdf_init/bsdf_sample rather than its fast paths for the book's materials.
+/// Whether m is one of the microfacet materials (conductor, rough_dielectric, pbr).
 static inline bool material_is_microfacet(const material *m) { return m->kind > MAT_DIFFUSE_LIGHT; }
+
+/// Whether the path tracer scatters m through bsdf_init/bsdf_sample, with light sampling, rather than its fast
+/// paths for the book's materials: the microfacet materials, and the book's fuzzed metal in a scene with lights to
+/// sample (`lit`; without, its fast path draws the same directions).
+static inline bool material_uses_bsdf(const material *m, bool lit) {
+    return material_is_microfacet(m) || (lit && m->kind == MAT_METAL && m->fuzz > 0.0f);
+}
 
 /// How the Whitted integrators show a material (they trace mirrors and refraction, and light the rest with
 /// Phong's local model): a diffuse colour lit by the lights, a colour the mirror ray is weighted by, and a

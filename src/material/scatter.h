@@ -52,6 +52,23 @@ static inline bool mat_metal_dir(vec3 d, vec3 n, float fuzz, vec3 u, vec3 *out) 
     return true;
 }
 
+/// The density (per steradian) with which mat_metal_dir draws unit direction wi around the unit mirror direction
+/// `mirror`, for 0 < fuzz <= 1, absorbed samples included (they are the directions below the surface): the point
+/// mirror + fuzz u, u uniform on the unit sphere, lies on a sphere of radius fuzz, and wi's ray from the origin
+/// meets it at distances c -+ D (c = wi.mirror, D^2 = fuzz^2 - |wi x mirror|^2), each point's area density
+/// 1 / (4 pi fuzz^2) seen under the solid angle s^2 / |u.wi| = s^2 fuzz / D: together (c^2 + D^2) / (2 pi fuzz D),
+/// cos/pi about the mirror direction at fuzz 1. Infinite (integrably) at the edge of the cone, zero outside it.
+static inline float mat_metal_pdf(vec3 mirror, float fuzz, vec3 wi) {
+    float c = v3_dot(wi, mirror);
+    vec3 x = v3_cross(wi, mirror);
+    float d2 = fuzz * fuzz - v3_dot(x, x); // sin^2 from the cross product: no cancellation in narrow cones
+    // A direction drawn at the edge can land outside it by rounding (wi's own error, some ulps of an angle, moves
+    // d^2 by about fuzz times that): within that margin it is on the edge, its density large but finite.
+    if (!(c > 0.0f) || !(d2 > -1e-6f * fuzz)) return 0.0f;
+    float d = sqrtf(fmaxf(d2, 1e-12f * fuzz));
+    return (c * c + d2) / (6.283185307179586f * fuzz * d);
+}
+
 /// Probability that a dielectric reflects a ray arriving at cos_i to the normal, with eta = n_incident /
 /// n_transmitted: 1 under total internal reflection, else Schlick's r0 + (1 - r0)(1 - cos_i)^5 (as the book).
 static inline float mat_dielectric_reflectance(float cos_i, float eta) {
