@@ -8,6 +8,8 @@
 #
 # usage: bash bench/ab.sh A_BINARY B_BINARY [PAIRS] [-- GLINT ARGS]
 #   default render: scenes/rtiow-final.json at 200x112, 10 spp, one thread; one-thread renders are pinned
+#   AB_RATE=Msamples compares samples per second instead (binaries whose paths trace different rays per sample:
+#   then the time to the same image, where Mrays/s would credit the extra rays)
 set -euo pipefail
 ROOT=$(cd "$(dirname "$0")/.." && pwd)
 A=${1:?usage: ab.sh A_BINARY B_BINARY [PAIRS] [-- GLINT ARGS]}
@@ -28,9 +30,11 @@ done
 OUT=$(mktemp -d "${TMPDIR:-/tmp}/glint-ab.XXXXXX")
 trap 'rm -rf "$OUT"' EXIT
 
-# mrays BINARY: the Mrays/s of one render, from glint's statistics line.
+RATE=${AB_RATE:-Mrays}
+case $RATE in Mrays | Msamples) ;; *) echo "ab.sh: AB_RATE is Mrays or Msamples, not $RATE" >&2; exit 2 ;; esac
+# mrays BINARY: the Mrays/s (or Msamples/s) of one render, from glint's statistics line.
 mrays() {
-    "${PIN[@]}" "$1" "${ARGS[@]}" -o "$OUT/image.ppm" 2>&1 >/dev/null | sed -n 's/.* \([0-9.]*\) Mrays\/s.*/\1/p' | tail -1
+    "${PIN[@]}" "$1" "${ARGS[@]}" -o "$OUT/image.ppm" 2>&1 >/dev/null | sed -n "s/.* \([0-9.]*\) $RATE\/s.*/\1/p" | tail -1
 }
 # shellcheck source=stats.bash
 source "$ROOT/bench/stats.bash" # median, median_interval
@@ -42,6 +46,6 @@ for ((i = 0; i < PAIRS; i++)); do
     echo "$a $b" >>"$OUT/pairs"
 done
 awk '{ print $2 / $1 }' "$OUT/pairs" | median >"$OUT/ratio"
-printf 'A %s Mrays/s, B %s Mrays/s (medians of %d alternating pairs); median B/A ratio %.3f, its interval %s\n' \
-    "$(cut -d' ' -f1 "$OUT/pairs" | median)" "$(cut -d' ' -f2 "$OUT/pairs" | median)" "$PAIRS" "$(cat "$OUT/ratio")" \
+printf 'A %s %s/s, B %s %s/s (medians of %d alternating pairs); median B/A ratio %.3f, its interval %s\n' \
+    "$(cut -d' ' -f1 "$OUT/pairs" | median)" "$RATE" "$(cut -d' ' -f2 "$OUT/pairs" | median)" "$RATE" "$PAIRS" "$(cat "$OUT/ratio")" \
     "$(awk '{ print $2 / $1 }' "$OUT/pairs" | median_interval)"
