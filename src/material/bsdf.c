@@ -7,6 +7,7 @@
 #include "material/bsdf_tables.h"
 #include "material/microfacet.h"
 
+#include <float.h>
 #include <math.h>
 
 static const float pi = 3.14159265358979f, inv_pi = 0.318309886183791f;
@@ -523,6 +524,9 @@ bool bsdf_sample(const bsdf *b, vec3 wo, rng *r, bsdf_sample_record *s) {
         s->wi = ev.dir;
         s->weight = ev.weight;
         s->pdf = lobe == BSDF_DELTA ? 0.0f : bsdf_pdf(b, wo, ev.dir);
+        // A fuzzed metal's direction drawn at its cone's edge, where the density is unbounded, can land just
+        // outside it by rounding, where bsdf_pdf says 0: what it finds is then its own (MIS weight 1).
+        if (lobe == BSDF_GLOSSY && !(s->pdf > 0.0f)) s->pdf = FLT_MAX;
         s->flags = (ev.transmitted ? BSDF_TRANSMISSION : BSDF_REFLECTION) | lobe;
         return true;
     }

@@ -62,10 +62,8 @@ static inline float mat_metal_pdf(vec3 mirror, float fuzz, vec3 wi) {
     float c = v3_dot(wi, mirror);
     vec3 x = v3_cross(wi, mirror);
     float d2 = fuzz * fuzz - v3_dot(x, x); // sin^2 from the cross product: no cancellation in narrow cones
-    // A direction drawn at the edge can land outside it by rounding (wi's own error, some ulps of an angle, moves
-    // d^2 by about fuzz times that): within that margin it is on the edge, its density large but finite.
-    if (!(c > 0.0f) || !(d2 > -1e-6f * fuzz)) return 0.0f;
-    float d = sqrtf(fmaxf(d2, 1e-12f * fuzz));
+    if (!(c > 0.0f) || !(d2 > 0.0f)) return 0.0f;
+    float d = sqrtf(d2);
     return (c * c + d2) / (6.283185307179586f * fuzz * d);
 }
 
