@@ -476,7 +476,7 @@ vec3 bsdf_eval(const bsdf *b, vec3 wo, vec3 wi) {
     case MAT_METAL: { // f cos = albedo times the sampling density: the book's weight, albedo, is f cos / pdf
         float c = v3_dot(wi, b->n);
         if (m->fuzz == 0.0f || !(v3_dot(wo, b->n) > 0.0f) || !(c > 0.0f)) return v3s(0.0f);
-        return v3_scale(b->base, bsdf_pdf(b, wo, wi) / c);
+        return v3_scale(b->base, mat_metal_pdf(v3_reflect(v3_neg(wo), b->n), m->fuzz, wi) / c);
     }
     case MAT_DIELECTRIC:
     case MAT_DIFFUSE_LIGHT:
